@@ -1,0 +1,115 @@
+// Shared machinery of the C API: handle objects with reference counts and a magic tag, the
+// catch-all that turns exceptions into status codes, the per-thread last error, and reading
+// versioned options structs. Every mcon_* entry point is written as
+//   return mcon::capi::guard("mcon_x", [&] { ... });
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <algorithm>
+#include <cstring>
+#include <functional>
+#include <memory>
+#include <string>
+#include <type_traits>
+
+#include "error.h"
+#include "macrocon/macrocon.h"
+
+namespace mcon::capi {
+
+struct LastError {
+  mcon_status status = MCON_OK;
+  std::string message;
+};
+LastError& thread_last_error();
+
+// Records an error for the calling thread (and forwards it to the context's log callback).
+mcon_status set_error(mcon_status status, const std::string& message, mcon_context context = nullptr);
+
+// Runs `body`; maps mcon::Error, std::bad_alloc and any other exception to a status code.
+template <typename F>
+mcon_status guard(const char* function, F&& body, mcon_context context = nullptr) noexcept {
+  try {
+    body();
+    return MCON_OK;
+  } catch (const Error& e) {
+    return set_error(e.status(), std::string(function) + ": " + e.what(), context);
+  } catch (const std::bad_alloc&) {
+    return set_error(MCON_ERROR_OUT_OF_MEMORY, std::string(function) + ": out of memory", context);
+  } catch (const std::exception& e) {
+    return set_error(MCON_ERROR_UNKNOWN, std::string(function) + ": internal error: " + e.what(), context);
+  } catch (...) {
+    return set_error(MCON_ERROR_UNKNOWN, std::string(function) + ": internal error", context);
+  }
+}
+
+// Every handle object starts with this header. The magic tag catches wrong-type and
+// already-freed handles in most cases (a best effort: a freed handle is still undefined).
+struct HandleHeader {
+  std::uint32_t magic;
+  std::atomic<std::int32_t> references{1};
+  explicit HandleHeader(std::uint32_t m) : magic(m) {}
+};
+
+template <typename T>
+T* check_handle(T* handle, const char* what) {
+  require(handle != nullptr, MCON_ERROR_NULL_POINTER, std::string(what) + " handle is NULL");
+  require(handle->header.magic == T::kMagic && handle->header.references.load() > 0, MCON_ERROR_INVALID_ARGUMENT,
+          std::string(what) + " handle is not a valid " + what + " (wrong type or already released)");
+  return handle;
+}
+
+template <typename T>
+void retain(T* handle, const char* what) {
+  check_handle(handle, what)->header.references.fetch_add(1);
+}
+
+template <typename T>
+void release(T* handle, const char* what) {
+  if (handle == nullptr) return;
+  check_handle(handle, what);
+  if (handle->header.references.fetch_sub(1) == 1) {
+    handle->header.magic = 0;
+    delete handle;
+  }
+}
+
+template <typename T>
+void require_pointer(const T* p, const char* name) {
+  require(p != nullptr, MCON_ERROR_NULL_POINTER, std::string(name) + " is NULL");
+}
+
+// Reads a caller's options struct: struct_size must cover at least the first published version
+// (`min_size`); fields beyond what the caller's struct_size covers keep their defaults.
+template <typename T>
+T read_options(const T* user, std::size_t min_size, const char* name, const T& defaults) {
+  static_assert(std::is_trivially_copyable_v<T>, "options must be plain structs");
+  T out = defaults;
+  if (user == nullptr) return out;
+  require(user->struct_size >= min_size, MCON_ERROR_STRUCT_SIZE,
+          std::string(name) + ".struct_size is " + std::to_string(user->struct_size) + ", expected at least " +
+              std::to_string(min_size) + " (call the matching _init function)");
+  std::memcpy(&out, user, std::min<std::size_t>(user->struct_size, sizeof(T)));
+  out.struct_size = static_cast<std::uint32_t>(sizeof(T));
+  return out;
+}
+
+// Writes an output info struct: only the bytes the caller's struct_size covers.
+template <typename T>
+void write_info(T* user, std::size_t min_size, const char* name, const T& value) {
+  require_pointer(user, name);
+  require(user->struct_size >= min_size, MCON_ERROR_STRUCT_SIZE,
+          std::string(name) + ".struct_size is " + std::to_string(user->struct_size) + ", expected at least " +
+              std::to_string(min_size) + " (call the matching _init function)");
+  const std::uint32_t caller_size = user->struct_size;
+  std::memcpy(user, &value, std::min<std::size_t>(caller_size, sizeof(T)));
+  user->struct_size = caller_size;
+}
+
+void require_capacity(std::size_t capacity, std::size_t needed, const char* name);
+
+// Turns a C progress callback into the core's std::function (null when no callback).
+std::function<bool(double)> make_progress(mcon_progress_callback callback, void* user);
+
+}  // namespace mcon::capi

@@ -1,0 +1,55 @@
+// Mesh files for the CLI, tools, tests and samples (not part of the core's data flow): OBJ (quads
+// and polygons fan-triangulated as a,b,c / a,c,d, so quad diagonals match the benchmark), OFF and
+// PLY (ASCII and binary), each optionally gzip-compressed (`.gz`). PLY output carries per-vertex
+// scalar and vector attributes so results can be inspected in any viewer.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "../mesh.h"
+
+namespace mcon::io {
+
+struct MeshFileOptions {
+  // Keep only faces [face_begin, face_end) in file order (polygons counted before
+  // triangulation); face_end < 0 means all.
+  long face_begin = 0;
+  long face_end = -1;
+  // OBJ only: keep only faces in this group (`g` name); empty = all.
+  std::string obj_group;
+};
+
+struct LoadedMesh {
+  TriMesh mesh;                       // unreferenced vertices removed, validated
+  std::vector<int> file_to_mesh;      // file vertex index -> mesh vertex index or -1
+  std::vector<int> mesh_to_file;      // mesh vertex index -> file vertex index
+  std::vector<int> triangle_to_face;  // mesh triangle -> file face index
+};
+
+// Throws mcon::Error(MCON_ERROR_IO) on unreadable or malformed files, and the validation errors
+// of validate_mesh on bad geometry.
+LoadedMesh read_mesh(const std::string& path, const MeshFileOptions& options = {});
+
+// Reads a whole file, transparently gunzipping `.gz`.
+std::string read_file_maybe_gz(const std::string& path);
+
+struct VertexAttribute {
+  std::string name;                   // e.g. "distance" or "uv" (components get _x/_y/... suffixes)
+  int components = 1;                 // 1 (scalar), 2, 3
+  std::vector<double> values;         // vertex-major, components per vertex
+};
+
+struct FaceAttribute {
+  std::string name;
+  std::vector<int> values;            // one integer per triangle
+};
+
+// Writes binary little-endian PLY with float positions and attributes.
+void write_ply(const std::string& path, const TriMesh& mesh, const std::vector<VertexAttribute>& vertex_attributes = {},
+               const std::vector<FaceAttribute>& face_attributes = {});
+void write_obj(const std::string& path, const TriMesh& mesh);
+void write_off(const std::string& path, const TriMesh& mesh);
+
+}  // namespace mcon::io

@@ -1,0 +1,56 @@
+// The core's triangle mesh: plain positions and CCW triangles, validated on construction so
+// every algorithm downstream can assume a finite, manifold, oriented mesh without isolated vertices.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Dense>
+
+namespace mcon {
+
+using Vec2 = Eigen::Vector2d;
+using Vec3 = Eigen::Vector3d;
+using Tri = std::array<int, 3>;
+
+struct TriMesh {
+  std::vector<Vec3> positions;
+  std::vector<Tri> triangles;
+
+  int num_vertices() const { return static_cast<int>(positions.size()); }
+  int num_triangles() const { return static_cast<int>(triangles.size()); }
+};
+
+// Strided input, as the C API receives it. A stride of 0 means tightly packed.
+struct MeshArrays {
+  const void* positions = nullptr;
+  bool positions_are_double = true;
+  std::size_t position_stride = 0;
+  std::size_t vertex_count = 0;
+  const std::uint32_t* indices = nullptr;
+  std::size_t index_stride = 0;
+  std::size_t triangle_count = 0;
+};
+
+// Copies strided arrays into a TriMesh and validates it (throws mcon::Error).
+TriMesh mesh_from_arrays(const MeshArrays& arrays);
+
+// Throws mcon::Error with a distinct status and a message naming the first offending element:
+// EMPTY_MESH, NON_FINITE, INDEX_OUT_OF_RANGE, REPEATED_INDEX, DEGENERATE_TRIANGLE,
+// NON_MANIFOLD_EDGE, NON_MANIFOLD_VERTEX, ISOLATED_VERTEX.
+void validate_mesh(const TriMesh& mesh);
+
+// Same as validate_mesh but without the isolated-vertex rule (used by readers before compaction).
+void validate_mesh_allow_isolated(const TriMesh& mesh);
+
+double triangle_area(const TriMesh& mesh, int t);
+Vec3 triangle_normal(const TriMesh& mesh, int t);  // unit normal (zero for a degenerate triangle)
+double total_area(const TriMesh& mesh);
+double mean_edge_length(const TriMesh& mesh);
+
+// Drops vertices used by no triangle. Returns for each old vertex its new index or -1.
+std::vector<int> remove_unreferenced_vertices(TriMesh& mesh);
+
+}  // namespace mcon
