@@ -1,0 +1,27 @@
+// Everything a retrieval query needs besides the query patch itself: which descriptor, how its
+// dimensions are normalized, the vocabulary and the soft-assignment width (thesis §3.2). A
+// library file stores one of these, so a query needs nothing else.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace mcon {
+
+struct RetrievalConfig {
+  std::string descriptor = "curv9";        // "curv9", "hks", "wks", "custom:<name>"
+  std::uint32_t dimension = 0;             // descriptor values per vertex (d)
+  std::vector<double> normalization_mean;  // d values: subtracted first
+  std::vector<double> normalization_scale; // d values: then divided (std over the library, thesis §3.2)
+  std::uint32_t vocabulary_size = 0;       // k
+  std::vector<double> vocabulary;          // k * d, word-major (normalized descriptor space)
+  double sigma_bof = 0;                    // soft-assignment width (thesis eq. 3.1)
+  std::uint32_t rings = 1;                 // concentric geodesic rings (1 = plain bag-of-features)
+  std::uint64_t seed = 0;                  // seed the vocabulary was built with
+
+  // Histogram length of one entry: k * rings.
+  std::size_t histogram_length() const { return static_cast<std::size_t>(vocabulary_size) * rings; }
+};
+
+}  // namespace mcon
