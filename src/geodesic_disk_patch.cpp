@@ -205,7 +205,7 @@ Patch extract_geodesic_disk(const TriMesh& host, const PatchOptions& options) {
     std::vector<char> in_complement(nt, 0);
     for (int t = 0; t < nt; ++t) in_complement[t] = !kept[t] || has(t, Side::kOut);
     struct PartInfo {
-      bool touches_cut = false;
+      bool touches_cut = false;  // reaches beyond the region, or the host's own boundary
       double area = 0;
       double max_distance = 0;
     };
@@ -223,7 +223,7 @@ Patch extract_geodesic_disk(const TriMesh& host, const PatchOptions& options) {
         PartInfo& info = parts[id];
         if (!kept[t]) info.area += triangle_area(rm, t);
         for (int v : rm.triangles[t]) {
-          info.touches_cut |= region.vertex_on_cut[v] != 0;
+          info.touches_cut |= region.vertex_on_cut[v] != 0 || region.vertex_on_host_boundary[v] != 0;
           if (side[v] == Side::kOut) info.max_distance = std::max(info.max_distance, d[v]);
         }
         for (int e : rt.triangle_edges[t])

@@ -1,5 +1,6 @@
 #include "mesh_region.h"
 
+#include <algorithm>
 #include <limits>
 #include <queue>
 
@@ -64,14 +65,26 @@ MeshRegion mesh_region_around(const TriMesh& host, const std::vector<std::vector
       region.triangle_to_host.push_back(t);
     }
   region.vertex_on_cut.assign(region.vertex_to_host.size(), 0);
+  region.vertex_on_host_boundary.assign(region.vertex_to_host.size(), 0);
   bool any_cut = false;
-  for (std::size_t rv = 0; rv < region.vertex_to_host.size(); ++rv)
-    for (int t : vertex_triangles[region.vertex_to_host[rv]])
-      if (!tri_taken[t]) {
+  std::vector<int> ring;
+  for (std::size_t rv = 0; rv < region.vertex_to_host.size(); ++rv) {
+    const int hv = region.vertex_to_host[rv];
+    ring.clear();
+    for (int t : vertex_triangles[hv]) {
+      if (!tri_taken[t] && !region.vertex_on_cut[rv]) {
         region.vertex_on_cut[rv] = 1;
         any_cut = true;
-        break;
       }
+      for (int w : host.triangles[t])
+        if (w != hv) ring.push_back(w);
+    }
+    // On a manifold mesh an interior vertex has as many distinct neighbours as triangles; a
+    // boundary vertex has one more.
+    std::sort(ring.begin(), ring.end());
+    const auto distinct = std::unique(ring.begin(), ring.end()) - ring.begin();
+    region.vertex_on_host_boundary[rv] = distinct > static_cast<long>(vertex_triangles[hv].size());
+  }
   region.is_whole_component = !any_cut;
   return region;
 }

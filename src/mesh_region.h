@@ -15,6 +15,7 @@ struct MeshRegion {
   std::vector<int> triangle_to_host;
   std::vector<int> host_to_vertex;     // host vertex -> region vertex or -1 (host-sized)
   std::vector<char> vertex_on_cut;     // region vertex has a host triangle outside the region
+  std::vector<char> vertex_on_host_boundary;  // region vertex lies on a boundary of the host mesh
   bool is_whole_component = false;     // no cut: the region is the whole connected component
 };
 
