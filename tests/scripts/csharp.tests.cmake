@@ -6,7 +6,7 @@ if(NOT MACROCON_SANITIZE AND MACROCON_MCS AND MACROCON_MONO)
   set(cs_dir ${PROJECT_BINARY_DIR}/csharp)
   add_custom_command(OUTPUT ${cs_dir}/Macrocon.dll ${cs_dir}/MacroconTests.exe
     COMMAND ${CMAKE_COMMAND} -E make_directory ${cs_dir}
-    COMMAND ${MACROCON_MCS} -langversion:7.2 -unsafe -warnaserror -target:library -doc:${cs_dir}/Macrocon.xml
+    COMMAND ${MACROCON_MCS} -langversion:7.2 -unsafe -warnaserror -target:library
             -out:${cs_dir}/Macrocon.dll ${PROJECT_SOURCE_DIR}/bindings/csharp/Macrocon.cs
     COMMAND ${MACROCON_MCS} -langversion:7.2 -warnaserror -r:${cs_dir}/Macrocon.dll -out:${cs_dir}/MacroconTests.exe
             ${PROJECT_SOURCE_DIR}/bindings/csharp/tests/MacroconTests.cs
