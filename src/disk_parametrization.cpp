@@ -1,12 +1,11 @@
 #include "disk_parametrization.h"
 
-#include <algorithm>
-#include <cmath>
-#include <string>
-
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/Sparse>
 #include <Eigen/SparseLU>
+#include <algorithm>
+#include <cmath>
+#include <string>
 
 #include "error.h"
 #include "mesh_topology.h"

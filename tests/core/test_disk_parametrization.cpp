@@ -82,17 +82,6 @@ mcon_status status_of(const TriMesh& mesh, const std::vector<int>& loop) {
   return MCON_OK;
 }
 
-// Keeps the triangles whose vertices all satisfy `keep` (then drops unused vertices).
-template <typename Keep>
-TriMesh cut(TriMesh mesh, Keep keep) {
-  std::vector<Tri> kept;
-  for (const Tri& t : mesh.triangles)
-    if (keep(mesh.positions[t[0]]) && keep(mesh.positions[t[1]]) && keep(mesh.positions[t[2]])) kept.push_back(t);
-  mesh.triangles = kept;
-  remove_unreferenced_vertices(mesh);
-  return mesh;
-}
-
 }  // namespace
 
 TEST(DiskParametrization, ReproducesAFlatDiskWhoseBoundaryIsAlreadyTheCircle) {
@@ -138,9 +127,7 @@ TEST(DiskParametrization, FlatConvexDiskKeepsInteriorVerticesStrictlyInside) {
   EXPECT_LT(largest_interior, 0.95);  // the outermost interior ring sits at 0.9 of the radius
 }
 
-TEST(DiskParametrization, JitteredGridHasNoFlips) {
-  check_embedding(test_meshes::make_grid(25, 2.0, 0.8));
-}
+TEST(DiskParametrization, JitteredGridHasNoFlips) { check_embedding(test_meshes::make_grid(25, 2.0, 0.8)); }
 
 TEST(DiskParametrization, BumpyNonConvexGridHasNoFlips) {
   // A tall narrow bump (height 3 on a 2 x 2 grid) plus random jitter in every direction.
@@ -148,8 +135,7 @@ TEST(DiskParametrization, BumpyNonConvexGridHasNoFlips) {
   Lcg rnd{99u};
   for (Vec3& p : grid.positions) {
     const double x = p.x() - 1.0, y = p.y() - 1.0;
-    p.z() = 3.0 * std::exp(-(x * x + y * y) / 0.02) + 0.5 * std::exp(-((x - 0.5) * (x - 0.5)) / 0.01) +
-            0.03 * rnd();
+    p.z() = 3.0 * std::exp(-(x * x + y * y) / 0.02) + 0.5 * std::exp(-((x - 0.5) * (x - 0.5)) / 0.01) + 0.03 * rnd();
   }
   check_embedding(grid);
 }
@@ -166,7 +152,8 @@ TEST(DiskParametrization, RolledUpGridHasNoFlips) {
 
 TEST(DiskParametrization, SphericalCapLargerThanAHemisphereHasNoFlips) {
   // Everything above z = -0.6 of a unit icosphere: the boundary circle is narrower than the cap.
-  const TriMesh cap = cut(test_meshes::make_icosphere(3), [](const Vec3& p) { return p.z() > -0.6; });
+  const TriMesh cap =
+      test_meshes::select_faces(test_meshes::make_icosphere(3), [](const Vec3& p) { return p.z() > -0.6; });
   const std::vector<Vec2> uv = check_embedding(cap);
   // The pole (farthest from the boundary) lands near the disk's center.
   int top = 0;
