@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cstring>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <string>
 #include <type_traits>
@@ -24,23 +25,26 @@ struct LastError {
 };
 LastError& thread_last_error();
 
-// Records an error for the calling thread (and forwards it to the context's log callback).
-mcon_status set_error(mcon_status status, const std::string& message, mcon_context context = nullptr);
+// Records an error for the calling thread and forwards it to the log callback of `context` (if
+// not NULL: callers pass a context only once its handle has been validated). Never throws.
+mcon_status set_error(mcon_status status, const std::string& message, mcon_context context = nullptr) noexcept;
 
 // Runs `body`; maps mcon::Error, std::bad_alloc and any other exception to a status code.
+// `log_context` is read only after `body` failed, so a body may set it once it has validated
+// the handle that leads to the context (errors are then also sent to that context's log callback).
 template <typename F>
-mcon_status guard(const char* function, F&& body, mcon_context context = nullptr) noexcept {
+mcon_status guard(const char* function, F&& body, const mcon_context& log_context = nullptr) noexcept {
   try {
     body();
     return MCON_OK;
   } catch (const Error& e) {
-    return set_error(e.status(), std::string(function) + ": " + e.what(), context);
+    return set_error(e.status(), std::string(function) + ": " + e.what(), log_context);
   } catch (const std::bad_alloc&) {
-    return set_error(MCON_ERROR_OUT_OF_MEMORY, std::string(function) + ": out of memory", context);
+    return set_error(MCON_ERROR_OUT_OF_MEMORY, std::string(function) + ": out of memory", log_context);
   } catch (const std::exception& e) {
-    return set_error(MCON_ERROR_UNKNOWN, std::string(function) + ": internal error: " + e.what(), context);
+    return set_error(MCON_ERROR_UNKNOWN, std::string(function) + ": internal error: " + e.what(), log_context);
   } catch (...) {
-    return set_error(MCON_ERROR_UNKNOWN, std::string(function) + ": internal error", context);
+    return set_error(MCON_ERROR_UNKNOWN, std::string(function) + ": internal error", log_context);
   }
 }
 
@@ -70,6 +74,15 @@ void release(T* handle, const char* what) {
   if (handle == nullptr) return;
   check_handle(handle, what);
   if (handle->header.references.fetch_sub(1) == 1) {
+    handle->header.magic = 0;
+    delete handle;
+  }
+}
+
+// For destructors of objects that hold a reference they took themselves (always valid).
+template <typename T>
+void release_owned(T* handle) noexcept {
+  if (handle != nullptr && handle->header.references.fetch_sub(1) == 1) {
     handle->header.magic = 0;
     delete handle;
   }
@@ -107,9 +120,25 @@ void write_info(T* user, std::size_t min_size, const char* name, const T& value)
   user->struct_size = caller_size;
 }
 
+// The integer a C caller passed for an enum parameter. C enums are plain ints, so any value may
+// arrive; reading the bytes avoids loading an out-of-range value as the C++ enum type (which is
+// undefined behaviour, and UBSan reports it).
+template <typename E>
+std::int32_t enum_bits(const E& value) {
+  static_assert(std::is_enum_v<E> && sizeof(E) == sizeof(std::int32_t), "a 32-bit C enum");
+  std::int32_t raw;
+  std::memcpy(&raw, &value, sizeof raw);
+  return raw;
+}
+
 void require_capacity(std::size_t capacity, std::size_t needed, const char* name);
 
-// Turns a C progress callback into the core's std::function (null when no callback).
-std::function<bool(double)> make_progress(mcon_progress_callback callback, void* user);
+// Turns a C progress callback into the core's std::function (null when no callback). The
+// function serializes calls (the header promises never two at once), clamps the fraction to
+// [0, 1] and never lets it go backwards, and once the caller cancelled it keeps answering
+// "cancel" without calling again. `cancelled`, if given, reports whether the caller cancelled
+// (so a core routine that ignores the answer still ends in MCON_ERROR_CANCELLED).
+std::function<bool(double)> make_progress(mcon_progress_callback callback, void* user,
+                                          std::shared_ptr<const std::atomic<bool>>* cancelled = nullptr);
 
 }  // namespace mcon::capi

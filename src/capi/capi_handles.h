@@ -1,4 +1,5 @@
-// The objects behind the opaque handles of macrocon.h.
+// The objects behind the opaque handles of macrocon.h. Every object but the context keeps one
+// reference on the context it was made in, and drops it in its destructor.
 #pragma once
 
 #include <memory>
@@ -15,6 +16,9 @@ struct mcon_context_t {
   mcon_context_options options{};
   // All parallel work of this context runs inside this arena (never the host's global one).
   std::unique_ptr<tbb::task_arena> arena;
+  // Count the contexts alive, which mcon_shutdown waits for.
+  mcon_context_t();
+  ~mcon_context_t();
 };
 
 struct mcon_mesh_t {
@@ -30,5 +34,34 @@ struct mcon_patch_t {
   mcon::capi::HandleHeader header{kMagic};
   mcon_context context = nullptr;  // retained
   mcon::Patch patch;
+  // Measured once on the finished patch (mcon_patch_info), not assumed.
+  std::uint32_t boundary_loops = 0;
+  std::int32_t euler_characteristic = 0;
   ~mcon_patch_t();
 };
+
+namespace mcon::capi {
+
+// Runs `f` inside the context's arena, isolated from any outer work of the calling thread
+// (design-notes §5: hosts with their own TBB must never see our tasks). Exceptions propagate.
+template <typename F>
+auto run_in_arena(mcon_context context, const F& f) -> decltype(f()) {
+  return context->arena->execute([&] { return tbb::this_task_arena::isolate(f); });
+}
+
+// guard() for a call on one object: validates the handle first, then sends any later error to
+// the log callback of the object's context as well.
+template <typename T, typename F>
+mcon_status guard_object(const char* function, T* handle, const char* what, F&& body) noexcept {
+  mcon_context log_context = nullptr;
+  return guard(
+      function,
+      [&] {
+        check_handle(handle, what);
+        log_context = handle->context;
+        body();
+      },
+      log_context);
+}
+
+}  // namespace mcon::capi

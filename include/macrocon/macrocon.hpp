@@ -1,0 +1,407 @@
+// Macrocon C++17 wrapper: header-only RAII classes over the C ABI of macrocon.h (and nothing
+// else, so it works with any build of the library whose major version matches).
+//  - Every failing C call throws macrocon::Error (status + the message of mcon_get_last_error).
+//  - Context, Mesh, Patch own one reference to their handle: copy = retain, move = steal,
+//    destructor = release. A moved-from object holds no handle (operator bool is false); using
+//    it throws Error(MCON_ERROR_NULL_POINTER).
+//  - Arrays come back as std::vector; inputs are copied by the library, as in C.
+#ifndef MACROCON_HPP
+#define MACROCON_HPP
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <exception>
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "macrocon.h"
+
+namespace macrocon {
+
+// A failed call: the C status and the library's message.
+class Error : public std::runtime_error {
+ public:
+  Error(mcon_status status, const std::string& message) : std::runtime_error(message), status_(status) {}
+  mcon_status status() const noexcept { return status_; }
+
+ private:
+  mcon_status status_;
+};
+
+// "MCON_ERROR_NOT_A_DISK" etc.; "unknown status N" for a code this library does not know.
+inline std::string status_name(mcon_status status) {
+  const char* name = nullptr;
+  if (mcon_get_status_name(status, &name) != MCON_OK || name == nullptr)
+    return "unknown status " + std::to_string(static_cast<int>(status));
+  return name;
+}
+
+// Throws Error for anything but MCON_OK, with the calling thread's last error message.
+inline void check(mcon_status status) {
+  if (status == MCON_OK) return;
+  const char* message = nullptr;
+  const mcon_status stored = mcon_get_last_error(nullptr, &message);
+  std::string text = (stored == status && message != nullptr && message[0] != '\0') ? message : status_name(status);
+  throw Error(status, text);
+}
+
+struct Version {
+  std::uint32_t major = 0, minor = 0, patch = 0;
+  std::uint32_t encoded() const { return major * 10000 + minor * 100 + patch; }
+  std::string to_string() const {
+    return std::to_string(major) + "." + std::to_string(minor) + "." + std::to_string(patch);
+  }
+};
+
+// The version of the loaded library.
+inline Version library_version() {
+  Version v;
+  check(mcon_get_version(&v.major, &v.minor, &v.patch));
+  return v;
+}
+
+// The version of the header this code was compiled against.
+inline constexpr Version header_version() {
+  return Version{MCON_VERSION_MAJOR, MCON_VERSION_MINOR, MCON_VERSION_PATCH};
+}
+
+// True if the loaded library can be used with this header (same major version).
+inline bool is_compatible() { return library_version().major == header_version().major; }
+
+// Waits for the SDK's worker threads (mcon_shutdown): call after every object is destroyed.
+inline void shutdown() { check(mcon_shutdown()); }
+
+namespace detail {
+
+// One counted reference to a C handle.
+template <typename Handle, mcon_status (*Retain)(Handle), mcon_status (*Release)(Handle)>
+class Ref {
+ public:
+  Ref() noexcept = default;
+  // Takes over a reference the caller owns (e.g. fresh from a *_create call).
+  explicit Ref(Handle handle) noexcept : handle_(handle) {}
+  Ref(const Ref& other) : handle_(other.handle_) {
+    if (handle_) check(Retain(handle_));
+  }
+  Ref(Ref&& other) noexcept : handle_(std::exchange(other.handle_, nullptr)) {}
+  Ref& operator=(const Ref& other) {
+    if (this != &other) {
+      if (other.handle_) check(Retain(other.handle_));
+      reset();
+      handle_ = other.handle_;
+    }
+    return *this;
+  }
+  Ref& operator=(Ref&& other) noexcept {
+    if (this != &other) {
+      reset();
+      handle_ = std::exchange(other.handle_, nullptr);
+    }
+    return *this;
+  }
+  ~Ref() { reset(); }
+
+  void reset() noexcept {
+    if (handle_) Release(std::exchange(handle_, nullptr));
+  }
+  Handle get() const noexcept { return handle_; }
+  // Gives up ownership without releasing: the caller now owns the reference.
+  Handle detach() noexcept { return std::exchange(handle_, nullptr); }
+
+ private:
+  Handle handle_ = nullptr;
+};
+
+// Throws for a default-constructed or moved-from object instead of passing NULL to C.
+template <typename Handle>
+Handle require(Handle handle, const char* what) {
+  if (handle == nullptr)
+    throw Error(MCON_ERROR_NULL_POINTER, std::string("macrocon::") + what + " holds no handle (moved from?)");
+  return handle;
+}
+
+}  // namespace detail
+
+// The root object: thread pool and settings. Every Mesh and Patch keeps its context alive.
+// `Context ctx;` makes a working context with default options; `Context ctx(nullptr);` an empty one.
+class Context {
+ public:
+  struct Options {
+    // 0 = all hardware threads. Results never depend on it.
+    std::uint32_t max_threads = 0;
+    // Optional error log (any thread). user_data must outlive every object of this context.
+    mcon_log_callback log_callback = nullptr;
+    void* log_user_data = nullptr;
+  };
+
+  Context() : Context(Options{}) {}
+  explicit Context(const Options& options) : Context(to_c(options)) {}
+  explicit Context(const mcon_context_options& options) {
+    mcon_context handle = nullptr;
+    check(mcon_context_create(&options, &handle));
+    ref_ = Ref(handle);
+  }
+  explicit Context(std::nullptr_t) noexcept {}
+  // Takes over a reference the caller owns.
+  static Context adopt(mcon_context handle) noexcept {
+    Context c(nullptr);
+    c.ref_ = Ref(handle);
+    return c;
+  }
+
+  mcon_context get() const noexcept { return ref_.get(); }
+  mcon_context detach() noexcept { return ref_.detach(); }
+  explicit operator bool() const noexcept { return ref_.get() != nullptr; }
+
+ private:
+  using Ref = detail::Ref<mcon_context, mcon_context_retain, mcon_context_release>;
+  static mcon_context_options to_c(const Options& options) {
+    mcon_context_options c;
+    check(mcon_context_options_init(&c));
+    c.max_threads = options.max_threads;
+    c.log_callback = options.log_callback;
+    c.log_user_data = options.log_user_data;
+    return c;
+  }
+
+  Ref ref_;
+};
+
+// A validated, manifold triangle mesh (the library keeps its own copy of the arrays).
+class Mesh {
+ public:
+  // Flat arrays: positions = x0 y0 z0 x1 ..., indices = a0 b0 c0 a1 ...
+  static Mesh from_arrays(const Context& context, const std::vector<float>& positions,
+                          const std::vector<std::uint32_t>& indices) {
+    check_flat(positions.size(), indices.size());
+    return from_arrays(context, positions.data(), 0, positions.size() / 3, indices.data(), 0, indices.size() / 3);
+  }
+  static Mesh from_arrays(const Context& context, const std::vector<double>& positions,
+                          const std::vector<std::uint32_t>& indices) {
+    check_flat(positions.size(), indices.size());
+    return from_arrays(context, positions.data(), 0, positions.size() / 3, indices.data(), 0, indices.size() / 3);
+  }
+  // Strided arrays: strides in bytes, 0 = tightly packed.
+  static Mesh from_arrays(const Context& context, const float* positions, std::size_t position_stride,
+                          std::size_t vertex_count, const std::uint32_t* indices, std::size_t index_stride,
+                          std::size_t triangle_count) {
+    return from_desc(context, desc(positions, MCON_SCALAR_FLOAT32, position_stride, vertex_count, indices,
+                                   index_stride, triangle_count));
+  }
+  static Mesh from_arrays(const Context& context, const double* positions, std::size_t position_stride,
+                          std::size_t vertex_count, const std::uint32_t* indices, std::size_t index_stride,
+                          std::size_t triangle_count) {
+    return from_desc(context, desc(positions, MCON_SCALAR_FLOAT64, position_stride, vertex_count, indices,
+                                   index_stride, triangle_count));
+  }
+  static Mesh from_desc(const Context& context, const mcon_mesh_desc& d) {
+    mcon_mesh handle = nullptr;
+    check(mcon_mesh_create(detail::require(context.get(), "Context"), &d, &handle));
+    return adopt(handle);
+  }
+
+  // An empty mesh object (no handle).
+  Mesh() noexcept = default;
+  // Takes over a reference the caller owns.
+  static Mesh adopt(mcon_mesh handle) noexcept {
+    Mesh m;
+    m.ref_ = detail::Ref<mcon_mesh, mcon_mesh_retain, mcon_mesh_release>(handle);
+    return m;
+  }
+
+  std::size_t vertex_count() const { return counts().first; }
+  std::size_t triangle_count() const { return counts().second; }
+
+  mcon_mesh get() const noexcept { return ref_.get(); }
+  mcon_mesh detach() noexcept { return ref_.detach(); }
+  explicit operator bool() const noexcept { return ref_.get() != nullptr; }
+
+ private:
+  static void check_flat(std::size_t positions, std::size_t indices) {
+    if (positions % 3 != 0 || indices % 3 != 0)
+      throw Error(MCON_ERROR_INVALID_ARGUMENT, "macrocon::Mesh::from_arrays: array sizes " +
+                                                   std::to_string(positions) + " and " + std::to_string(indices) +
+                                                   " are not multiples of 3");
+  }
+  static mcon_mesh_desc desc(const void* positions, mcon_scalar_type type, std::size_t position_stride,
+                             std::size_t vertex_count, const std::uint32_t* indices, std::size_t index_stride,
+                             std::size_t triangle_count) {
+    mcon_mesh_desc d;
+    check(mcon_mesh_desc_init(&d));
+    d.positions = positions;
+    d.position_type = type;
+    d.position_stride = position_stride;
+    d.vertex_count = vertex_count;
+    d.indices = indices;
+    d.index_stride = index_stride;
+    d.triangle_count = triangle_count;
+    return d;
+  }
+  std::pair<std::size_t, std::size_t> counts() const {
+    std::size_t v = 0, t = 0;
+    check(mcon_mesh_get_counts(detail::require(get(), "Mesh"), &v, &t));
+    return {v, t};
+  }
+
+  detail::Ref<mcon_mesh, mcon_mesh_retain, mcon_mesh_release> ref_;
+};
+
+// Options of Patch::extract; the C struct mcon_patch_options works too.
+struct PatchOptions {
+  // A host vertex, or (MCON_INVALID_INDEX) a point in center_triangle at center_barycentric.
+  std::uint32_t center_vertex = MCON_INVALID_INDEX;
+  std::uint32_t center_triangle = MCON_INVALID_INDEX;
+  std::array<double, 3> center_barycentric{{1.0 / 3, 1.0 / 3, 1.0 / 3}};
+  double radius = 0;  // geodesic radius in host units, > 0
+  bool fill_holes = true;
+  double snap_fraction = 0.2;
+  // Fraction in [0, 1]; return false to cancel (Error with MCON_ERROR_CANCELLED). Exceptions it
+  // throws cancel the extraction and are rethrown from Patch::extract.
+  std::function<bool(double)> progress;
+
+  static PatchOptions at_vertex(std::uint32_t vertex, double radius) {
+    PatchOptions o;
+    o.center_vertex = vertex;
+    o.radius = radius;
+    return o;
+  }
+  static PatchOptions at_point(std::uint32_t triangle, const std::array<double, 3>& barycentric, double radius) {
+    PatchOptions o;
+    o.center_triangle = triangle;
+    o.center_barycentric = barycentric;
+    o.radius = radius;
+    return o;
+  }
+};
+
+// Where one patch vertex lies on the host: (1 - t) * host[v0] + t * host[v1].
+struct HostVertices {
+  std::vector<std::uint32_t> v0, v1;
+  std::vector<double> t;
+};
+
+// A geodesic disk of a host mesh, normalized to geodesic radius 1 (host = center + radius * p).
+class Patch {
+ public:
+  static Patch extract(const Mesh& host, const PatchOptions& options) {
+    mcon_patch_options c;
+    check(mcon_patch_options_init(&c));
+    c.center_vertex = options.center_vertex;
+    c.center_triangle = options.center_triangle;
+    for (int i = 0; i < 3; ++i) c.center_barycentric[i] = options.center_barycentric[static_cast<std::size_t>(i)];
+    c.radius = options.radius;
+    c.flags = options.fill_holes ? static_cast<std::uint32_t>(MCON_PATCH_FILL_HOLES) : 0u;
+    c.snap_fraction = options.snap_fraction;
+    ProgressForward forward{&options.progress, nullptr};
+    if (options.progress) {
+      c.progress = &ProgressForward::call;
+      c.progress_user_data = &forward;
+    }
+    mcon_patch handle = nullptr;
+    const mcon_status status = mcon_patch_extract(detail::require(host.get(), "Mesh"), &c, &handle);
+    if (forward.exception) std::rethrow_exception(forward.exception);
+    check(status);
+    return adopt(handle);
+  }
+  static Patch extract(const Mesh& host, const mcon_patch_options& options) {
+    mcon_patch handle = nullptr;
+    check(mcon_patch_extract(detail::require(host.get(), "Mesh"), &options, &handle));
+    return adopt(handle);
+  }
+
+  // An empty patch object (no handle).
+  Patch() noexcept = default;
+  // Takes over a reference the caller owns.
+  static Patch adopt(mcon_patch handle) noexcept {
+    Patch p;
+    p.ref_ = detail::Ref<mcon_patch, mcon_patch_retain, mcon_patch_release>(handle);
+    return p;
+  }
+
+  mcon_patch_info info() const {
+    mcon_patch_info i;
+    check(mcon_patch_info_init(&i));
+    check(mcon_patch_get_info(handle(), &i));
+    return i;
+  }
+  std::size_t vertex_count() const { return info().vertex_count; }
+  std::size_t triangle_count() const { return info().triangle_count; }
+
+  // 3 doubles per vertex, normalized.
+  std::vector<double> positions() const {
+    std::vector<double> out(3 * vertex_count());
+    check(mcon_patch_get_positions(handle(), out.data(), out.size()));
+    return out;
+  }
+  // 3 indices per triangle.
+  std::vector<std::uint32_t> triangles() const {
+    std::vector<std::uint32_t> out(3 * triangle_count());
+    check(mcon_patch_get_triangles(handle(), out.data(), out.size()));
+    return out;
+  }
+  // 2 doubles per vertex in the unit disk.
+  std::vector<double> uv() const {
+    std::vector<double> out(2 * vertex_count());
+    check(mcon_patch_get_uv(handle(), out.data(), out.size()));
+    return out;
+  }
+  HostVertices host_vertices() const {
+    const std::size_t n = vertex_count();
+    HostVertices h;
+    h.v0.resize(n);
+    h.v1.resize(n);
+    h.t.resize(n);
+    check(mcon_patch_get_host_vertices(handle(), h.v0.data(), h.v1.data(), h.t.data(), n));
+    return h;
+  }
+  // The host triangle of each patch triangle (MCON_INVALID_INDEX for hole fillers).
+  std::vector<std::uint32_t> host_triangles() const {
+    std::vector<std::uint32_t> out(triangle_count());
+    check(mcon_patch_get_host_triangles(handle(), out.data(), out.size()));
+    return out;
+  }
+  // vertex_count * descriptor_dimension(d) values, vertex-major.
+  std::vector<double> compute_descriptors(mcon_descriptor descriptor) const {
+    std::vector<double> out(vertex_count() * descriptor_dimension(descriptor));
+    check(mcon_patch_compute_descriptors(handle(), descriptor, out.data(), out.size()));
+    return out;
+  }
+  static std::uint32_t descriptor_dimension(mcon_descriptor descriptor) {
+    std::uint32_t d = 0;
+    check(mcon_descriptor_get_dimension(descriptor, &d));
+    return d;
+  }
+
+  mcon_patch get() const noexcept { return ref_.get(); }
+  mcon_patch detach() noexcept { return ref_.detach(); }
+  explicit operator bool() const noexcept { return ref_.get() != nullptr; }
+
+ private:
+  // Carries a std::function through the C callback; an exception becomes "cancel" and is
+  // rethrown by extract() (no exception may cross the C boundary).
+  struct ProgressForward {
+    const std::function<bool(double)>* function;
+    std::exception_ptr exception;
+    static std::int32_t call(void* user, double fraction) {
+      auto* self = static_cast<ProgressForward*>(user);
+      try {
+        return (*self->function)(fraction) ? 1 : 0;
+      } catch (...) {
+        self->exception = std::current_exception();
+        return 0;
+      }
+    }
+  };
+
+  mcon_patch handle() const { return detail::require(get(), "Patch"); }
+
+  detail::Ref<mcon_patch, mcon_patch_retain, mcon_patch_release> ref_;
+};
+
+}  // namespace macrocon
+
+#endif  // MACROCON_HPP

@@ -1,0 +1,217 @@
+// Patches: geodesic disks cut out of a host mesh (extract_geodesic_disk) and their arrays.
+#include <cmath>
+#include <cstdio>
+
+#include "capi_handles.h"
+#include "mesh_topology.h"
+
+using namespace mcon;
+using namespace mcon::capi;
+
+mcon_patch_t::~mcon_patch_t() { release_owned(context); }
+
+namespace {
+
+mcon_patch_options default_patch_options() {
+  mcon_patch_options o{};
+  o.struct_size = sizeof(mcon_patch_options);
+  o.center_vertex = MCON_INVALID_INDEX;
+  o.center_triangle = MCON_INVALID_INDEX;
+  o.center_barycentric[0] = o.center_barycentric[1] = o.center_barycentric[2] = 1.0 / 3.0;
+  o.radius = 0;  // no sensible default: the caller must choose the scale
+  o.flags = MCON_PATCH_FILL_HOLES;
+  o.snap_fraction = 0.2;
+  return o;
+}
+
+std::string number(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%.17g", x);
+  return buf;
+}
+
+// The C options -> the core's options, with every field checked against the host.
+PatchOptions to_core_options(const mcon_patch_options& o, const TriMesh& host) {
+  PatchOptions po;
+  if (o.center_vertex != MCON_INVALID_INDEX) {
+    require(o.center_vertex < host.positions.size(), MCON_ERROR_INVALID_ARGUMENT,
+            "center_vertex " + std::to_string(o.center_vertex) + " is out of range (the host mesh has " +
+                std::to_string(host.positions.size()) + " vertices)");
+    po.center.vertex = static_cast<int>(o.center_vertex);
+  } else {
+    require(o.center_triangle != MCON_INVALID_INDEX, MCON_ERROR_INVALID_ARGUMENT,
+            "no center: set center_vertex, or center_triangle and center_barycentric");
+    require(o.center_triangle < host.triangles.size(), MCON_ERROR_INVALID_ARGUMENT,
+            "center_triangle " + std::to_string(o.center_triangle) + " is out of range (the host mesh has " +
+                std::to_string(host.triangles.size()) + " triangles)");
+    const double* b = o.center_barycentric;
+    for (int i = 0; i < 3; ++i)
+      require(std::isfinite(b[i]), MCON_ERROR_NON_FINITE,
+              "center_barycentric[" + std::to_string(i) + "] is not finite (" + number(b[i]) + ")");
+    const double sum = b[0] + b[1] + b[2];
+    require(b[0] >= 0 && b[1] >= 0 && b[2] >= 0 && std::abs(sum - 1.0) <= 1e-6, MCON_ERROR_INVALID_ARGUMENT,
+            "center_barycentric (" + number(b[0]) + ", " + number(b[1]) + ", " + number(b[2]) +
+                ") is not a point of the triangle (each >= 0, sum 1)");
+    po.center.triangle = static_cast<int>(o.center_triangle);
+    po.center.barycentric = Vec3(b[0], b[1], b[2]) / sum;
+  }
+  require(std::isfinite(o.radius), MCON_ERROR_NON_FINITE, "radius is not finite (" + number(o.radius) + ")");
+  require(o.radius > 0, MCON_ERROR_INVALID_ARGUMENT, "radius must be > 0 (got " + number(o.radius) + ")");
+  require((o.flags & ~static_cast<std::uint32_t>(MCON_PATCH_FILL_HOLES)) == 0, MCON_ERROR_INVALID_ARGUMENT,
+          "flags " + std::to_string(o.flags) + " has bits that are not mcon_patch_flags");
+  require(std::isfinite(o.snap_fraction), MCON_ERROR_NON_FINITE,
+          "snap_fraction is not finite (" + number(o.snap_fraction) + ")");
+  require(o.snap_fraction >= 0 && o.snap_fraction <= 0.45, MCON_ERROR_INVALID_ARGUMENT,
+          "snap_fraction " + number(o.snap_fraction) + " is outside [0, 0.45]");
+  po.radius = o.radius;
+  po.fill_holes = (o.flags & MCON_PATCH_FILL_HOLES) != 0;
+  po.snap_fraction = o.snap_fraction;
+  return po;
+}
+
+std::uint32_t to_index(int i) { return i < 0 ? MCON_INVALID_INDEX : static_cast<std::uint32_t>(i); }
+
+}  // namespace
+
+extern "C" {
+
+mcon_status mcon_patch_options_init(mcon_patch_options* options) {
+  return guard("mcon_patch_options_init", [&] {
+    require_pointer(options, "options");
+    *options = default_patch_options();
+  });
+}
+
+mcon_status mcon_patch_extract(mcon_mesh host, const mcon_patch_options* options, mcon_patch* out_patch) {
+  mcon_context log_context = nullptr;
+  return guard(
+      "mcon_patch_extract",
+      [&] {
+        require_pointer(out_patch, "out_patch");
+        *out_patch = nullptr;
+        check_handle(host, "mesh");
+        log_context = host->context;
+        require_pointer(options, "options");
+        const auto o = read_options(options, sizeof(mcon_patch_options), "mcon_patch_options", default_patch_options());
+        PatchOptions po = to_core_options(o, host->mesh);
+        std::shared_ptr<const std::atomic<bool>> cancelled;
+        po.progress = make_progress(o.progress, o.progress_user_data, &cancelled);
+
+        auto patch = std::make_unique<mcon_patch_t>();
+        patch->patch = run_in_arena(host->context, [&] { return extract_geodesic_disk(host->mesh, po); });
+        // Even if the core finished anyway, a "cancel" answer means the call is cancelled.
+        require(!(cancelled && cancelled->load()), MCON_ERROR_CANCELLED, "cancelled by the progress callback");
+
+        const MeshTopology topology = build_topology(patch->patch.mesh);
+        patch->boundary_loops = static_cast<std::uint32_t>(topology.boundary_loops.size());
+        patch->euler_characteristic = euler_characteristic(patch->patch.mesh, topology);
+        // The core promises a disk; a patch that is not one must never reach the caller.
+        require(patch->boundary_loops == 1 && patch->euler_characteristic == 1, MCON_ERROR_NOT_A_DISK,
+                "the extracted patch has " + std::to_string(patch->boundary_loops) +
+                    " boundary loops and Euler characteristic " + std::to_string(patch->euler_characteristic) +
+                    " (a disk has 1 and 1)");
+
+        retain(host->context, "context");
+        patch->context = host->context;
+        *out_patch = patch.release();
+      },
+      log_context);
+}
+
+mcon_status mcon_patch_retain(mcon_patch patch) {
+  return guard("mcon_patch_retain", [&] { retain(patch, "patch"); });
+}
+
+mcon_status mcon_patch_release(mcon_patch patch) {
+  return guard("mcon_patch_release", [&] { release(patch, "patch"); });
+}
+
+mcon_status mcon_patch_info_init(mcon_patch_info* info) {
+  return guard("mcon_patch_info_init", [&] {
+    require_pointer(info, "info");
+    *info = mcon_patch_info{};
+    info->struct_size = sizeof(mcon_patch_info);
+  });
+}
+
+mcon_status mcon_patch_get_info(mcon_patch patch, mcon_patch_info* info) {
+  return guard_object("mcon_patch_get_info", patch, "patch", [&] {
+    const Patch& p = patch->patch;
+    mcon_patch_info v{};
+    v.struct_size = sizeof(mcon_patch_info);
+    v.vertex_count = p.mesh.positions.size();
+    v.triangle_count = p.mesh.triangles.size();
+    v.filled_triangle_count = static_cast<std::size_t>(p.filled_triangles());
+    v.boundary_loops = patch->boundary_loops;
+    v.euler_characteristic = patch->euler_characteristic;
+    v.radius = p.radius;
+    for (int i = 0; i < 3; ++i) {
+      v.center[i] = p.center_position[i];
+      v.center_barycentric[i] = p.center_barycentric[i];
+    }
+    v.center_patch_triangle = to_index(p.center_triangle);
+    v.max_geodesic_distance = p.max_geodesic_distance;
+    v.param_flipped_triangles = static_cast<std::uint32_t>(p.param_flipped_triangles);
+    write_info(info, sizeof(mcon_patch_info), "mcon_patch_info", v);
+  });
+}
+
+mcon_status mcon_patch_get_positions(mcon_patch patch, double* out_xyz, size_t capacity) {
+  return guard_object("mcon_patch_get_positions", patch, "patch", [&] {
+    require_pointer(out_xyz, "out_xyz");
+    const auto& positions = patch->patch.mesh.positions;
+    require_capacity(capacity, 3 * positions.size(), "out_xyz (capacity in doubles)");
+    for (std::size_t v = 0; v < positions.size(); ++v)
+      for (int k = 0; k < 3; ++k) out_xyz[3 * v + k] = positions[v][k];
+  });
+}
+
+mcon_status mcon_patch_get_triangles(mcon_patch patch, uint32_t* out_indices, size_t capacity) {
+  return guard_object("mcon_patch_get_triangles", patch, "patch", [&] {
+    require_pointer(out_indices, "out_indices");
+    const auto& triangles = patch->patch.mesh.triangles;
+    require_capacity(capacity, 3 * triangles.size(), "out_indices (capacity in indices)");
+    for (std::size_t t = 0; t < triangles.size(); ++t)
+      for (int k = 0; k < 3; ++k) out_indices[3 * t + k] = static_cast<std::uint32_t>(triangles[t][k]);
+  });
+}
+
+mcon_status mcon_patch_get_uv(mcon_patch patch, double* out_uv, size_t capacity) {
+  return guard_object("mcon_patch_get_uv", patch, "patch", [&] {
+    require_pointer(out_uv, "out_uv");
+    const auto& uv = patch->patch.uv;
+    require(uv.size() == patch->patch.mesh.positions.size(), MCON_ERROR_UNKNOWN,
+            "the patch has " + std::to_string(uv.size()) + " uv values for " +
+                std::to_string(patch->patch.mesh.positions.size()) + " vertices");
+    require_capacity(capacity, 2 * uv.size(), "out_uv (capacity in doubles)");
+    for (std::size_t v = 0; v < uv.size(); ++v) {
+      out_uv[2 * v] = uv[v].x();
+      out_uv[2 * v + 1] = uv[v].y();
+    }
+  });
+}
+
+mcon_status mcon_patch_get_host_vertices(mcon_patch patch, uint32_t* out_v0, uint32_t* out_v1, double* out_t,
+                                         size_t capacity) {
+  return guard_object("mcon_patch_get_host_vertices", patch, "patch", [&] {
+    const auto& host = patch->patch.host_vertex;
+    if (out_v0 == nullptr && out_v1 == nullptr && out_t == nullptr) return;  // nothing asked for
+    require_capacity(capacity, host.size(), "host vertex arrays (capacity in vertices)");
+    for (std::size_t v = 0; v < host.size(); ++v) {
+      if (out_v0) out_v0[v] = to_index(host[v].v0);
+      if (out_v1) out_v1[v] = to_index(host[v].v1);
+      if (out_t) out_t[v] = host[v].t;
+    }
+  });
+}
+
+mcon_status mcon_patch_get_host_triangles(mcon_patch patch, uint32_t* out_host_triangle, size_t capacity) {
+  return guard_object("mcon_patch_get_host_triangles", patch, "patch", [&] {
+    require_pointer(out_host_triangle, "out_host_triangle");
+    const auto& host = patch->patch.host_triangle;
+    require_capacity(capacity, host.size(), "out_host_triangle (capacity in triangles)");
+    for (std::size_t t = 0; t < host.size(); ++t) out_host_triangle[t] = to_index(host[t]);
+  });
+}
+
+}  // extern "C"

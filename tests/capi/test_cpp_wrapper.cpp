@@ -1,0 +1,235 @@
+// The header-only C++ wrapper (macrocon.hpp): errors as exceptions, RAII handles with copy =
+// retain and move = steal, array getters, progress through std::function, version helpers.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "macrocon/macrocon.hpp"
+#include "test_meshes.h"
+
+namespace {
+
+struct Flat {
+  std::vector<double> xyz;
+  std::vector<uint32_t> tris;
+};
+
+Flat flat(const mcon::TriMesh& m) {
+  Flat f;
+  for (const auto& p : m.positions) f.xyz.insert(f.xyz.end(), {p.x(), p.y(), p.z()});
+  for (const auto& t : m.triangles)
+    for (int v : t) f.tris.push_back(static_cast<uint32_t>(v));
+  return f;
+}
+
+template <typename F>
+macrocon::Error error_of(F&& f) {
+  try {
+    f();
+  } catch (const macrocon::Error& e) {
+    return e;
+  }
+  return macrocon::Error(MCON_OK, "no error thrown");
+}
+
+}  // namespace
+
+static_assert(std::is_nothrow_move_constructible_v<macrocon::Context>);
+static_assert(std::is_nothrow_move_constructible_v<macrocon::Mesh>);
+static_assert(std::is_nothrow_move_constructible_v<macrocon::Patch>);
+static_assert(std::is_copy_constructible_v<macrocon::Patch>);
+
+TEST(CppWrapper, VersionHelpersAndStatusNames) {
+  const macrocon::Version lib = macrocon::library_version();
+  constexpr macrocon::Version hdr = macrocon::header_version();
+  EXPECT_EQ(lib.major, hdr.major);
+  EXPECT_EQ(lib.minor, hdr.minor);
+  EXPECT_EQ(lib.patch, hdr.patch);
+  EXPECT_EQ(lib.encoded(), static_cast<uint32_t>(MCON_VERSION));
+  EXPECT_TRUE(macrocon::is_compatible());
+  EXPECT_EQ(lib.to_string(), std::to_string(MCON_VERSION_MAJOR) + "." + std::to_string(MCON_VERSION_MINOR) + "." +
+                                 std::to_string(MCON_VERSION_PATCH));
+  EXPECT_EQ(macrocon::status_name(MCON_ERROR_NOT_A_DISK), "MCON_ERROR_NOT_A_DISK");
+  EXPECT_EQ(macrocon::status_name(static_cast<mcon_status>(63)), "unknown status 63");
+}
+
+TEST(CppWrapper, MeshFromVectorsAndStridedPointers) {
+  macrocon::Context ctx;  // a working context with default options
+  ASSERT_TRUE(ctx);
+  const Flat g = flat(mcon::test_meshes::make_grid(5));
+  const macrocon::Mesh from_double = macrocon::Mesh::from_arrays(ctx, g.xyz, g.tris);
+  EXPECT_EQ(from_double.vertex_count(), 25u);
+  EXPECT_EQ(from_double.triangle_count(), 32u);
+  const std::vector<float> xyz_f(g.xyz.begin(), g.xyz.end());
+  const macrocon::Mesh from_float = macrocon::Mesh::from_arrays(ctx, xyz_f, g.tris);
+  EXPECT_EQ(from_float.vertex_count(), 25u);
+
+  // Strided: 4 floats per vertex (xyz + NaN padding), 4 indices per triangle (abc + bad index).
+  std::vector<float> padded;
+  for (size_t v = 0; v < 25; ++v)
+    padded.insert(padded.end(), {xyz_f[3 * v], xyz_f[3 * v + 1], xyz_f[3 * v + 2], std::nanf("")});
+  std::vector<uint32_t> tris4;
+  for (size_t t = 0; t < 32; ++t) tris4.insert(tris4.end(), {g.tris[3 * t], g.tris[3 * t + 1], g.tris[3 * t + 2], 999u});
+  const macrocon::Mesh strided =
+      macrocon::Mesh::from_arrays(ctx, padded.data(), 4 * sizeof(float), 25, tris4.data(), 16, 32);
+  EXPECT_EQ(strided.triangle_count(), 32u);
+  std::vector<double> padded_d(padded.begin(), padded.end());
+  EXPECT_EQ(macrocon::Mesh::from_arrays(ctx, padded_d.data(), 4 * sizeof(double), 25, tris4.data(), 16, 32)
+                .vertex_count(),
+            25u);
+  // Packed reading of the padded arrays hits the NaN.
+  EXPECT_EQ(error_of([&] { macrocon::Mesh::from_arrays(ctx, padded.data(), 0, 25, tris4.data(), 16, 32); }).status(),
+            MCON_ERROR_NON_FINITE);
+}
+
+TEST(CppWrapper, ErrorsCarryStatusAndLibraryMessage) {
+  macrocon::Context ctx;
+  Flat g = flat(mcon::test_meshes::make_grid(4));
+  g.xyz[3 * 6] = std::numeric_limits<double>::quiet_NaN();
+  const macrocon::Error e = error_of([&] { macrocon::Mesh::from_arrays(ctx, g.xyz, g.tris); });
+  EXPECT_EQ(e.status(), MCON_ERROR_NON_FINITE);
+  EXPECT_NE(std::string(e.what()).find("vertex 6"), std::string::npos) << e.what();
+  EXPECT_NE(std::string(e.what()).find("mcon_mesh_create"), std::string::npos) << e.what();
+
+  g = flat(mcon::test_meshes::make_grid(4));
+  g.xyz.pop_back();
+  const macrocon::Error sizes = error_of([&] { macrocon::Mesh::from_arrays(ctx, g.xyz, g.tris); });
+  EXPECT_EQ(sizes.status(), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(sizes.what()).find("multiples of 3"), std::string::npos) << sizes.what();
+
+  macrocon::Context::Options bad;
+  bad.max_threads = 100000;
+  EXPECT_EQ(error_of([&] { macrocon::Context c(bad); }).status(), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(error_of([&] { macrocon::Patch::descriptor_dimension(static_cast<mcon_descriptor>(3)); }).status(),
+            MCON_ERROR_INVALID_ARGUMENT);
+}
+
+TEST(CppWrapper, CopyRetainsMoveStealsDestructorReleases) {
+  macrocon::Context a;
+  macrocon::Context b = a;  // retain: two references
+  // Take a's reference out of the wrapper and drop it by hand: b's own reference must keep the
+  // context alive (the sanitizer build catches a use after free if copying did not retain).
+  mcon_context raw = a.detach();
+  EXPECT_FALSE(a);
+  EXPECT_EQ(mcon_context_release(raw), MCON_OK);
+  const Flat g = flat(mcon::test_meshes::make_grid(3));
+  macrocon::Mesh m = macrocon::Mesh::from_arrays(b, g.xyz, g.tris);
+  EXPECT_EQ(m.vertex_count(), 9u);
+
+  // Copy assignment onto a live object releases the old handle and retains the new one.
+  macrocon::Mesh other = macrocon::Mesh::from_arrays(b, g.xyz, g.tris);
+  other = m;
+  EXPECT_EQ(other.get(), m.get());
+  other = other;  // self-assignment keeps the handle
+  EXPECT_EQ(other.vertex_count(), 9u);
+
+  // Move steals: the source is empty and using it throws instead of passing NULL to C.
+  macrocon::Mesh moved = std::move(m);
+  EXPECT_FALSE(m);  // NOLINT(bugprone-use-after-move): documented state
+  EXPECT_TRUE(moved);
+  EXPECT_EQ(moved.get(), other.get());
+  const macrocon::Error e = error_of([&] { (void)m.vertex_count(); });
+  EXPECT_EQ(e.status(), MCON_ERROR_NULL_POINTER);
+  EXPECT_NE(std::string(e.what()).find("moved from"), std::string::npos) << e.what();
+  macrocon::Context empty(nullptr);
+  EXPECT_FALSE(empty);
+  EXPECT_EQ(error_of([&] { macrocon::Mesh::from_arrays(empty, g.xyz, g.tris); }).status(), MCON_ERROR_NULL_POINTER);
+
+  // adopt() takes over a C reference.
+  mcon_mesh raw_mesh = moved.detach();
+  macrocon::Mesh adopted = macrocon::Mesh::adopt(raw_mesh);
+  EXPECT_EQ(adopted.triangle_count(), 8u);
+  // The meshes keep the context alive after every Context object is gone.
+  b = macrocon::Context(nullptr);
+  EXPECT_EQ(adopted.vertex_count(), 9u);
+}
+
+TEST(CppWrapper, PatchExtractGettersDescriptorsAndProgress) {
+  macrocon::Context ctx;
+  const Flat g = flat(mcon::test_meshes::make_grid(21, 2.0));
+  const macrocon::Mesh mesh = macrocon::Mesh::from_arrays(ctx, g.xyz, g.tris);
+  std::vector<double> fractions;
+  macrocon::PatchOptions o = macrocon::PatchOptions::at_vertex(220, 0.5);
+  o.progress = [&](double f) {
+    fractions.push_back(f);
+    return true;
+  };
+  const macrocon::Patch patch = macrocon::Patch::extract(mesh, o);
+  const mcon_patch_info info = patch.info();
+  EXPECT_EQ(info.boundary_loops, 1u);
+  EXPECT_EQ(info.euler_characteristic, 1);
+  EXPECT_DOUBLE_EQ(info.radius, 0.5);
+  EXPECT_FALSE(fractions.empty());
+  const auto xyz = patch.positions();
+  const auto tris = patch.triangles();
+  const auto uv = patch.uv();
+  const auto host = patch.host_vertices();
+  const auto host_tris = patch.host_triangles();
+  EXPECT_EQ(xyz.size(), 3 * info.vertex_count);
+  EXPECT_EQ(tris.size(), 3 * info.triangle_count);
+  EXPECT_EQ(uv.size(), 2 * info.vertex_count);
+  EXPECT_EQ(host.v0.size(), info.vertex_count);
+  EXPECT_EQ(host_tris.size(), info.triangle_count);
+  for (size_t v = 0; v < info.vertex_count; ++v) {
+    // Host link: center + radius * p == interpolated host position (flat grid: z = 0).
+    const double t = host.t[v];
+    for (int k = 0; k < 3; ++k) {
+      const double h = (1 - t) * g.xyz[3 * host.v0[v] + k] + t * g.xyz[3 * host.v1[v] + k];
+      EXPECT_NEAR(info.center[k] + info.radius * xyz[3 * v + k], h, 1e-12);
+    }
+    EXPECT_LE(std::hypot(uv[2 * v], uv[2 * v + 1]), 1 + 1e-9);
+  }
+  const auto curv9 = patch.compute_descriptors(MCON_DESCRIPTOR_CURV9);
+  EXPECT_EQ(curv9.size(), 9 * info.vertex_count);
+  for (double x : curv9) EXPECT_NEAR(x, 0.0, 1e-6);  // a plane has no curvature
+  EXPECT_EQ(patch.compute_descriptors(MCON_DESCRIPTOR_MEAN_CURVATURE).size(), info.vertex_count);
+
+  // The C struct works too and gives the same patch.
+  mcon_patch_options c;
+  ASSERT_EQ(mcon_patch_options_init(&c), MCON_OK);
+  c.center_vertex = 220;
+  c.radius = 0.5;
+  const macrocon::Patch same = macrocon::Patch::extract(mesh, c);
+  EXPECT_EQ(same.positions(), xyz);
+  // A copy shares the handle.
+  const macrocon::Patch copy = same;
+  EXPECT_EQ(copy.get(), same.get());
+}
+
+TEST(CppWrapper, ProgressCancelsAndRethrowsCallbackExceptions) {
+  macrocon::Context ctx;
+  const Flat g = flat(mcon::test_meshes::make_grid(21, 2.0));
+  const macrocon::Mesh mesh = macrocon::Mesh::from_arrays(ctx, g.xyz, g.tris);
+  macrocon::PatchOptions o = macrocon::PatchOptions::at_vertex(220, 0.5);
+  o.progress = [](double) { return false; };
+  EXPECT_EQ(error_of([&] { macrocon::Patch::extract(mesh, o); }).status(), MCON_ERROR_CANCELLED);
+
+  struct Custom : std::runtime_error {
+    Custom() : std::runtime_error("from the callback") {}
+  };
+  o.progress = [](double) -> bool { throw Custom(); };
+  EXPECT_THROW(macrocon::Patch::extract(mesh, o), Custom);
+  // The mesh is still usable.
+  o.progress = nullptr;
+  EXPECT_GT(macrocon::Patch::extract(mesh, o).vertex_count(), 0u);
+  // Options are checked by the library.
+  o.radius = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(error_of([&] { macrocon::Patch::extract(mesh, o); }).status(), MCON_ERROR_NON_FINITE);
+  EXPECT_EQ(error_of([&] { macrocon::Patch().info(); }).status(), MCON_ERROR_NULL_POINTER);
+}
+
+TEST(CppWrapper, ShutdownRefusesWhileAContextLivesThenSucceeds) {
+  {
+    macrocon::Context ctx;
+    EXPECT_EQ(error_of([] { macrocon::shutdown(); }).status(), MCON_ERROR_INVALID_ARGUMENT);
+  }
+  EXPECT_NO_THROW(macrocon::shutdown());
+  EXPECT_NO_THROW(macrocon::shutdown());  // twice is fine
+  macrocon::Context again;                // and the library works afterwards
+  EXPECT_TRUE(again);
+}
