@@ -28,8 +28,8 @@ inline constexpr std::size_t kLibraryMaxBytes = (std::size_t{1} << 31) - 1;
 // large for one buffer throws MCON_ERROR_INVALID_ARGUMENT.
 std::vector<std::uint8_t> serialize_library(const ConstraintLibrary& library);
 
-// Parses and validates; copies everything out, so `data` may be freed afterwards. `data` needs no
-// particular alignment.
+// Parses and validates; copies everything out, so `data` may be freed afterwards. A `data` not
+// aligned to 8 bytes is copied first.
 ConstraintLibrary load_library_from_buffer(const void* data, std::size_t size);
 
 // Memory-maps the file read-only and loads it. (A file truncated by another process while it is

@@ -11,6 +11,7 @@
 //      memory): validate_retrieval_config / validate_library_entry / unique ids, the same checks
 //      add_entry runs, all reported as MCON_ERROR_INVALID_LIBRARY.
 // Memory use stays within a small multiple of the buffer size even for forged buffers.
+#include <cstdint>
 #include <cstring>
 #include <string>
 
@@ -49,8 +50,7 @@ class Reader {
  public:
   explicit Reader(std::size_t size) : budget_(size) {}
 
-  // The Verifier has checked the vector lies in the buffer; the data may be unaligned in memory
-  // (the caller's buffer), so it is copied bytewise.
+  // The Verifier has checked the vector lies in the buffer and is aligned.
   template <typename T>
   std::vector<T> vector(const flatbuffers::Vector<T>* v) {
     if (!v) return {};
@@ -200,6 +200,14 @@ ConstraintLibrary load_library_from_buffer(const void* data, std::size_t size) {
             " to " + std::to_string(kLibraryMaxBytes));
   require(data != nullptr, MCON_ERROR_NULL_POINTER, "library buffer is NULL");
   const auto* bytes = static_cast<const std::uint8_t*>(data);
+  // FlatBuffers accessors assume the buffer start is aligned to the largest scalar (8 bytes): the
+  // Verifier checks alignment relative to the start only. Copy a misaligned caller buffer.
+  std::vector<std::uint64_t> aligned;
+  if (reinterpret_cast<std::uintptr_t>(bytes) % alignof(std::uint64_t) != 0) {
+    aligned.resize((size + 7) / 8);
+    std::memcpy(aligned.data(), bytes, size);
+    bytes = reinterpret_cast<const std::uint8_t*>(aligned.data());
+  }
 
   if (!flatbuffers::BufferHasIdentifier(bytes, kLibraryFileIdentifier))
     invalid("not a Macrocon constraint library (file identifier '" +
