@@ -1,6 +1,7 @@
 #include "common/ict_faces.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include <tbb/parallel_for.h>
@@ -51,13 +52,14 @@ IctCoefficients IctFaces::coefficients(std::uint64_t seed, std::uint64_t index) 
 }
 
 TriMesh IctFaces::build(const IctCoefficients& c) const {
+  for (int k = 0; k < kIctIdentities; ++k)
+    require(std::isfinite(c[k]), MCON_ERROR_NON_FINITE, "ICT coefficient " + std::to_string(k) + " is not finite");
   TriMesh mesh = neutral_.mesh;
   for (int k = 0; k < kIctIdentities; ++k) {
     if (c[k] == 0.0) continue;
     const std::vector<Vec3>& delta = deltas_[k];
     for (std::size_t v = 0; v < delta.size(); ++v) mesh.positions[v] += c[k] * delta[v];
   }
-  validate_mesh(mesh);
   return mesh;
 }
 

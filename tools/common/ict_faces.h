@@ -33,7 +33,8 @@ class IctFaces {
   const io::LoadedMesh& neutral() const { return neutral_; }
 
   static IctCoefficients coefficients(std::uint64_t seed, std::uint64_t index);
-  TriMesh build(const IctCoefficients& c) const;  // validated
+  // The neutral mesh's (validated) connectivity with the combined positions; not re-validated.
+  TriMesh build(const IctCoefficients& c) const;
   TriMesh face(std::uint64_t seed, std::uint64_t index) const { return build(coefficients(seed, index)); }
 
  private:

@@ -1,6 +1,7 @@
 #include "common/makehuman_people.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <set>
@@ -69,7 +70,7 @@ std::vector<LocalTargetDraw> list_local_target_draws(const std::string& targets_
       for (const auto& [first, second] : kOpposites) {
         // A pair is registered from its first member, if the second one exists.
         if (last == first && names.count(prefix + stem + "-" + second)) {
-          const std::string key = std::string(category) + "/" + stem;
+          const std::string key = std::string(category) + "/" + stem + "-" + first + "-" + second;
           draws[key].key = key;
           draws[key].opposite_pair = true;
           if (sides[key].count(side)) fail(MCON_ERROR_INVALID_ARGUMENT, "two target sets share the key '" + key + "'");
@@ -187,10 +188,11 @@ PersonRecipe MakeHumanPeople::recipe(std::uint64_t seed, std::uint64_t index) co
 }
 
 TriMesh MakeHumanPeople::build(const PersonRecipe& recipe) const {
+  for (const TargetWeight& t : recipe.targets)
+    require(std::isfinite(t.weight), MCON_ERROR_NON_FINITE, "weight of target '" + t.target + "' is not finite");
   TriMesh mesh = base_.mesh;
   for (const TargetWeight& t : recipe.targets)
     add_morph_target(mesh.positions, load_morph_target(targets_dir_ + "/" + t.target + ".target.gz"), t.weight);
-  validate_mesh(mesh);
   return mesh;
 }
 

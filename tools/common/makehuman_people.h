@@ -27,7 +27,9 @@ constexpr int kMakeHumanBodyVertices = 13380;
 // U[-0.04, 0.04] (one-sided weights stay >= 0). Target names are "<category>/<file name without
 // .target.gz>".
 struct LocalTargetDraw {
-  std::string key;  // the draw's name: category and target name without side prefix or last word
+  // The draw's name: "<category>/<name without side prefix>", for a pair with both last words
+  // (e.g. "ears/ear-trans-down-up").
+  std::string key;
   bool opposite_pair = true;
   struct Side {
     std::string first, second;
@@ -70,7 +72,9 @@ class MakeHumanPeople {
   const std::vector<LocalTargetDraw>& local_draws() const { return draws_; }
 
   PersonRecipe recipe(std::uint64_t seed, std::uint64_t index) const;
-  TriMesh build(const PersonRecipe& recipe) const;  // validated
+  // The base's (validated) connectivity with the summed positions, which are finite because target
+  // offsets and weights are; not re-validated (a person is a smooth deformation of the base).
+  TriMesh build(const PersonRecipe& recipe) const;
   TriMesh person(std::uint64_t seed, std::uint64_t index) const { return build(recipe(seed, index)); }
 
   // Parses every target file now (in parallel) so that later people cost only the sums.
