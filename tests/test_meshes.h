@@ -5,6 +5,7 @@
 #include <map>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "mesh.h"
 
@@ -135,6 +136,30 @@ inline TriMesh make_disk(int rings, double radius = 1.0) {
     }
   }
   return m;
+}
+
+// A bumpy open patch over [-1, 1]^2 (n x n grid, jitter 0.4: no folded triangle): waves plus a
+// narrow bump, so curvature varies in sign and size and nothing is symmetric.
+inline TriMesh make_bumpy_grid(int n) {
+  TriMesh m = make_grid(n, 2.0, 0.4);
+  for (Vec3& p : m.positions) {
+    p.x() -= 1;
+    p.y() -= 1;
+    p.z() = 0.3 * std::sin(3 * p.x()) * std::cos(2 * p.y()) + 0.2 * std::exp(-(p.x() * p.x() + p.y() * p.y()) / 0.05);
+  }
+  return m;
+}
+
+// The triangles whose three vertices all satisfy keep(p), with unused vertices dropped: a patch
+// made of whole faces (its boundary runs along the original edges).
+template <typename Keep>
+inline TriMesh select_faces(TriMesh mesh, Keep keep) {
+  std::vector<Tri> kept;
+  for (const Tri& t : mesh.triangles)
+    if (keep(mesh.positions[t[0]]) && keep(mesh.positions[t[1]]) && keep(mesh.positions[t[2]])) kept.push_back(t);
+  mesh.triangles = kept;
+  remove_unreferenced_vertices(mesh);
+  return mesh;
 }
 
 }  // namespace mcon::test_meshes
