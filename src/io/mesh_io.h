@@ -4,6 +4,7 @@
 // scalar and vector attributes so results can be inspected in any viewer.
 #pragma once
 
+#include <array>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -60,5 +61,36 @@ void write_ply(const std::string& path, const TriMesh& mesh, const std::vector<V
 // ASCII with shortest round-trip coordinates (reading them back gives the same doubles).
 void write_obj(const std::string& path, const TriMesh& mesh);
 void write_off(const std::string& path, const TriMesh& mesh);
+
+// QuadWild's guide files (design-notes §7), byte for byte as QuadWild writes them, so the mesh
+// file plus these two can be passed straight to `quadwild mesh.obj 2 field.rosy mesh.sharp`.
+// Face indices refer to the triangles in mesh order: write the mesh itself with write_obj/write_ply
+// so QuadWild sees the same triangles in the same order.
+//
+// `.rosy` (read by vcglib ImporterFIELD::Load4ROSY): "<face count>\n4\n", then per face one
+// direction of the cross as "%f %f %f \n" (6 decimals, trailing space; float precision). QuadWild
+// takes the second direction as PD1 x N. Throws INVALID_ARGUMENT if directions.size() differs
+// from the triangle count or a direction is not finite.
+void write_rosy(const std::string& path, const TriMesh& mesh, const std::vector<Vec3>& directions);
+// The directions of a `.rosy` file; MCON_ERROR_IO if malformed, MCON_ERROR_UNSUPPORTED if the
+// symmetry is not 4.
+std::vector<Vec3> read_rosy(const std::string& path);
+
+// `.sharp` (read by QuadWild's LoadSharpFeatures): "<count>\n", then per feature edge
+// "<kind>,<face>,<edge>\n" with kind 0 = concave, 1 = convex (QuadWild's test with its default
+// LimitConcave = 0: concave iff (n_face x n_other) . edge direction < 0; boundary edges are
+// convex) and `edge` the VCG edge index: the edge from corner `edge` to corner (edge + 1) % 3 of
+// `face`. QuadWild marks the twin half-edge itself, so each edge is written once, from its
+// lowest-index triangle.
+struct SharpEdge {
+  bool convex = true;
+  int face = -1;
+  int edge = -1;
+};
+// Feature edges as vertex pairs (either order). Throws INVALID_ARGUMENT if a pair is not an edge
+// of the mesh; repeated edges are written once.
+void write_sharp(const std::string& path, const TriMesh& mesh, const std::vector<std::array<int, 2>>& feature_edges);
+// MCON_ERROR_IO if malformed.
+std::vector<SharpEdge> read_sharp(const std::string& path);
 
 }  // namespace mcon::io
