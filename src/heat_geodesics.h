@@ -20,16 +20,26 @@ struct HeatGeodesicsOptions {
   bool boundary_average = true;
 };
 
+// Accuracy (t = h^2): about 1% mean relative error on regular and jittered meshes (see the
+// tests and bench/heat_geodesics_bench.cpp). Reach: the heat decays by about e per edge, so
+// beyond roughly 1300 * sqrt(time_factor) mean edge lengths from every source the field has no
+// usable gradient and distances there are underestimated. Vertices in connected components
+// without a source get +infinity. The query functions are const and may be called concurrently;
+// sources are validated (mcon::Error with MCON_ERROR_INVALID_ARGUMENT).
 class HeatGeodesics {
  public:
+  // Factors the operators (throws mcon::Error: EMPTY_MESH, NON_FINITE, INDEX_OUT_OF_RANGE,
+  // ISOLATED_VERTEX, NON_MANIFOLD_EDGE, INVALID_ARGUMENT for a bad time_factor, NUMERICAL).
   explicit HeatGeodesics(const TriMesh& mesh, const HeatGeodesicsOptions& options = {});
   ~HeatGeodesics();
   HeatGeodesics(HeatGeodesics&&) noexcept;
   HeatGeodesics& operator=(HeatGeodesics&&) noexcept;
 
-  // Distance from a set of source vertices (distance 0 at each).
+  // Distance from a set of source vertices (distance 0 at each; order and repeats are ignored).
   Eigen::VectorXd from_vertices(const std::vector<int>& sources) const;
-  // Distance from a point inside triangle t at barycentric coordinates bary.
+  // Distance from a point inside triangle t at barycentric coordinates bary (each >= 0, sum 1,
+  // within 1e-6). The constant is fixed so that the triangle's corners carry, in the barycentric
+  // mean, their straight-line distances to the point.
   Eigen::VectorXd from_point(int triangle, const Vec3& barycentric) const;
 
  private:

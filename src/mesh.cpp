@@ -32,19 +32,21 @@ void validate_impl(const TriMesh& mesh, bool allow_isolated) {
 
   for (int v = 0; v < nv; ++v) {
     const Vec3& p = mesh.positions[v];
-    require(std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z()), MCON_ERROR_NON_FINITE,
-            "vertex " + std::to_string(v) + " has a non-finite coordinate");
+    if (!(std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z())))
+      fail(MCON_ERROR_NON_FINITE, "vertex " + std::to_string(v) + " has a non-finite coordinate");
   }
   for (int t = 0; t < nt; ++t) {
     const Tri& tri = mesh.triangles[t];
     for (int i = 0; i < 3; ++i) {
-      require(tri[i] >= 0 && tri[i] < nv, MCON_ERROR_INDEX_OUT_OF_RANGE,
-              "triangle " + std::to_string(t) + " uses vertex index " + std::to_string(static_cast<unsigned>(tri[i])) +
-                  " but the mesh has " + std::to_string(nv) + " vertices");
+      if (tri[i] < 0 || tri[i] >= nv)
+        fail(MCON_ERROR_INDEX_OUT_OF_RANGE, "triangle " + std::to_string(t) + " uses vertex index " +
+                                                std::to_string(static_cast<unsigned>(tri[i])) + " but the mesh has " +
+                                                std::to_string(nv) + " vertices");
     }
-    require(tri[0] != tri[1] && tri[1] != tri[2] && tri[0] != tri[2], MCON_ERROR_REPEATED_INDEX,
-            "triangle " + std::to_string(t) + " repeats a vertex (" + std::to_string(tri[0]) + ", " +
-                std::to_string(tri[1]) + ", " + std::to_string(tri[2]) + ")");
+    if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2])
+      fail(MCON_ERROR_REPEATED_INDEX, "triangle " + std::to_string(t) + " repeats a vertex (" +
+                                          std::to_string(tri[0]) + ", " + std::to_string(tri[1]) + ", " +
+                                          std::to_string(tri[2]) + ")");
   }
   for (int t = 0; t < nt; ++t) {
     const Tri& tri = mesh.triangles[t];
@@ -52,8 +54,8 @@ void validate_impl(const TriMesh& mesh, bool allow_isolated) {
     const double longest = std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
     const double twice_area = (b - a).cross(c - a).norm();
     // Relative test: exact collinearity gives round-off of order 1e-16 * longest^2.
-    require(twice_area > 1e-12 * longest, MCON_ERROR_DEGENERATE_TRIANGLE,
-            "triangle " + std::to_string(t) + " has zero area");
+    if (!(twice_area > 1e-12 * longest))
+      fail(MCON_ERROR_DEGENERATE_TRIANGLE, "triangle " + std::to_string(t) + " has zero area");
   }
 
   // Directed edges: each may appear once; its reverse at most once.
@@ -80,12 +82,11 @@ void validate_impl(const TriMesh& mesh, bool allow_isolated) {
   for (int t = 0; t < nt; ++t)
     for (int v : mesh.triangles[t]) vertex_triangles[v].push_back(t);
   std::vector<int> parent;
-  std::unordered_map<int, int> first_triangle_with_link_vertex;
+  std::vector<std::pair<int, int>> first_triangle_with_link_vertex;  // (link vertex, slot); valences are small
   for (int v = 0; v < nv; ++v) {
     const auto& ts = vertex_triangles[v];
     if (ts.empty()) {
-      require(allow_isolated, MCON_ERROR_ISOLATED_VERTEX,
-              "vertex " + std::to_string(v) + " is not used by any triangle");
+      if (!allow_isolated) fail(MCON_ERROR_ISOLATED_VERTEX, "vertex " + std::to_string(v) + " is not used by any triangle");
       continue;
     }
     parent.resize(ts.size());
@@ -94,15 +95,19 @@ void validate_impl(const TriMesh& mesh, bool allow_isolated) {
     for (int k = 0; k < static_cast<int>(ts.size()); ++k) {
       for (int w : mesh.triangles[ts[k]]) {
         if (w == v) continue;
-        auto [it, inserted] = first_triangle_with_link_vertex.emplace(w, k);
-        if (!inserted) parent[find_root(parent, k)] = find_root(parent, it->second);
+        auto it = std::find_if(first_triangle_with_link_vertex.begin(), first_triangle_with_link_vertex.end(),
+                               [w](const auto& e) { return e.first == w; });
+        if (it == first_triangle_with_link_vertex.end())
+          first_triangle_with_link_vertex.emplace_back(w, k);
+        else
+          parent[find_root(parent, k)] = find_root(parent, it->second);
       }
     }
     int fans = 0;
     for (int k = 0; k < static_cast<int>(ts.size()); ++k) fans += (find_root(parent, k) == k);
-    require(fans == 1, MCON_ERROR_NON_MANIFOLD_VERTEX,
-            "vertex " + std::to_string(v) + " joins " + std::to_string(fans) +
-                " separate fans of triangles (non-manifold vertex)");
+    if (fans != 1)
+      fail(MCON_ERROR_NON_MANIFOLD_VERTEX, "vertex " + std::to_string(v) + " joins " + std::to_string(fans) +
+                                               " separate fans of triangles (non-manifold vertex)");
   }
 }
 

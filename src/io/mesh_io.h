@@ -5,6 +5,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -32,8 +33,10 @@ struct LoadedMesh {
 // of validate_mesh on bad geometry.
 LoadedMesh read_mesh(const std::string& path, const MeshFileOptions& options = {});
 
-// Reads a whole file, transparently gunzipping `.gz`.
+// Reads a whole file, transparently gunzipping `.gz` (any case); a truncated archive is an error.
 std::string read_file_maybe_gz(const std::string& path);
+// Writes a whole file, gzip-compressing when the path ends in `.gz` (any case).
+void write_file_maybe_gz(const std::string& path, std::string_view bytes);
 
 struct VertexAttribute {
   std::string name;                   // e.g. "distance" or "uv" (components get _x/_y/... suffixes)
@@ -46,9 +49,15 @@ struct FaceAttribute {
   std::vector<int> values;            // one integer per triangle
 };
 
-// Writes binary little-endian PLY with float positions and attributes.
+// Writers throw mcon::Error(MCON_ERROR_INVALID_ARGUMENT) on inconsistent input (index out of
+// range, attribute of the wrong size) and MCON_ERROR_IO when the file cannot be written; a `.gz`
+// path is gzip-compressed.
+// Binary little-endian PLY with float positions and attributes: a scalar attribute becomes the
+// property `name`, a 2- or 3-component one `name_x`, `name_y` (, `name_z`); names are reduced to
+// [A-Za-z0-9_] and made unique. Face attributes become int properties after vertex_indices.
 void write_ply(const std::string& path, const TriMesh& mesh, const std::vector<VertexAttribute>& vertex_attributes = {},
                const std::vector<FaceAttribute>& face_attributes = {});
+// ASCII with shortest round-trip coordinates (reading them back gives the same doubles).
 void write_obj(const std::string& path, const TriMesh& mesh);
 void write_off(const std::string& path, const TriMesh& mesh);
 

@@ -1,16 +1,17 @@
+#include <algorithm>
 #include <fstream>
 #include <iterator>
 
 #include <zlib.h>
 
 #include "error.h"
+#include "io/file_suffix.h"
 #include "io/mesh_io.h"
 
 namespace mcon::io {
 
 std::string read_file_maybe_gz(const std::string& path) {
-  const bool gz = path.size() > 3 && path.compare(path.size() - 3, 3, ".gz") == 0;
-  if (!gz) {
+  if (!is_gzip_path(path)) {
     std::ifstream in(path, std::ios::binary);
     require(static_cast<bool>(in), MCON_ERROR_IO, "cannot open '" + path + "'");
     std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -20,18 +21,26 @@ std::string read_file_maybe_gz(const std::string& path) {
   gzFile f = gzopen(path.c_str(), "rb");
   require(f != nullptr, MCON_ERROR_IO, "cannot open '" + path + "'");
   std::string data;
-  char buffer[1 << 16];
+  std::size_t size = 0;
   for (;;) {
-    const int n = gzread(f, buffer, sizeof(buffer));
-    if (n < 0) {
-      int errnum = 0;
-      const std::string msg = gzerror(f, &errnum);
+    // Decompress straight into the string, growing it geometrically.
+    if (data.size() - size < (1u << 16)) data.resize(std::max<std::size_t>(2 * data.size(), 1u << 20));
+    const unsigned chunk = static_cast<unsigned>(std::min<std::size_t>(data.size() - size, 1u << 30));
+    const int n = gzread(f, &data[size], chunk);
+    // gzread returns the data before a premature end without failing; gzerror then reports
+    // Z_BUF_ERROR, so a truncated archive is an error rather than a silently shorter file.
+    int errnum = Z_OK;
+    const char* message = gzerror(f, &errnum);
+    if (n < 0 || (n == 0 && errnum != Z_OK)) {
+      const std::string msg = message ? message : "unknown zlib error";
       gzclose(f);
       fail(MCON_ERROR_IO, "error decompressing '" + path + "': " + msg);
     }
     if (n == 0) break;
-    data.append(buffer, static_cast<std::size_t>(n));
+    size += static_cast<std::size_t>(n);
   }
+  data.resize(size);
+  data.shrink_to_fit();
   gzclose(f);
   return data;
 }

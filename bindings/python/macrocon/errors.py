@@ -1,0 +1,110 @@
+"""Exceptions raised for non-OK status codes of the C ABI."""
+from __future__ import annotations
+
+import ctypes
+
+from . import _native
+
+
+class Error(Exception):
+    """A Macrocon call failed. ``status`` is the C status code, ``message`` the library's text."""
+
+    status: int = 1
+
+    def __init__(self, status: int, message: str):
+        super().__init__(f"{status_name(status)}: {message}")
+        self.status = status
+        self.message = message
+
+
+class InvalidArgumentError(Error, ValueError):
+    pass
+
+
+class NullPointerError(InvalidArgumentError):
+    pass
+
+
+class StructSizeError(Error):
+    pass
+
+
+class OutOfMemoryError(Error, MemoryError):
+    pass
+
+
+class BufferTooSmallError(Error):
+    pass
+
+
+class CancelledError(Error):
+    pass
+
+
+class IOError_(Error, OSError):
+    pass
+
+
+class InvalidMeshError(Error, ValueError):
+    """Bad geometry: non-finite, out-of-range/repeated indices, degenerate, non-manifold, isolated."""
+
+
+class NotADiskError(Error):
+    pass
+
+
+class NumericalError(Error, ArithmeticError):
+    pass
+
+
+class InvalidLibraryError(Error):
+    pass
+
+
+class UnsupportedError(Error):
+    pass
+
+
+class NotFoundError(Error, KeyError):
+    pass
+
+
+_BY_STATUS = {
+    2: InvalidArgumentError,
+    3: NullPointerError,
+    4: StructSizeError,
+    5: OutOfMemoryError,
+    6: BufferTooSmallError,
+    7: CancelledError,
+    8: IOError_,
+    10: InvalidMeshError,
+    11: InvalidMeshError,
+    12: InvalidMeshError,
+    13: InvalidMeshError,
+    14: InvalidMeshError,
+    15: InvalidMeshError,
+    16: InvalidMeshError,
+    17: InvalidMeshError,
+    20: NotADiskError,
+    21: NumericalError,
+    30: InvalidLibraryError,
+    31: UnsupportedError,
+    32: NotFoundError,
+}
+
+
+def status_name(status: int) -> str:
+    name = ctypes.c_char_p()
+    if _native.lib.mcon_get_status_name(status, ctypes.byref(name)) != 0 or not name.value:
+        return f"MCON_STATUS_{status}"
+    return name.value.decode()
+
+
+def check(status: int) -> None:
+    """Raises the matching Error subclass unless ``status`` is MCON_OK."""
+    if status == 0:
+        return
+    message = ctypes.c_char_p()
+    _native.lib.mcon_get_last_error(None, ctypes.byref(message))
+    text = message.value.decode("utf-8", "replace") if message.value else ""
+    raise _BY_STATUS.get(status, Error)(status, text)

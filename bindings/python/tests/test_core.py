@@ -1,0 +1,131 @@
+import subprocess
+import sys
+import textwrap
+
+import numpy as np
+import pytest
+
+import macrocon
+from conftest import grid
+
+
+def test_version_and_abi():
+    major, minor, patch = macrocon.version()
+    assert major == macrocon.ABI_MAJOR
+    assert (major, minor, patch) >= (0, 1, 0)
+    assert macrocon.status_name(20) == "MCON_ERROR_NOT_A_DISK"
+
+
+def test_mesh_from_float32_and_float64(context):
+    for dtype in (np.float32, np.float64):
+        p, t = grid(5, dtype=dtype)
+        with macrocon.Mesh(context, p, t) as mesh:
+            assert mesh.counts == (25, 32)
+
+
+def test_mesh_errors_carry_status_and_message(context):
+    p, t = grid(5)
+    p[7, 1] = np.nan
+    with pytest.raises(macrocon.InvalidMeshError) as err:
+        macrocon.Mesh(context, p, t)
+    assert err.value.status == 10
+    assert "vertex 7" in err.value.message
+
+    p, t = grid(5)
+    t[3, 2] = 999
+    with pytest.raises(macrocon.InvalidMeshError) as err:
+        macrocon.Mesh(context, p, t)
+    assert err.value.status == 11
+
+
+def test_array_checks_happen_before_the_call(context):
+    p, t = grid(5)
+    with pytest.raises(TypeError):
+        macrocon.Mesh(context, p, t.astype(np.int64))
+    with pytest.raises(ValueError):
+        macrocon.Mesh(context, p[:, :2].copy(), t)
+    with pytest.raises(ValueError):
+        macrocon.Mesh(context, np.asfortranarray(p), t)
+
+
+def test_patch_extraction_round_trip(context):
+    p, t = grid(41)
+    with macrocon.Mesh(context, p, t) as mesh:
+        patch = macrocon.Patch.extract(mesh, radius=0.3, center_vertex=20 * 41 + 20)
+        info = patch.info
+        assert info.boundary_loops == 1
+        assert info.euler_characteristic == 1
+        assert info.param_flipped_triangles == 0
+        assert abs(info.max_geodesic_distance - 1.0) < 0.1
+        pos, uv, tri = patch.positions, patch.uv, patch.triangles
+        assert pos.shape == (patch.vertex_count, 3) and uv.shape == (patch.vertex_count, 2)
+        assert tri.shape == (patch.triangle_count, 3) and tri.max() < patch.vertex_count
+        assert np.all(np.linalg.norm(uv, axis=1) <= 1 + 1e-9)
+        # Host link reproduces the normalized positions.
+        v0, v1, s = patch.host_vertices
+        host = (1 - s)[:, None] * p[v0] + s[:, None] * p[v1]
+        expected = (host - np.array(info.center[:])) / info.radius
+        assert np.allclose(expected, pos, atol=1e-9)
+        assert np.all(patch.host_triangles < t.shape[0])
+        d = patch.descriptors("curv9")
+        assert d.shape == (patch.vertex_count, 9)
+        assert np.all(np.isfinite(d))
+        assert np.allclose(d, 0, atol=1e-6)  # a plane has no curvature
+        patch.close()
+
+
+def test_not_a_disk_and_bad_arguments(context):
+    p, t = grid(11)
+    with macrocon.Mesh(context, p, t) as mesh:
+        with pytest.raises(macrocon.InvalidArgumentError):
+            macrocon.Patch.extract(mesh, radius=-1.0, center_vertex=60)
+        with pytest.raises(macrocon.InvalidArgumentError):
+            macrocon.Patch.extract(mesh, radius=0.3, center_vertex=10_000)
+        with pytest.raises(ValueError):
+            macrocon.Patch.extract(mesh, radius=0.3)
+
+
+def test_progress_can_cancel_and_exceptions_propagate(context):
+    p, t = grid(31)
+    with macrocon.Mesh(context, p, t) as mesh:
+        seen = []
+        with pytest.raises(macrocon.CancelledError):
+            macrocon.Patch.extract(mesh, radius=0.3, center_vertex=15 * 31 + 15,
+                                   progress=lambda f: seen.append(f) or len(seen) < 2)
+        assert len(seen) == 2
+
+        def boom(_):
+            raise RuntimeError("from the callback")
+
+        with pytest.raises(RuntimeError, match="from the callback"):
+            macrocon.Patch.extract(mesh, radius=0.3, center_vertex=15 * 31 + 15, progress=boom)
+
+
+def test_closed_handles_are_rejected(context):
+    p, t = grid(5)
+    mesh = macrocon.Mesh(context, p, t)
+    mesh.close()
+    mesh.close()  # idempotent
+    with pytest.raises(ValueError):
+        _ = mesh.counts
+
+
+def test_process_exits_cleanly_after_parallel_work():
+    script = textwrap.dedent(
+        """
+        import numpy as np, macrocon, sys
+        sys.path.insert(0, %r)
+        from conftest import grid
+        p, t = grid(81)
+        with macrocon.Context() as ctx, macrocon.Mesh(ctx, p, t) as mesh:
+            for r in (0.2, 0.3, 0.4):
+                with macrocon.Patch.extract(mesh, radius=r, center_vertex=40 * 81 + 40) as patch:
+                    patch.descriptors("curv9")
+        print("done")
+        """
+        % str(__import__("pathlib").Path(__file__).parent)
+    )
+    for _ in range(3):
+        proc = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=300)
+        assert proc.returncode == 0, proc.stderr
+        assert proc.stdout.strip() == "done"

@@ -1,0 +1,42 @@
+# `cmake --install`: headers, the versioned shared library, a CMake package
+# (find_package(macrocon CONFIG) -> macrocon::macrocon) and a pkg-config file; CPack builds a
+# .tar.gz and a .deb from the same install tree.
+include(GNUInstallDirs)
+include(CMakePackageConfigHelpers)
+
+install(TARGETS macrocon EXPORT macrocon-targets
+  LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT runtime NAMELINK_COMPONENT development
+  RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime
+  INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(FILES include/macrocon/macrocon.h include/macrocon/macrocon.hpp
+  DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/macrocon COMPONENT development OPTIONAL)
+install(TARGETS macrocon_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)
+install(EXPORT macrocon-targets NAMESPACE macrocon::
+  DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/macrocon COMPONENT development)
+configure_package_config_file(packaging/macrocon-config.cmake.in
+  ${PROJECT_BINARY_DIR}/packaging/macrocon-config.cmake
+  INSTALL_DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/macrocon)
+# Same major version = compatible (the C ABI is stable within a major version).
+write_basic_package_version_file(${PROJECT_BINARY_DIR}/packaging/macrocon-config-version.cmake
+  COMPATIBILITY SameMajorVersion)
+install(FILES ${PROJECT_BINARY_DIR}/packaging/macrocon-config.cmake
+  ${PROJECT_BINARY_DIR}/packaging/macrocon-config-version.cmake
+  DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/macrocon COMPONENT development)
+configure_file(packaging/macrocon.pc.in ${PROJECT_BINARY_DIR}/packaging/macrocon.pc @ONLY)
+install(FILES ${PROJECT_BINARY_DIR}/packaging/macrocon.pc
+  DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig COMPONENT development)
+install(FILES README.md CHANGELOG.md samples/data/NOTICE.md
+  DESTINATION ${CMAKE_INSTALL_DOCDIR} COMPONENT development)
+
+set(CPACK_PACKAGE_NAME macrocon)
+set(CPACK_PACKAGE_VENDOR "Macrocon")
+set(CPACK_PACKAGE_CONTACT "Macrocon engineering <eng@macrocon.dev>")
+set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "Retrieval and re-embedding of macro constraints for quad meshing (SDK)")
+set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
+set(CPACK_GENERATOR "TGZ;DEB")
+set(CPACK_PACKAGE_FILE_NAME "macrocon-${PROJECT_VERSION}-Linux-${CMAKE_SYSTEM_PROCESSOR}")
+set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS OFF)
+set(CPACK_DEBIAN_PACKAGE_DEPENDS "libtbb12 (>= 2021.5), libc6 (>= 2.34), libstdc++6 (>= 12)")
+set(CPACK_DEBIAN_PACKAGE_SECTION libdevel)
+set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
+include(CPack)

@@ -1,0 +1,16 @@
+# Python binding tests with Debian's interpreter (numpy + pytest come from Debian packages).
+# Not in the sanitizer build: an ASan library cannot be loaded into an uninstrumented python3.
+if(NOT MACROCON_SANITIZE)
+  set(MACROCON_PYTHON /usr/bin/python3 CACHE FILEPATH "Python with numpy and pytest for the binding tests")
+  add_test(NAME python.pytest
+    COMMAND ${MACROCON_PYTHON} -m pytest -q -p no:cacheprovider ${PROJECT_SOURCE_DIR}/bindings/python/tests)
+  set_tests_properties(python.pytest PROPERTIES
+    ENVIRONMENT "MACROCON_LIBRARY=$<TARGET_FILE:macrocon>;PYTHONPATH=${PROJECT_SOURCE_DIR}/bindings/python"
+    TIMEOUT 900)
+  # The wheel bundles the library: install it into a scratch folder and import it from there
+  # without MACROCON_LIBRARY.
+  add_test(NAME python.wheel
+    COMMAND ${CMAKE_COMMAND} -DPYTHON=${MACROCON_PYTHON} -DLIB=$<TARGET_FILE:macrocon>
+            -DSRC=${PROJECT_SOURCE_DIR}/bindings/python -DWORK=${PROJECT_BINARY_DIR}/python-wheel
+            -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_python_wheel.cmake)
+endif()

@@ -1,0 +1,67 @@
+// Minimal `--key value` / `--flag` argument parsing for the CLI subcommands.
+#pragma once
+
+#include <cstdlib>
+#include <map>
+#include <set>
+#include <string>
+
+#include "command.h"
+#include "error.h"
+
+namespace mcon::cli {
+
+class ArgParser {
+ public:
+  // `flags` take no value; every other `--key` takes one.
+  ArgParser(const Args& args, const std::set<std::string>& keys, const std::set<std::string>& flags) {
+    for (std::size_t i = 0; i < args.size(); ++i) {
+      const std::string& a = args[i];
+      require(a.rfind("--", 0) == 0, MCON_ERROR_INVALID_ARGUMENT, "unexpected argument '" + a + "'");
+      const std::string key = a.substr(2);
+      if (flags.count(key)) {
+        flags_.insert(key);
+      } else {
+        require(keys.count(key) > 0, MCON_ERROR_INVALID_ARGUMENT, "unknown option '" + a + "'");
+        require(i + 1 < args.size(), MCON_ERROR_INVALID_ARGUMENT, "option '" + a + "' needs a value");
+        values_[key] = args[++i];
+      }
+    }
+  }
+  bool has(const std::string& key) const { return values_.count(key) > 0; }
+  bool flag(const std::string& key) const { return flags_.count(key) > 0; }
+  std::string get(const std::string& key, const std::string& fallback = "") const {
+    auto it = values_.find(key);
+    return it == values_.end() ? fallback : it->second;
+  }
+  std::string required(const std::string& key) const {
+    require(has(key), MCON_ERROR_INVALID_ARGUMENT, "missing required option --" + key);
+    return get(key);
+  }
+  double number(const std::string& key, double fallback) const {
+    if (!has(key)) return fallback;
+    return parse_number(key, get(key));
+  }
+  long integer(const std::string& key, long fallback) const {
+    if (!has(key)) return fallback;
+    const std::string s = get(key);
+    char* end = nullptr;
+    const long v = std::strtol(s.c_str(), &end, 10);
+    require(end && *end == '\0' && !s.empty(), MCON_ERROR_INVALID_ARGUMENT,
+            "--" + key + " expects an integer, got '" + s + "'");
+    return v;
+  }
+  static double parse_number(const std::string& key, const std::string& s) {
+    char* end = nullptr;
+    const double v = std::strtod(s.c_str(), &end);
+    require(end && *end == '\0' && !s.empty(), MCON_ERROR_INVALID_ARGUMENT,
+            "--" + key + " expects a number, got '" + s + "'");
+    return v;
+  }
+
+ private:
+  std::map<std::string, std::string> values_;
+  std::set<std::string> flags_;
+};
+
+}  // namespace mcon::cli
