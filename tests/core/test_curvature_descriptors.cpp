@@ -12,8 +12,11 @@
 #include <string>
 #include <vector>
 
+#include "cotan_laplacian.h"
 #include "curvature_descriptors.h"
 #include "error.h"
+#include "geodesic_disk_patch.h"
+#include "io/mesh_io.h"
 #include "mesh.h"
 #include "mesh_topology.h"
 #include "test_meshes.h"
@@ -429,6 +432,31 @@ TEST(CurvatureDescriptors, Curv9LayoutAndMeanCurvatureDescriptor) {
   EXPECT_LT((h - curv9.col(7)).cwiseAbs().maxCoeff(), 1e-9);
   // Deterministic: bit-identical on a second run.
   EXPECT_EQ(curv9_descriptor(patch), curv9);
+}
+
+TEST(CurvatureDescriptors, RealPatchesAreFiniteMirrorSymmetricAndSigned) {
+  // MakeHuman body (mirror-symmetric): the left and right ear patches, cut by extract_geodesic_disk,
+  // must give the same area-weighted CURV9 means; the nose is convex (H > 0), and the eye patch,
+  // which grows over the socket lining, is concave on average (H < 0).
+  io::MeshFileOptions file;
+  file.face_end = 13378;  // the body group (shared/bench/README.md)
+  const io::LoadedMesh body = io::read_mesh(std::string(MACROCON_SHARED_DIR) + "/meshes/makehuman/base.obj.gz", file);
+  auto area_weighted_curv9 = [&](int center_file_vertex, double radius) {
+    PatchOptions options;
+    options.center.vertex = body.file_to_mesh.at(center_file_vertex);
+    options.radius = radius;
+    const Patch patch = extract_geodesic_disk(body.mesh, options);
+    const Eigen::MatrixXd curv9 = curv9_descriptor(patch.mesh);
+    EXPECT_TRUE(curv9.allFinite());
+    const Eigen::VectorXd area = vertex_areas(patch.mesh);
+    return Eigen::RowVectorXd(area.transpose() * curv9 / area.sum());
+  };
+  const Eigen::RowVectorXd ear_l = area_weighted_curv9(12222, 0.5), ear_r = area_weighted_curv9(5625, 0.5);
+  std::printf("[measured] ear_l CURV9 area-weighted mean H(sigma=0.1) %.4f, |k|max %.4f; ear_r - ear_l max %.2e\n",
+              ear_l[7], ear_l[8], (ear_r - ear_l).cwiseAbs().maxCoeff());
+  EXPECT_LT((ear_r - ear_l).cwiseAbs().maxCoeff(), 1e-3 * ear_l.cwiseAbs().maxCoeff());
+  EXPECT_GT(area_weighted_curv9(297, 0.5)[7], 0.3);    // nose
+  EXPECT_LT(area_weighted_curv9(1329, 0.6)[7], -0.5);  // eye_r
 }
 
 TEST(CurvatureDescriptors, RejectsBadSigma) {
