@@ -12,8 +12,11 @@
 #include <string>
 #include <vector>
 
+#include "cotan_laplacian.h"
 #include "curvature_descriptors.h"
 #include "error.h"
+#include "geodesic_disk_patch.h"
+#include "io/mesh_io.h"
 #include "mesh.h"
 #include "mesh_topology.h"
 #include "test_meshes.h"
@@ -62,6 +65,19 @@ std::string label(const char* format, double a, double b = 0, double c = 0) {
   char buffer[128];
   std::snprintf(buffer, sizeof buffer, format, a, b, c);
   return buffer;
+}
+
+// All three CURV9 scales from one call (one edge-tensor build, one ordering): kSigmas[s] is column
+// block s, as Curv9LayoutAndMeanCurvatureDescriptor checks.
+struct Scales {
+  Eigen::MatrixXd curv9;
+  Eigen::VectorXd gaussian(int s) const { return curv9.col(3 * s); }
+  Eigen::VectorXd mean(int s) const { return curv9.col(3 * s + 1); }
+  Eigen::VectorXd abs_max(int s) const { return curv9.col(3 * s + 2); }
+};
+
+Scales at_all_scales(const TriMesh& m, PatchBoundary boundary = PatchBoundary::kCutThroughTriangles) {
+  return {curv9_descriptor(m, boundary)};
 }
 
 TriMesh flipped(TriMesh m) {
@@ -193,6 +209,15 @@ std::vector<char> boundary_vertices(const TriMesh& m) {
   return on;
 }
 
+const Ellipsoid kEllipsoid{1.0, 0.8, 0.6};
+
+// The ellipsoid at 4 and 5 subdivisions and its descriptors, computed once for two tests.
+const Scales& ellipsoid_scales(int subdivisions) {
+  static const Scales coarse = at_all_scales(kEllipsoid.mesh(4));
+  static const Scales fine = at_all_scales(kEllipsoid.mesh(5));
+  return subdivisions == 4 ? coarse : fine;
+}
+
 }  // namespace
 
 TEST(CurvatureDescriptors, SphereHasMeanCurvatureOneOverRAndGaussianOneOverRSquared) {
@@ -201,24 +226,23 @@ TEST(CurvatureDescriptors, SphereHasMeanCurvatureOneOverRAndGaussianOneOverRSqua
   const double mean_h[3] = {0.006, 0.008, 0.015}, max_h[3] = {0.25, 0.2, 0.12};
   for (int subdivisions : {4, 5}) {
     for (double radius : {1.0, 2.5}) {
-      const TriMesh sphere = test_meshes::make_icosphere(subdivisions, radius);
+      const Scales c = at_all_scales(test_meshes::make_icosphere(subdivisions, radius));
       for (int s = 0; s < 3; ++s) {
-        const PrincipalCurvatures k = smoothed_principal_curvatures(sphere, kSigmas[s]);
         const ErrorStats h =
             report(label("sphere ico%.0f R=%.1f sigma=%.3f H (relative)", subdivisions, radius, kSigmas[s]),
-                   errors_to(k.mean(), 1 / radius, 1 / radius));
+                   errors_to(c.mean(s), 1 / radius, 1 / radius));
         const ErrorStats g =
             report(label("sphere ico%.0f R=%.1f sigma=%.3f K (relative)", subdivisions, radius, kSigmas[s]),
-                   errors_to(k.gaussian(), 1 / (radius * radius), 1 / (radius * radius)));
-        const ErrorStats k1 = errors_to(k.k1, 1 / radius, 1 / radius);
-        const ErrorStats k2 = errors_to(k.k2, 1 / radius, 1 / radius);
+                   errors_to(c.gaussian(s), 1 / (radius * radius), 1 / (radius * radius)));
+        const ErrorStats m =
+            report(label("sphere ico%.0f R=%.1f sigma=%.3f |k|max (relative)", subdivisions, radius, kSigmas[s]),
+                   errors_to(c.abs_max(s), 1 / radius, 1 / radius));
         EXPECT_LT(h.mean, mean_h[s]);
         EXPECT_LT(h.max, max_h[s]);
         EXPECT_LT(g.mean, 2 * mean_h[s]);
         EXPECT_LT(g.max, 2.2 * max_h[s]);
-        EXPECT_LT(std::max(k1.mean, k2.mean), 2 * mean_h[s]);
-        EXPECT_LT(std::max(k1.max, k2.max), 1.5 * max_h[s]);
-        for (int v = 0; v < sphere.num_vertices(); ++v) ASSERT_GE(k.k1[v], k.k2[v]);
+        EXPECT_LT(m.mean, 2 * mean_h[s]);
+        EXPECT_LT(m.max, 1.5 * max_h[s]);
       }
     }
   }
@@ -237,19 +261,17 @@ TEST(CurvatureDescriptors, CylinderHasHalfCurvatureMeanAndZeroGaussianAwayFromTh
   const double r = 0.5;
   const TriMesh cylinder = test_meshes::make_cylinder(r, 2.0, 96, 72);  // near-equilateral, 6912 vertices
   auto middle = [&](int v) { return std::abs(cylinder.positions[v].z() - 1.0) < 0.5; };
-  for (double sigma : kSigmas) {
-    const PrincipalCurvatures k = smoothed_principal_curvatures(cylinder, sigma);
-    const ErrorStats h = report(label("cylinder R=0.5 sigma=%.3f H (middle, relative)", sigma),
-                                errors_to(k.mean(), 1 / (2 * r), 1 / (2 * r), middle));
-    const ErrorStats g = report(label("cylinder R=0.5 sigma=%.3f K (middle, per 1/R^2)", sigma),
-                                errors_to(k.gaussian(), 0.0, 1 / (r * r), middle));
-    const ErrorStats m = report(label("cylinder R=0.5 sigma=%.3f |k|max (middle, relative)", sigma),
-                                errors_to(k.abs_max(), 1 / r, 1 / r, middle));
-    const ErrorStats k2 = errors_to(k.k2, 0.0, 1 / r, middle);
+  const Scales c = at_all_scales(cylinder);
+  for (int s = 0; s < 3; ++s) {
+    const ErrorStats h = report(label("cylinder R=0.5 sigma=%.3f H (middle, relative)", kSigmas[s]),
+                                errors_to(c.mean(s), 1 / (2 * r), 1 / (2 * r), middle));
+    const ErrorStats g = report(label("cylinder R=0.5 sigma=%.3f K (middle, per 1/R^2)", kSigmas[s]),
+                                errors_to(c.gaussian(s), 0.0, 1 / (r * r), middle));
+    const ErrorStats m = report(label("cylinder R=0.5 sigma=%.3f |k|max (middle, relative)", kSigmas[s]),
+                                errors_to(c.abs_max(s), 1 / r, 1 / r, middle));
     EXPECT_LT(h.max, 2e-3);
     EXPECT_LT(g.max, 2e-3);
     EXPECT_LT(m.max, 1e-3);
-    EXPECT_LT(k2.max, 2e-3);
   }
 }
 
@@ -270,41 +292,41 @@ TEST(CurvatureDescriptors, SaddleHasNegativeGaussianCurvatureAndExactMeanCurvatu
   auto exact_k = [&](int v) { return g.gaussian(m.positions[v]); };
   // sigma 0.025 is below the edge length: the per-vertex estimate of a jittered grid.
   const double mean_h[3] = {0.03, 0.005, 0.006}, mean_k[3] = {0.2, 0.02, 0.05}, max_k[3] = {0.5, 0.08, 0.12};
+  const Scales up = at_all_scales(m);
   for (int s = 0; s < 3; ++s) {
-    const PrincipalCurvatures k = smoothed_principal_curvatures(m, kSigmas[s]);
     const ErrorStats h =
-        report(label("saddle sigma=%.3f H (inner, per kappa)", kSigmas[s]), errors(k.mean(), exact_h, 1.0, inner));
+        report(label("saddle sigma=%.3f H (inner, per kappa)", kSigmas[s]), errors(up.mean(s), exact_h, 1.0, inner));
     const ErrorStats gk = report(label("saddle sigma=%.3f K (inner, per kappa^2)", kSigmas[s]),
-                                 errors(k.gaussian(), exact_k, 1.0, inner));
+                                 errors(up.gaussian(s), exact_k, 1.0, inner));
     EXPECT_LT(h.mean, mean_h[s]);
     EXPECT_LT(gk.mean, mean_k[s]);
     EXPECT_LT(gk.max, max_k[s]);
     if (s == 0) continue;
     for (int v = 0; v < m.num_vertices(); ++v) {
       if (inner(v)) {
-        ASSERT_LT(k.gaussian()[v], 0.0) << v;
+        ASSERT_LT(up.gaussian(s)[v], 0.0) << v;
       }
     }
   }
   // Turning the surface over flips H but not K.
-  const PrincipalCurvatures up = smoothed_principal_curvatures(m, 0.05);
-  const PrincipalCurvatures down = smoothed_principal_curvatures(flipped(m), 0.05);
-  EXPECT_LT((up.mean() + down.mean()).cwiseAbs().maxCoeff(), 1e-9);
-  EXPECT_LT((up.gaussian() - down.gaussian()).cwiseAbs().maxCoeff(), 1e-9);
+  const Scales down = at_all_scales(flipped(m));
+  for (int s = 0; s < 3; ++s) {
+    EXPECT_LT((up.mean(s) + down.mean(s)).cwiseAbs().maxCoeff(), 1e-9);
+    EXPECT_LT((up.gaussian(s) - down.gaussian(s)).cwiseAbs().maxCoeff(), 1e-9);
+  }
 }
 
 TEST(CurvatureDescriptors, EllipsoidMatchesExactCurvatures) {
   // Curvature varies here, so the larger sigmas add a true smoothing bias (H from ~0.8 to ~2.2).
-  const Ellipsoid e{1.0, 0.8, 0.6};
   const double mean_h[3] = {0.012, 0.02, 0.06}, mean_k[3] = {0.035, 0.06, 0.2};
   for (int subdivisions : {4, 5}) {
-    const TriMesh m = e.mesh(subdivisions);
+    const TriMesh m = kEllipsoid.mesh(subdivisions);
+    const Scales& c = ellipsoid_scales(subdivisions);
     for (int s = 0; s < 3; ++s) {
-      const PrincipalCurvatures k = smoothed_principal_curvatures(m, kSigmas[s]);
       const ErrorStats h = report(label("ellipsoid ico%.0f sigma=%.3f H", subdivisions, kSigmas[s]),
-                                  errors(k.mean(), [&](int v) { return e.mean(m.positions[v]); }));
+                                  errors(c.mean(s), [&](int v) { return kEllipsoid.mean(m.positions[v]); }));
       const ErrorStats g = report(label("ellipsoid ico%.0f sigma=%.3f K", subdivisions, kSigmas[s]),
-                                  errors(k.gaussian(), [&](int v) { return e.gaussian(m.positions[v]); }));
+                                  errors(c.gaussian(s), [&](int v) { return kEllipsoid.gaussian(m.positions[v]); }));
       EXPECT_LT(h.mean, mean_h[s]);
       EXPECT_LT(g.mean, mean_k[s]);
     }
@@ -312,12 +334,13 @@ TEST(CurvatureDescriptors, EllipsoidMatchesExactCurvatures) {
 }
 
 TEST(CurvatureDescriptors, UniformRefinementChangesLittle) {
-  const Ellipsoid e{1.0, 0.8, 0.6};
-  const TriMesh coarse = e.mesh(4), fine = e.mesh(5);  // fine keeps coarse's vertices first
+  // One subdivision step more keeps the coarse vertices first: compare H there.
+  const Scales& coarse = ellipsoid_scales(4);
+  const Scales& fine = ellipsoid_scales(5);
   const double mean_bound[3] = {0.006, 0.006, 0.004}, max_bound[3] = {0.2, 0.1, 0.02};
   for (int s = 0; s < 3; ++s) {
-    const Eigen::VectorXd hc = smoothed_principal_curvatures(coarse, kSigmas[s]).mean();
-    const Eigen::VectorXd hf = smoothed_principal_curvatures(fine, kSigmas[s]).mean().head(coarse.num_vertices());
+    const Eigen::VectorXd hc = coarse.mean(s);
+    const Eigen::VectorXd hf = fine.mean(s).head(hc.size());
     const ErrorStats d =
         report(label("ellipsoid ico4 vs ico5 sigma=%.3f H", kSigmas[s]), errors(hc, [&](int v) { return hf[v]; }));
     EXPECT_LT(d.mean, mean_bound[s]);
@@ -354,14 +377,13 @@ TEST(CurvatureDescriptors, ExactlyCutBoundaryNeedsNoCorrection) {
   const TriMesh tube = cut_exactly(test_meshes::make_cylinder(0.5, 2.0, 96, 72),
                                    [](const Vec3& p) { return p.z() + 1.2 * p.x() + 0.3 * p.y() - 1.0; });
   const std::vector<char> cap_rim = boundary_vertices(cap), tube_rim = boundary_vertices(tube);
+  const Scales cap_scales = at_all_scales(cap), tube_scales = at_all_scales(tube);
   const double cap_bound[3] = {0.15, 0.06, 0.04}, tube_bound[3] = {0.25, 0.1, 0.05};
   for (int s = 0; s < 3; ++s) {
     const ErrorStats c = report(label("exact-cut cap sigma=%.3f H (rim, relative)", kSigmas[s]),
-                                errors_to(smoothed_principal_curvatures(cap, kSigmas[s]).mean(), 1.0, 1.0,
-                                          [&](int v) { return cap_rim[v] != 0; }));
+                                errors_to(cap_scales.mean(s), 1.0, 1.0, [&](int v) { return cap_rim[v] != 0; }));
     const ErrorStats t = report(label("exact-cut cylinder sigma=%.3f H (rim, relative)", kSigmas[s]),
-                                errors_to(smoothed_principal_curvatures(tube, kSigmas[s]).mean(), 1.0, 1.0,
-                                          [&](int v) { return tube_rim[v] != 0; }));
+                                errors_to(tube_scales.mean(s), 1.0, 1.0, [&](int v) { return tube_rim[v] != 0; }));
     EXPECT_LT(c.mean, cap_bound[s]);
     EXPECT_LT(t.mean, tube_bound[s]);
   }
@@ -374,14 +396,14 @@ TEST(CurvatureDescriptors, FaceSelectedBoundaryIsRestoredByNormalizedConvolution
                                                 [](const Vec3& p) { return p.z() + 0.3 * p.x() > 0.3; });
   const std::vector<char> rim = boundary_vertices(cap);
   auto on_rim = [&](int v) { return rim[v] != 0; };
+  const Scales plain_scales = at_all_scales(cap);
+  const Scales restored_scales = at_all_scales(cap, PatchBoundary::kAlongHostEdges);
   const double bound[3] = {0.06, 0.03, 0.03};
   for (int s = 0; s < 3; ++s) {
     const ErrorStats plain = report(label("face-selected cap sigma=%.3f H (rim, default rule)", kSigmas[s]),
-                                    errors_to(smoothed_principal_curvatures(cap, kSigmas[s]).mean(), 1.0, 1.0, on_rim));
-    const ErrorStats restored =
-        report(label("face-selected cap sigma=%.3f H (rim, kAlongHostEdges)", kSigmas[s]),
-               errors_to(smoothed_principal_curvatures(cap, kSigmas[s], PatchBoundary::kAlongHostEdges).mean(), 1.0,
-                         1.0, on_rim));
+                                    errors_to(plain_scales.mean(s), 1.0, 1.0, on_rim));
+    const ErrorStats restored = report(label("face-selected cap sigma=%.3f H (rim, kAlongHostEdges)", kSigmas[s]),
+                                       errors_to(restored_scales.mean(s), 1.0, 1.0, on_rim));
     EXPECT_LT(restored.mean, bound[s]);
     EXPECT_LT(restored.mean, 0.5 * plain.mean);
   }
@@ -400,6 +422,7 @@ TEST(CurvatureDescriptors, Curv9LayoutAndMeanCurvatureDescriptor) {
     EXPECT_LT((curv9.col(3 * s + 0) - k.gaussian()).cwiseAbs().maxCoeff(), 1e-9) << s;
     EXPECT_LT((curv9.col(3 * s + 1) - k.mean()).cwiseAbs().maxCoeff(), 1e-9) << s;
     EXPECT_LT((curv9.col(3 * s + 2) - k.abs_max()).cwiseAbs().maxCoeff(), 1e-9) << s;
+    EXPECT_GE((k.k1 - k.k2).minCoeff(), 0.0);
   }
   // Larger sigma smooths: the spread of H shrinks from column to column.
   auto spread = [&](int c) { return curv9.col(c).maxCoeff() - curv9.col(c).minCoeff(); };
@@ -409,6 +432,31 @@ TEST(CurvatureDescriptors, Curv9LayoutAndMeanCurvatureDescriptor) {
   EXPECT_LT((h - curv9.col(7)).cwiseAbs().maxCoeff(), 1e-9);
   // Deterministic: bit-identical on a second run.
   EXPECT_EQ(curv9_descriptor(patch), curv9);
+}
+
+TEST(CurvatureDescriptors, RealPatchesAreFiniteMirrorSymmetricAndSigned) {
+  // MakeHuman body (mirror-symmetric): the left and right ear patches, cut by extract_geodesic_disk,
+  // must give the same area-weighted CURV9 means; the nose is convex (H > 0), and the eye patch,
+  // which grows over the socket lining, is concave on average (H < 0).
+  io::MeshFileOptions file;
+  file.face_end = 13378;  // the body group (shared/bench/README.md)
+  const io::LoadedMesh body = io::read_mesh(std::string(MACROCON_SHARED_DIR) + "/meshes/makehuman/base.obj.gz", file);
+  auto area_weighted_curv9 = [&](int center_file_vertex, double radius) {
+    PatchOptions options;
+    options.center.vertex = body.file_to_mesh.at(center_file_vertex);
+    options.radius = radius;
+    const Patch patch = extract_geodesic_disk(body.mesh, options);
+    const Eigen::MatrixXd curv9 = curv9_descriptor(patch.mesh);
+    EXPECT_TRUE(curv9.allFinite());
+    const Eigen::VectorXd area = vertex_areas(patch.mesh);
+    return Eigen::RowVectorXd(area.transpose() * curv9 / area.sum());
+  };
+  const Eigen::RowVectorXd ear_l = area_weighted_curv9(12222, 0.5), ear_r = area_weighted_curv9(5625, 0.5);
+  std::printf("[measured] ear_l CURV9 area-weighted mean H(sigma=0.1) %.4f, |k|max %.4f; ear_r - ear_l max %.2e\n",
+              ear_l[7], ear_l[8], (ear_r - ear_l).cwiseAbs().maxCoeff());
+  EXPECT_LT((ear_r - ear_l).cwiseAbs().maxCoeff(), 1e-3 * ear_l.cwiseAbs().maxCoeff());
+  EXPECT_GT(area_weighted_curv9(297, 0.5)[7], 0.3);    // nose
+  EXPECT_LT(area_weighted_curv9(1329, 0.6)[7], -0.5);  // eye_r
 }
 
 TEST(CurvatureDescriptors, RejectsBadSigma) {
