@@ -22,6 +22,7 @@ write_basic_package_version_file(${PROJECT_BINARY_DIR}/packaging/macrocon-config
 install(FILES ${PROJECT_BINARY_DIR}/packaging/macrocon-config.cmake
   ${PROJECT_BINARY_DIR}/packaging/macrocon-config-version.cmake
   DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/macrocon COMPONENT development)
+file(RELATIVE_PATH MACROCON_PC_TO_PREFIX "/p/${CMAKE_INSTALL_LIBDIR}/pkgconfig" "/p")
 configure_file(packaging/macrocon.pc.in ${PROJECT_BINARY_DIR}/packaging/macrocon.pc @ONLY)
 install(FILES ${PROJECT_BINARY_DIR}/packaging/macrocon.pc
   DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig COMPONENT development)

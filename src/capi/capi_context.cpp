@@ -138,13 +138,14 @@ mcon_status mcon_shutdown(void) {
     require(alive == 0, MCON_ERROR_INVALID_ARGUMENT,
             std::to_string(alive) + " context(s) still alive: release every context, mesh and patch first "
             "(objects keep their context alive)");
+    // The scheduler reference is taken here, not when contexts are created: taking it while
+    // another thread initializes a task arena (a host's own TBB work) deadlocked inside oneTBB
+    // 2021.8 (seen: 2 runs in 8 of capi.exit_clean_after_parallel_work). Here no SDK work runs.
     auto& handle = scheduler_handle();
-    if (!handle) return;
+    if (!handle) handle = tbb::task_scheduler_handle(tbb::attach{});
     // Blocks until TBB's workers have exited; fails while TBB is still in use in this process
-    // (e.g. by the host's own parallel work). finalize() empties the handle even when it fails,
-    // so take a new one then: a later mcon_shutdown must still wait for the workers.
+    // (e.g. by the host's own parallel work). finalize() empties the handle either way.
     if (tbb::finalize(handle, std::nothrow)) return;
-    handle = tbb::task_scheduler_handle(tbb::attach{});
     fail(MCON_ERROR_INVALID_ARGUMENT,
          "TBB worker threads are still in use in this process (parallel work still running); call again "
          "once it has finished");
@@ -171,9 +172,6 @@ mcon_status mcon_context_create(const mcon_context_options* options, mcon_contex
     // A cap above the hardware is no cap (and would only allocate unused arena slots).
     const int hardware = tbb::info::default_concurrency();
     const int threads = opts.max_threads == 0 ? hardware : std::min(hardware, static_cast<int>(opts.max_threads));
-    std::lock_guard<std::mutex> lock(scheduler_mutex());
-    auto& handle = scheduler_handle();
-    if (!handle) handle = tbb::task_scheduler_handle(tbb::attach{});
     auto ctx = std::make_unique<mcon_context_t>();
     ctx->options = opts;
     ctx->arena = std::make_unique<tbb::task_arena>(threads);
