@@ -13,4 +13,7 @@ run_suite() {
 run_suite build -DCMAKE_BUILD_TYPE=Release
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
-run_suite build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMACROCON_SANITIZE=ON
+# -Werror gates the Release build above; here GCC 12's sanitizer instrumentation can raise
+# false-positive diagnostics (-Wmaybe-uninitialized, -Wstringop-overflow), so this build checks
+# run-time behaviour only.
+run_suite build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMACROCON_SANITIZE=ON -DMACROCON_WERROR=OFF
