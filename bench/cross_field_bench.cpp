@@ -1,6 +1,6 @@
 // Cross-field solve times (compute_cross_field) on ~10k-face meshes: guides along a line on a
 // grid and a cylinder, a closed sphere with a few guides, the unconstrained smoothest field
-// (inverse iteration) and a boundary-aligned disk. Prints one JSON object.
+// (inverse iteration), a boundary-aligned disk and a real face patch. Prints one JSON object.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cross_field.h"
+#include "io/mesh_io.h"
 #include "test_meshes.h"
 
 namespace {
@@ -79,6 +80,20 @@ int main() {
   {
     Case c{"disk_boundary", mcon::test_meshes::make_disk(41), {}, {}};
     c.options.align_to_boundary = true;
+    cases.push_back(std::move(c));
+  }
+  {
+    // A real target patch: the ICT face's narrow face area (quads split, ~13k triangles, holes at
+    // the eyes and mouth), a vertical guide down the middle and boundary alignment.
+    mcon::io::MeshFileOptions file_options;
+    file_options.face_end = 6705;
+    Case c{"ict_face_area", mcon::io::read_mesh(std::string(MACROCON_SHARED_DIR) +
+                                                    "/meshes/ict-facekit/generic_neutral_mesh.obj.gz",
+                                                file_options).mesh,
+           {}, {}};
+    c.options.align_to_boundary = true;
+    for (int t = 0; t < c.mesh.num_triangles(); ++t)
+      if (std::abs(centroid(c.mesh, t).x()) < 0.3) c.constraints.push_back({t, Vec3::UnitY(), 1.0});
     cases.push_back(std::move(c));
   }
   const int runs = 7;

@@ -20,46 +20,48 @@ constexpr std::uint32_t kMaxRings = 256;
 constexpr std::int32_t kMinIndexQuarters = 4 - 16;  // valence 16
 constexpr std::int32_t kMaxIndexQuarters = 4 - 1;   // valence 1
 
+// Checks build their message only on failure: the per-value loops run over whole libraries.
 class Checker {
  public:
   Checker(mcon_status status, std::string where) : status_(status), where_(std::move(where)) {}
 
+  [[noreturn]] void fail_with(const std::string& what) const { fail(status_, where_ + ": " + what); }
+
   void operator()(bool ok, const std::string& what) const {
-    if (!ok) fail(status_, where_ + ": " + what);
+    if (!ok) fail_with(what);
   }
 
   template <typename T>
   void finite(const std::vector<T>& values, const std::string& what) const {
     for (std::size_t i = 0; i < values.size(); ++i)
-      (*this)(std::isfinite(values[i]), what + " value " + std::to_string(i) + " is not finite");
+      if (!std::isfinite(values[i])) fail_with(what + " value " + std::to_string(i) + " is not finite");
   }
 
   // `count` items of `per_item` values each, without overflow (counts come from the file).
   void length(std::size_t actual, std::size_t count, std::size_t per_item, const std::string& what,
               const std::string& expected) const {
     const bool overflow = per_item != 0 && count > std::numeric_limits<std::size_t>::max() / per_item;
-    (*this)(!overflow && actual == count * per_item,
-            what + " has " + std::to_string(actual) + " values, expected " + expected + " = " +
+    if (overflow || actual != count * per_item)
+      fail_with(what + " has " + std::to_string(actual) + " values, expected " + expected + " = " +
                 (overflow ? std::string("too many") : std::to_string(count * per_item)));
   }
 
-  void surface_point(const SurfacePoint& p, std::size_t triangle_count, const std::string& what) const {
-    (*this)(p.face < triangle_count, what + " lies on triangle " + std::to_string(p.face) + " of " +
-                                         std::to_string(triangle_count));
+  // `what()` names the point, e.g. "guide 2 point 5".
+  template <typename What>
+  void surface_point(const SurfacePoint& p, std::size_t triangle_count, const What& what) const {
+    if (p.face >= triangle_count)
+      fail_with(what() + " lies on triangle " + std::to_string(p.face) + " of " + std::to_string(triangle_count));
     double sum = 0;
     for (int k = 0; k < 3; ++k) {
       const double b = p.barycentric[k];
-      (*this)(std::isfinite(b) && b >= -kBarycentricTolerance && b <= 1 + kBarycentricTolerance,
-              what + " has barycentric weight " + std::to_string(k) + " = " + std::to_string(b) +
+      if (!(std::isfinite(b) && b >= -kBarycentricTolerance && b <= 1 + kBarycentricTolerance))
+        fail_with(what() + " has barycentric weight " + std::to_string(k) + " = " + std::to_string(b) +
                   " outside [0, 1]");
       sum += b;
     }
-    (*this)(std::abs(sum - 1) <= kBarycentricTolerance,
-            what + " has barycentric weights summing to " + std::to_string(sum) + ", not 1");
+    if (!(std::abs(sum - 1) <= kBarycentricTolerance))
+      fail_with(what() + " has barycentric weights summing to " + std::to_string(sum) + ", not 1");
   }
-
-  mcon_status status() const { return status_; }
-  const std::string& where() const { return where_; }
 
  private:
   mcon_status status_;
@@ -83,7 +85,7 @@ void check_polyline(const Checker& check, const ConstraintPolyline& line, std::s
                                            " points, needs at least " + std::to_string(minimum) +
                                            (line.closed ? " (closed)" : ""));
   for (std::size_t i = 0; i < line.points.size(); ++i)
-    check.surface_point(line.points[i], triangle_count, what + " point " + std::to_string(i));
+    check.surface_point(line.points[i], triangle_count, [&] { return what + " point " + std::to_string(i); });
 }
 
 void check_field(const Checker& check, const VertexField& field, std::size_t n, const std::string& what) {
@@ -104,7 +106,7 @@ void check_field(const Checker& check, const VertexField& field, std::size_t n, 
       integer = true;
       break;
     default:
-      check(false, what + " has unknown kind " + std::to_string(static_cast<unsigned>(field.kind)) +
+      check.fail_with(what + " has unknown kind " + std::to_string(static_cast<unsigned>(field.kind)) +
                        " (a newer format, or a corrupt file)");
   }
   check(field.dimension >= 1, what + " has dimension 0");
@@ -134,18 +136,19 @@ void check_mesh(const Checker& check, const MacroConstraint& e) {
             m <= static_cast<std::size_t>(std::numeric_limits<int>::max()),
         "the patch mesh has more than 2^31 - 1 vertices or triangles");
   for (std::size_t i = 0; i < e.positions.size(); ++i)
-    check(std::isfinite(e.positions[i]), "vertex " + std::to_string(i / 3) + " has a non-finite coordinate");
+    if (!std::isfinite(e.positions[i])) check.fail_with("vertex " + std::to_string(i / 3) + " has a non-finite coordinate");
   for (std::size_t t = 0; t < m; ++t)
     for (int k = 0; k < 3; ++k) {
       const std::uint32_t v = e.triangles[3 * t + k];
-      check(v < n, "triangle " + std::to_string(t) + " uses vertex " + std::to_string(v) + " of " + std::to_string(n));
+      if (v >= n)
+        check.fail_with("triangle " + std::to_string(t) + " uses vertex " + std::to_string(v) + " of " + std::to_string(n));
     }
   const TriMesh mesh = entry_mesh(e);
   try {
     validate_mesh(mesh);
   } catch (const Error& err) {
     const char* name = status_name(err.status());
-    check(false, std::string("patch mesh: ") + (name ? name : "error") + ": " + err.what());
+    check.fail_with(std::string("patch mesh: ") + (name ? name : "error") + ": " + err.what());
   }
   // A macro constraint is a geodesic disk: one component, one boundary loop, Euler characteristic 1.
   const MeshTopology topology = build_topology(mesh);
@@ -175,7 +178,8 @@ void validate_retrieval_config(const RetrievalConfig& c, mcon_status status) {
   check.finite(c.normalization_mean, "normalization_mean");
   check.finite(c.normalization_scale, "normalization_scale");
   for (std::size_t i = 0; i < c.normalization_scale.size(); ++i)
-    check(c.normalization_scale[i] > 0, "normalization_scale value " + std::to_string(i) + " is not positive");
+    if (!(c.normalization_scale[i] > 0))
+      check.fail_with("normalization_scale value " + std::to_string(i) + " is not positive");
   check(k == 0 || d > 0, "a vocabulary of " + std::to_string(k) + " words needs a descriptor dimension > 0");
   check.length(c.vocabulary.size(), k, d, "vocabulary",
                "vocabulary_size " + std::to_string(k) + " * dimension " + std::to_string(d));
@@ -191,7 +195,7 @@ void validate_library_entry(const MacroConstraint& e, std::size_t index, const R
   check_mesh(check, e);
   const std::size_t n = e.vertex_count(), m = e.triangle_count();
 
-  check.surface_point(e.center, m, "center");
+  check.surface_point(e.center, m, [] { return std::string("center"); });
   check(std::isfinite(e.source_scale) && e.source_scale > 0,
         "source_scale is " + std::to_string(e.source_scale) + ", expected a finite value > 0");
   for (int k = 0; k < 3; ++k) check(std::isfinite(e.source_origin[k]), "source_origin is not finite");
@@ -202,7 +206,7 @@ void validate_library_entry(const MacroConstraint& e, std::size_t index, const R
   for (std::size_t i = 0; i < e.singularities.size(); ++i) {
     const Singularity& s = e.singularities[i];
     const std::string what = "singularity " + std::to_string(i);
-    check.surface_point(s.location, m, what);
+    check.surface_point(s.location, m, [&] { return what; });
     check(s.index_quarters != 0 && s.index_quarters >= kMinIndexQuarters && s.index_quarters <= kMaxIndexQuarters,
           what + " has index_quarters " + std::to_string(s.index_quarters) + ", expected " +
               std::to_string(kMinIndexQuarters) + ".." + std::to_string(kMaxIndexQuarters) + " without 0 (valence 1..16)");
@@ -221,8 +225,8 @@ void validate_library_entry(const MacroConstraint& e, std::size_t index, const R
   check.length(e.histogram.size(), config.vocabulary_size, config.rings, "histogram",
                "vocabulary_size " + std::to_string(config.vocabulary_size) + " * rings " + std::to_string(config.rings));
   for (std::size_t i = 0; i < e.histogram.size(); ++i)
-    check(std::isfinite(e.histogram[i]) && e.histogram[i] >= 0,
-          "histogram value " + std::to_string(i) + " is not a finite value >= 0");
+    if (!(std::isfinite(e.histogram[i]) && e.histogram[i] >= 0))
+      check.fail_with("histogram value " + std::to_string(i) + " is not a finite value >= 0");
 }
 
 }  // namespace mcon

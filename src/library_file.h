@@ -21,8 +21,9 @@ inline constexpr char kLibraryFileIdentifier[] = "MCLB";
 inline constexpr std::uint32_t kLibraryFormatVersion = 1;
 // Root offset + identifier + the smallest vtable and table: anything shorter is not a library.
 inline constexpr std::size_t kLibraryMinBytes = 16;
-// FlatBuffers offsets are 32-bit signed: a buffer is < 2 GiB.
-inline constexpr std::size_t kLibraryMaxBytes = (std::size_t{1} << 31) - 1;
+// FlatBuffers offsets are 32-bit signed: a buffer is < 2 GiB (and the Verifier asserts it is
+// smaller than FLATBUFFERS_MAX_BUFFER_SIZE = 2^31 - 1).
+inline constexpr std::size_t kLibraryMaxBytes = (std::size_t{1} << 31) - 2;
 
 // The library as a finished FlatBuffer (deterministic: same library, same bytes). A library too
 // large for one buffer throws MCON_ERROR_INVALID_ARGUMENT.

@@ -1,9 +1,10 @@
 // FlatBuffer -> ConstraintLibrary for hostile input (design-notes §6), in this order:
 //   1. size within [kLibraryMinBytes, kLibraryMaxBytes] (the Verifier only asserts its limit);
 //   2. file identifier "MCLB" (a clear message for files that are not libraries at all);
-//   3. flatbuffers::Verifier with explicit depth / table limits: after it, every offset, vector
+//   3. format_version (verifying only the root table and that field): absent -> INVALID_LIBRARY,
+//      newer than this build -> UNSUPPORTED, whatever the rest of a newer layout looks like;
+//   4. flatbuffers::Verifier with explicit depth / table limits: after it, every offset, vector
 //      and string the schema reaches lies inside the buffer, so reading is memory-safe;
-//   4. format_version: absent -> INVALID_LIBRARY, newer than this build -> UNSUPPORTED;
 //   5. copy out into the data model, charging every byte read against the buffer size: a genuine
 //      buffer never reuses an object, so a forged one that points many offsets at one big object
 //      is stopped before we copy more than the file holds;
@@ -26,6 +27,7 @@ namespace {
 namespace fb = mcon::fb;
 
 static_assert(FLATBUFFERS_LITTLEENDIAN, "vectors are copied with memcpy: little-endian hosts only");
+static_assert(kLibraryMaxBytes < FLATBUFFERS_MAX_BUFFER_SIZE, "the Verifier asserts size < FLATBUFFERS_MAX_BUFFER_SIZE");
 
 // Tables nest Library -> Entry -> Polyline at most 3 deep today; room for appended nesting.
 constexpr flatbuffers::uoffset_t kMaxDepth = 16;
@@ -192,6 +194,21 @@ std::string printable_identifier(const std::uint8_t* id) {
   return out;
 }
 
+// Library.format_version, after verifying just the root offset, the root table's vtable and that
+// field (the generated Library::Verify starts with the same checks).
+std::uint32_t read_format_version(const std::uint8_t* bytes, std::size_t size) {
+  flatbuffers::Verifier::Options options;
+  options.max_depth = 1;
+  options.max_tables = 1;
+  flatbuffers::Verifier verifier(bytes, size, options);
+  const flatbuffers::uoffset_t root_offset = verifier.VerifyOffset(0);
+  const auto* table = reinterpret_cast<const flatbuffers::Table*>(bytes + root_offset);
+  if (root_offset == 0 || !table->VerifyTableStart(verifier) ||
+      !table->VerifyField<std::uint32_t>(verifier, fb::Library::VT_FORMAT_VERSION, sizeof(std::uint32_t)))
+    invalid("library failed FlatBuffers verification (truncated or corrupt root table)");
+  return table->GetField<std::uint32_t>(fb::Library::VT_FORMAT_VERSION, 0);
+}
+
 }  // namespace
 
 ConstraintLibrary load_library_from_buffer(const void* data, std::size_t size) {
@@ -214,6 +231,14 @@ ConstraintLibrary load_library_from_buffer(const void* data, std::size_t size) {
             printable_identifier(bytes + sizeof(flatbuffers::uoffset_t)) + "', expected '" + kLibraryFileIdentifier +
             "')");
 
+  // The format version first, verifying only the root table and that one field: a newer format
+  // is UNSUPPORTED even if the rest of its layout would not pass this build's Verifier.
+  const std::uint32_t version = read_format_version(bytes, size);
+  if (version == 0) invalid("library has no format version");
+  require(version <= kLibraryFormatVersion, MCON_ERROR_UNSUPPORTED,
+          "library format version " + std::to_string(version) + " is newer than this build reads (" +
+              std::to_string(kLibraryFormatVersion) + ")");
+
   flatbuffers::Verifier::Options options;
   options.max_depth = kMaxDepth;
   // Every distinct table occupies at least its 4-byte vtable offset, so a genuine buffer never has
@@ -228,11 +253,6 @@ ConstraintLibrary load_library_from_buffer(const void* data, std::size_t size) {
             "outside the buffer, is misaligned, or the nesting or table count exceeds the limits)");
 
   const fb::Library* root = fb::GetLibrary(bytes);
-  const std::uint32_t version = root->format_version();
-  if (version == 0) invalid("library has no format version");
-  require(version <= kLibraryFormatVersion, MCON_ERROR_UNSUPPORTED,
-          "library format version " + std::to_string(version) + " is newer than this build reads (" +
-              std::to_string(kLibraryFormatVersion) + ")");
 
   Reader r(size);
   r.table();

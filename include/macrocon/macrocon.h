@@ -252,6 +252,16 @@ MCON_API mcon_status mcon_descriptor_get_dimension(mcon_descriptor descriptor, u
 MCON_API mcon_status mcon_patch_compute_descriptors(mcon_patch patch, mcon_descriptor descriptor,
                                                     double* out_values, size_t capacity);
 
+/* ---------------------------------------------------------------------------------------------
+ * Constraint libraries and retrieval (mcon_library_*)
+ * ------------------------------------------------------------------------------------------- */
+/* @@library-api@@ (insertion point; keep this line) */
+
+/* ---------------------------------------------------------------------------------------------
+ * Re-embedding maps and constraint transfer (mcon_map_*)
+ * ------------------------------------------------------------------------------------------- */
+/* @@map-api@@ (insertion point; keep this line) */
+
 #ifdef __cplusplus
 }
 #endif

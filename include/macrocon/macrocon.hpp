@@ -402,6 +402,12 @@ class Patch {
   detail::Ref<mcon_patch, mcon_patch_retain, mcon_patch_release> ref_;
 };
 
+// ---- Libraries and retrieval ----
+// @@library-api@@ (insertion point; keep this line)
+
+// ---- Re-embedding maps and constraint transfer ----
+// @@map-api@@ (insertion point; keep this line)
+
 }  // namespace macrocon
 
 #endif  // MACROCON_HPP

@@ -62,15 +62,16 @@ void write_ply(const std::string& path, const TriMesh& mesh, const std::vector<V
 void write_obj(const std::string& path, const TriMesh& mesh);
 void write_off(const std::string& path, const TriMesh& mesh);
 
-// QuadWild's guide files (design-notes §7), byte for byte as QuadWild writes them, so the mesh
-// file plus these two can be passed straight to `quadwild mesh.obj 2 field.rosy mesh.sharp`.
-// Face indices refer to the triangles in mesh order: write the mesh itself with write_obj/write_ply
-// so QuadWild sees the same triangles in the same order.
+// QuadWild's guide files (design-notes §7), in the layout QuadWild's readers expect, so the mesh
+// file plus these two can be passed to `quadwild mesh.obj field.rosy mesh.sharp` (its main picks
+// the files by their suffix). Face indices refer to the triangles in mesh order: write the mesh
+// itself with write_obj/write_ply so QuadWild sees the same triangles in the same order.
 //
-// `.rosy` (read by vcglib ImporterFIELD::Load4ROSY): "<face count>\n4\n", then per face one
-// direction of the cross as "%f %f %f \n" (6 decimals, trailing space; float precision). QuadWild
-// takes the second direction as PD1 x N. Throws INVALID_ARGUMENT if directions.size() differs
-// from the triangle count or a direction is not finite.
+// `.rosy` (read by vcglib ImporterFIELD::Load4ROSY, which requires count == face count and
+// symmetry 4): "<face count>\n4\n", then per face one direction of the cross formatted like
+// vcglib's writer, "%f %f %f \n" of the float values (6 decimals, trailing space). QuadWild takes
+// the second direction as PD1 x N. Throws INVALID_ARGUMENT if directions.size() differs from the
+// triangle count or a direction is not finite.
 void write_rosy(const std::string& path, const TriMesh& mesh, const std::vector<Vec3>& directions);
 // The directions of a `.rosy` file; MCON_ERROR_IO if malformed, MCON_ERROR_UNSUPPORTED if the
 // symmetry is not 4.

@@ -1,6 +1,8 @@
-// QuadWild `.rosy` cross-field files. The layout mirrors vcglib's own writer (ExporterFIELD,
-// fprintf("%d\n", n); fprintf("4\n"); fprintf("%f %f %f \n", (float)x, ...)) so the files are
-// byte-identical to QuadWild's; std::to_chars keeps it independent of the C locale.
+// QuadWild `.rosy` cross-field files. Lines are formatted like vcglib's own writer (ExporterFIELD:
+// fprintf("%d\n", n); fprintf("4\n"); fprintf("%f %f %f \n", (float)x, ...)), and n is the face
+// count, which the reader QuadWild uses (ImporterFIELD::Load4ROSY) requires; some vcglib versions'
+// writer print the vertex count there. std::to_chars keeps the output independent of the C locale
+// (QuadWild itself switches LC_NUMERIC to get '.' decimals).
 #include <charconv>
 #include <string>
 

@@ -54,7 +54,7 @@ void library_work(uint32_t max_threads, int rounds) {
   co.max_threads = max_threads;
   mcon_context ctx = nullptr;
   if (!ok(mcon_context_create(&co, &ctx), "mcon_context_create")) return;
-  const mcon::TriMesh sphere = mcon::test_meshes::make_icosphere(4);  // 2562 vertices
+  const mcon::TriMesh sphere = mcon::test_meshes::make_icosphere(3);  // 642 vertices
   std::vector<double> xyz;
   std::vector<uint32_t> tris;
   for (const auto& p : sphere.positions) xyz.insert(xyz.end(), {p.x(), p.y(), p.z()});
@@ -71,7 +71,7 @@ void library_work(uint32_t max_threads, int rounds) {
     d.triangle_count = sphere.triangles.size();
     mcon_mesh mesh = nullptr;
     if (!ok(mcon_mesh_create(ctx, &d, &mesh), "mcon_mesh_create")) break;
-    for (uint32_t center : {0u, 100u, 1000u}) {
+    for (uint32_t center : {0u, 100u, 400u}) {
       mcon_patch_options o;
       mcon_patch_options_init(&o);
       o.center_vertex = center + static_cast<uint32_t>(r);

@@ -365,6 +365,58 @@ TEST_F(CapiPatch, CylinderWrappingAroundIsNotADisk) {
   check_against_host(read_patch(patch.get()), cyl, 2.5, cyl.positions[center]);
 }
 
+TEST_F(CapiPatch, HostHoleIsFilledOnlyWithTheFlagAndFlaggedInTheLinks) {
+  // A 21 x 21 grid (spacing 0.1) without the two triangles of one inner quad: a small hole.
+  mcon::TriMesh holed = mcon::test_meshes::make_grid(21, 2.0);
+  const int a = 10 * 21 + 10;
+  const std::vector<int> quad = {a, a + 1, a + 22, a + 21};
+  auto in_quad = [&](const mcon::Tri& t) {
+    return std::all_of(t.begin(), t.end(), [&](int v) { return std::find(quad.begin(), quad.end(), v) != quad.end(); });
+  };
+  holed.triangles.erase(std::remove_if(holed.triangles.begin(), holed.triangles.end(), in_quad), holed.triangles.end());
+  ASSERT_EQ(holed.triangles.size(), 2u * 20 * 20 - 2);
+  MeshPtr mesh = make_mesh(ctx_.get(), arrays_of(holed));
+  // Center (0.8, 0.8): the hole is 0.28 to 0.46 away, well inside the radius 0.65, and the grid's
+  // own boundary is beyond it.
+  const uint32_t center = 8 * 21 + 8;
+
+  mcon_patch_options o = at_vertex(center, 0.65);
+  o.flags = 0;
+  PatchPtr patch;
+  EXPECT_EQ(extract(mesh.get(), o, patch), MCON_ERROR_NOT_A_DISK) << "an unfilled hole makes an annulus";
+  EXPECT_EQ(patch, nullptr);
+  EXPECT_NE(last_message().find("hole"), std::string::npos) << last_message();
+
+  o.flags = MCON_PATCH_FILL_HOLES;
+  ASSERT_EQ(extract(mesh.get(), o, patch), MCON_OK) << last_message();
+  const PatchData d = read_patch(patch.get());
+  EXPECT_EQ(d.info.boundary_loops, 1u);
+  EXPECT_EQ(d.info.euler_characteristic, 1);
+  EXPECT_GE(d.info.filled_triangle_count, 2u);
+  size_t invalid_triangles = 0;
+  for (uint32_t ht : d.host_tris) {
+    if (ht == MCON_INVALID_INDEX) {
+      ++invalid_triangles;
+    } else {
+      EXPECT_LT(ht, holed.triangles.size());
+    }
+  }
+  EXPECT_EQ(invalid_triangles, d.info.filled_triangle_count);
+  size_t hostless = 0;
+  for (size_t v = 0; v < d.info.vertex_count; ++v) {
+    // A vertex made for the filling has no host; every other one links to host vertices.
+    EXPECT_EQ(d.v0[v] == MCON_INVALID_INDEX, d.v1[v] == MCON_INVALID_INDEX) << v;
+    hostless += d.v0[v] == MCON_INVALID_INDEX;
+    if (d.v0[v] != MCON_INVALID_INDEX) {
+      const V3 h = (1 - d.t[v]) * holed.positions[d.v0[v]] + d.t[v] * holed.positions[d.v1[v]];
+      const V3 c(d.info.center[0], d.info.center[1], d.info.center[2]);
+      EXPECT_LT((c + d.info.radius * d.position(v) - h).norm(), 1e-9) << v;
+    }
+    EXPECT_TRUE(std::isfinite(d.xyz[3 * v]) && std::isfinite(d.xyz[3 * v + 1]) && std::isfinite(d.xyz[3 * v + 2]));
+  }
+  EXPECT_GE(hostless, 1u) << "the hole is capped by a fan around a new vertex";
+}
+
 TEST_F(CapiPatch, DescriptorsOfASpherePatch) {
   PatchPtr patch;
   ASSERT_EQ(extract(sphere_mesh_.get(), at_vertex(0, 0.8), patch), MCON_OK) << last_message();

@@ -12,8 +12,10 @@
 #include "error.h"
 #include "retrieval_index.h"
 #include "test_meshes.h"
+#include "test_status.h"
 
 using namespace mcon;
+using mcon::test::status_of;
 
 namespace {
 
@@ -69,15 +71,6 @@ RetrievalConfig library_config(std::uint32_t rings, int k = 16) {
 float l1(const std::vector<float>& a, const std::vector<float>& b) {
   EXPECT_EQ(a.size(), b.size());
   return l1_distance(a.data(), b.data(), a.size());
-}
-
-mcon_status status_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.status();
-  }
-  return MCON_OK;
 }
 
 }  // namespace

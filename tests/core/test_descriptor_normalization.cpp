@@ -4,8 +4,10 @@
 
 #include "descriptor_normalization.h"
 #include "error.h"
+#include "test_status.h"
 
 using namespace mcon;
+using mcon::test::status_of;
 
 TEST(DescriptorNormalization, UnitStdAndZeroMeanOverTheWholeLibrary) {
   // Two "patches" whose dimensions differ in magnitude by 1e4; column 2 is constant.
@@ -35,23 +37,15 @@ TEST(DescriptorNormalization, UnitStdAndZeroMeanOverTheWholeLibrary) {
 }
 
 TEST(DescriptorNormalization, BadInputGetsClearErrors) {
-  auto status = [](auto&& f) {
-    try {
-      f();
-    } catch (const Error& e) {
-      return e.status();
-    }
-    return MCON_OK;
-  };
-  EXPECT_EQ(status([] { fit_descriptor_normalization({}); }), MCON_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(status([] { fit_descriptor_normalization({Eigen::MatrixXd(0, 3)}); }), MCON_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(status([] { fit_descriptor_normalization({Eigen::MatrixXd::Ones(2, 3), Eigen::MatrixXd::Ones(2, 2)}); }),
+  EXPECT_EQ(status_of([] { fit_descriptor_normalization({}); }), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(status_of([] { fit_descriptor_normalization({Eigen::MatrixXd(0, 3)}); }), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(status_of([] { fit_descriptor_normalization({Eigen::MatrixXd::Ones(2, 3), Eigen::MatrixXd::Ones(2, 2)}); }),
             MCON_ERROR_INVALID_ARGUMENT);
   Eigen::MatrixXd nan = Eigen::MatrixXd::Ones(2, 2);
   nan(1, 1) = std::nan("");
-  EXPECT_EQ(status([&] { fit_descriptor_normalization({nan}); }), MCON_ERROR_NON_FINITE);
+  EXPECT_EQ(status_of([&] { fit_descriptor_normalization({nan}); }), MCON_ERROR_NON_FINITE);
   Eigen::MatrixXd v = Eigen::MatrixXd::Ones(2, 2);
-  EXPECT_EQ(status([&] { normalize_descriptors({0, 0, 0}, {1, 1, 1}, v); }), MCON_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(status([&] { normalize_descriptors({0, 0}, {1, 0}, v); }), MCON_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(status([&] { normalize_descriptors({0, 0}, {1, 1}, nan); }), MCON_ERROR_NON_FINITE);
+  EXPECT_EQ(status_of([&] { normalize_descriptors({0, 0, 0}, {1, 1, 1}, v); }), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(status_of([&] { normalize_descriptors({0, 0}, {1, 0}, v); }), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(status_of([&] { normalize_descriptors({0, 0}, {1, 1}, nan); }), MCON_ERROR_NON_FINITE);
 }

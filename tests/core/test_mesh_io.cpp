@@ -9,7 +9,6 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <functional>
 #include <numeric>
 #include <string>
 #include <vector>
@@ -19,8 +18,10 @@
 #include "mesh.h"
 #include "mesh_topology.h"
 #include "test_meshes.h"
+#include "test_status.h"
 
 using namespace mcon;
+using mcon::test::status_of;
 using namespace mcon::io;
 namespace fs = std::filesystem;
 
@@ -62,16 +63,6 @@ class MeshIo : public ::testing::Test {
 std::string read_bytes(const std::string& p) {
   std::ifstream in(p, std::ios::binary);
   return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
-mcon_status status_of(const std::function<void()>& f, std::string* message = nullptr) {
-  try {
-    f();
-  } catch (const Error& e) {
-    if (message) *message = e.what();
-    return e.status();
-  }
-  return MCON_OK;
 }
 
 mcon_status read_status(const std::string& p, const MeshFileOptions& options = {}, std::string* message = nullptr) {

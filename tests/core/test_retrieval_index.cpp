@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <limits>
 #include <vector>
 
@@ -11,8 +10,10 @@
 #include "counter_rng.h"
 #include "error.h"
 #include "retrieval_index.h"
+#include "test_status.h"
 
 using namespace mcon;
+using mcon::test::status_of;
 
 namespace {
 
@@ -35,15 +36,6 @@ std::vector<std::size_t> brute_force(const std::vector<float>& entries, std::siz
   order.resize(std::min(n, count));
   if (distances) *distances = d;
   return order;
-}
-
-mcon_status status_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.status();
-  }
-  return MCON_OK;
 }
 
 }  // namespace

@@ -1,7 +1,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <functional>
 
 #include <Eigen/Eigenvalues>
 
@@ -11,8 +10,10 @@
 #include "retrieval_index.h"
 #include "spectral_descriptors.h"
 #include "test_meshes.h"
+#include "test_status.h"
 
 using namespace mcon;
+using mcon::test::status_of;
 
 namespace {
 
@@ -30,15 +31,6 @@ TriMesh sphere_cap(int rings) {
 }
 
 double relative_spread(const Eigen::VectorXd& v) { return (v.maxCoeff() - v.minCoeff()) / v.mean(); }
-
-mcon_status status_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.status();
-  }
-  return MCON_OK;
-}
 
 }  // namespace
 
@@ -144,8 +136,8 @@ TEST(SpectralDescriptors, WaveKernelSignatureIsNormalizedPerEnergy) {
 TEST(SpectralDescriptors, HksBagOfFeaturesIsStableUnderRefinement) {
   // A cap at two resolutions vs a bump and a saddle of the same size, with the fixed radius-1
   // patch sampling so the descriptors are comparable across meshes.
-  const TriMesh coarse = sphere_cap(8), fine = sphere_cap(20);
-  TriMesh bump = test_meshes::make_disk(12), saddle = test_meshes::make_disk(12);
+  const TriMesh coarse = sphere_cap(7), fine = sphere_cap(16);
+  TriMesh bump = test_meshes::make_disk(10), saddle = test_meshes::make_disk(10);
   for (Vec3& p : bump.positions) p.z() = 0.5 * std::exp(-(p.x() * p.x() + p.y() * p.y()) / 0.1);
   for (Vec3& p : saddle.positions) p.z() = 0.4 * (p.x() * p.x() - p.y() * p.y());
   ASSERT_GT(fine.num_vertices(), 4 * coarse.num_vertices());

@@ -18,5 +18,5 @@ target_include_directories(capi_dlopen_cycle PRIVATE ${PROJECT_SOURCE_DIR}/inclu
 target_link_libraries(capi_dlopen_cycle PRIVATE ${CMAKE_DL_LIBS})
 add_dependencies(capi_dlopen_cycle macrocon)
 add_test(NAME capi.dlopen_shutdown_dlclose_cycles
-  COMMAND ${CMAKE_COMMAND} -DRUNS=10 -DEXE=$<TARGET_FILE:capi_dlopen_cycle> -DARGS=$<TARGET_FILE:macrocon>
+  COMMAND ${CMAKE_COMMAND} -DRUNS=5 -DEXE=$<TARGET_FILE:capi_dlopen_cycle> -DARGS=$<TARGET_FILE:macrocon>
           -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/run_repeatedly.cmake)

@@ -6,7 +6,7 @@
 
 #include <tbb/parallel_for.h>
 
-#include "common/counter_rng.h"
+#include "common/bench_random.h"
 #include "error.h"
 
 namespace mcon::tools {
@@ -44,7 +44,7 @@ IctFaces::IctFaces(const std::string& shared_dir) {
 }
 
 IctCoefficients IctFaces::coefficients(std::uint64_t seed, std::uint64_t index) {
-  const CounterRng rng(seed, index);
+  const BenchRng rng(seed, index);
   IctCoefficients c{};
   for (int k = 0; k < kIctIdentities; ++k)
     c[k] = std::clamp(rng.normal(static_cast<std::uint64_t>(k)), -kIctCoefficientClip, kIctCoefficientClip);

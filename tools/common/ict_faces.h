@@ -2,7 +2,7 @@
 // k = 0..19, c_k ~ N(0, 1) clipped to +-2.5 (shared/bench/README.md "Making random instances"; the
 // clip keeps the first components from distorting the face). Every face has the neutral mesh's
 // vertices and triangles, so the ground truth between two faces is the identity on vertex indices.
-// Face i of seed s is a pure function of (s, i) (counter_rng.h).
+// Face i of seed s is a pure function of (s, i) (bench_random.h).
 #pragma once
 
 #include <array>

@@ -8,7 +8,7 @@
 
 #include <tbb/parallel_for.h>
 
-#include "common/counter_rng.h"
+#include "common/bench_random.h"
 #include "common/morph_target.h"
 #include "error.h"
 
@@ -156,7 +156,7 @@ MakeHumanPeople::MakeHumanPeople(const std::string& shared_dir)
 }
 
 PersonRecipe MakeHumanPeople::recipe(std::uint64_t seed, std::uint64_t index) const {
-  const CounterRng rng(seed, index);
+  const BenchRng rng(seed, index);
   PersonRecipe r;
   r.gender = rng.uniform("gender");
   r.age = rng.uniform("age", 0.375, 0.875);

@@ -3,7 +3,7 @@
 // muscle, weight, ethnic shares) and the local-detail targets (opposite pairs, one-sided targets,
 // l-/r- pairs drawn once with a slight asymmetry; eyefold and epicanthus excluded). Every person
 // has the base body's vertices and triangles, so the ground truth between two people is the
-// identity on vertex indices. Person i of seed s is a pure function of (s, i) (counter_rng.h).
+// identity on vertex indices. Person i of seed s is a pure function of (s, i) (bench_random.h).
 #pragma once
 
 #include <array>

@@ -11,7 +11,7 @@
 
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 
-#include "common/counter_rng.h"
+#include "common/bench_random.h"
 #include "error.h"
 
 namespace mcon::tools {
@@ -56,7 +56,7 @@ Retessellation rediagonalize(const TriMesh& mesh, const std::vector<int>& triang
   for (const Tri& t : mesh.triangles)
     for (int i = 0; i < 3; ++i) edges.insert(edge_key(t[i], t[(i + 1) % 3]));
 
-  const CounterRng rng(seed, 0);
+  const BenchRng rng(seed, 0);
   Retessellation out;
   out.mesh.positions = mesh.positions;
   out.mesh.triangles.reserve(mesh.triangles.size());
@@ -131,7 +131,7 @@ Retessellation decimate(const TriMesh& mesh, std::uint64_t seed, const Decimatio
     require(f.is_valid(), MCON_ERROR_NON_MANIFOLD_VERTEX, "decimate: OpenMesh rejected a triangle");
   }
 
-  const CounterRng rng(seed, 0);
+  const BenchRng rng(seed, 0);
   const double fraction = rng.uniform(0, options.min_fraction, options.max_fraction);
   const int target = static_cast<int>(std::lround(fraction * nv));
   const double min_cos = std::cos(options.max_normal_change_degrees * M_PI / 180.0);

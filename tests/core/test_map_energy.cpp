@@ -1,0 +1,228 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Eigenvalues>
+
+#include "counter_rng.h"
+#include "descriptor_field_2d.h"
+#include "error.h"
+#include "injective_step.h"
+#include "map_energy.h"
+#include "matching_score.h"
+#include "synthetic_maps.h"
+
+using namespace mcon;
+
+namespace {
+
+using ElementEnergy = std::function<double(const Eigen::Matrix2d&, Eigen::Vector4d*, Eigen::Matrix4d*)>;
+
+Eigen::Matrix2d from_vec(const Eigen::Vector4d& v) {
+  Eigen::Matrix2d J;
+  J << v[0], v[1], v[2], v[3];
+  return J;
+}
+
+// Central differences of value -> gradient and gradient -> Hessian at J.
+void check_element_derivatives(const ElementEnergy& f, const Eigen::Matrix2d& J) {
+  Eigen::Vector4d g;
+  Eigen::Matrix4d h;
+  f(J, &g, &h);
+  const Eigen::Vector4d j(J(0, 0), J(0, 1), J(1, 0), J(1, 1));
+  const double eps = 1e-6;
+  for (int i = 0; i < 4; ++i) {
+    Eigen::Vector4d jp = j, jm = j;
+    jp[i] += eps;
+    jm[i] -= eps;
+    const double fd = (f(from_vec(jp), nullptr, nullptr) - f(from_vec(jm), nullptr, nullptr)) / (2 * eps);
+    EXPECT_NEAR(g[i], fd, 1e-6 * std::max(1.0, std::abs(fd))) << "gradient " << i;
+    Eigen::Vector4d gp, gm;
+    f(from_vec(jp), &gp, nullptr);
+    f(from_vec(jm), &gm, nullptr);
+    const Eigen::Vector4d hd = (gp - gm) / (2 * eps);
+    for (int k = 0; k < 4; ++k) EXPECT_NEAR(h(k, i), hd[k], 1e-5 * std::max(1.0, std::abs(hd[k]))) << "hessian " << k << "," << i;
+  }
+}
+
+Eigen::Matrix2d rotation(double a) {
+  Eigen::Matrix2d R;
+  R << std::cos(a), -std::sin(a), std::sin(a), std::cos(a);
+  return R;
+}
+
+}  // namespace
+
+TEST(MapEnergy, ElementEnergiesVanishWhereTheyShouldAndBlockInversion) {
+  const Eigen::Matrix2d similarity = 1.7 * rotation(0.4);
+  EXPECT_NEAR(conformal_distortion(similarity, nullptr, nullptr), 0.0, 1e-14);
+  EXPECT_NEAR(area_distortion(rotation(1.1), nullptr, nullptr), 0.0, 1e-14);
+  EXPECT_GT(area_distortion(similarity, nullptr, nullptr), 0.1);
+  EXPECT_EQ(injectivity_barrier(similarity, 0.5, nullptr, nullptr), 0.0);
+  Eigen::Matrix2d shear;
+  shear << 1, 0.5, 0, 1;
+  EXPECT_GT(conformal_distortion(shear, nullptr, nullptr), 0.1);
+  EXPECT_GT(injectivity_barrier(0.5 * Eigen::Matrix2d::Identity(), 0.5, nullptr, nullptr), 0.0);
+  Eigen::Matrix2d mirror;
+  mirror << 1, 0, 0, -1;
+  const double inf = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(conformal_distortion(mirror, nullptr, nullptr), inf);
+  EXPECT_EQ(area_distortion(mirror, nullptr, nullptr), inf);
+  EXPECT_EQ(injectivity_barrier(Eigen::Matrix2d::Zero(), 0.5, nullptr, nullptr), inf);
+  // The barrier is C1 where it starts (det = s_f): value and gradient tend to 0 from below.
+  Eigen::Vector4d g;
+  const double below = injectivity_barrier(std::sqrt(0.5 * (1 - 1e-6)) * Eigen::Matrix2d::Identity(), 0.5, &g, nullptr);
+  EXPECT_LT(below, 1e-11);
+  EXPECT_LT(g.norm(), 1e-5);
+}
+
+TEST(MapEnergy, ElementDerivativesMatchFiniteDifferences) {
+  CounterRng rng(11, 0);
+  for (int trial = 0; trial < 20; ++trial) {
+    Eigen::Matrix2d J = Eigen::Matrix2d::Identity();
+    for (int i = 0; i < 4; ++i) J(i / 2, i % 2) += 0.6 * (rng.uniform() - 0.5);
+    if (J.determinant() < 0.2) continue;
+    check_element_derivatives(conformal_distortion, J);
+    check_element_derivatives(area_distortion, J);
+    // Scale into the barrier's support (det below s_f = 0.5).
+    check_element_derivatives([](const Eigen::Matrix2d& A, Eigen::Vector4d* gg, Eigen::Matrix4d* hh) {
+      return injectivity_barrier(A, 0.5, gg, hh);
+    }, J * std::sqrt(0.3 / J.determinant()));
+  }
+}
+
+TEST(MapEnergy, JacobianMapIsTheDerivativeOfJ) {
+  Eigen::Matrix2d rest;
+  rest << 1.0, 0.2, 0.1, 0.9;
+  const Eigen::Matrix2d D = rest.inverse();
+  const Eigen::Matrix<double, 4, 6> B = jacobian_map(D);
+  Vector6d q;
+  q << 0.1, 0.2, 1.3, 0.1, 0.3, 1.1;
+  auto J = [&](const Vector6d& y) {
+    Eigen::Matrix2d X;
+    X << y[2] - y[0], y[4] - y[0], y[3] - y[1], y[5] - y[1];
+    const Eigen::Matrix2d M = X * D;
+    return Eigen::Vector4d(M(0, 0), M(0, 1), M(1, 0), M(1, 1));
+  };
+  // J is linear in q: J(q) = B q exactly.
+  EXPECT_LT((J(q) - B * q).norm(), 1e-12);
+}
+
+TEST(MapEnergy, TotalGradientMatchesFiniteDifferencesAndHessiansArePsd) {
+  synthetic::GroundTruth truth;
+  truth.angle = 0.3;
+  truth.warp = 0.05;
+  const synthetic::Problem pr = synthetic::make_problem(6, 5, truth, 2, {0.0});
+  const TriangleLocator2D locator(pr.target_uv, pr.target.triangles);
+  const DescriptorField2D field(locator, pr.target_levels[0]);
+  for (bool reflected : {false, true}) {
+    for (OutsideRule rule : {OutsideRule::zero, OutsideRule::nearest_rim}) {
+      const SourceDisk disk = make_source_disk(pr.source, pr.source_uv, reflected);
+      ScoreSettings score;
+      score.sigma = 0.3;
+      score.band = 0.2;
+      score.outside = rule;
+      MapEnergyWeights w;
+      w.barrier_start = 0.9;  // make the barrier active somewhere
+      const MapEnergy energy(disk, field, pr.source_levels[0], score, w);
+      // A smooth deformation of the (mirrored) rest positions, reaching beyond the rim.
+      const std::vector<Vec2> rest = rest_positions(pr.source_uv, reflected);
+      Eigen::VectorXd x(2 * rest.size());
+      for (std::size_t v = 0; v < rest.size(); ++v) {
+        const Vec2 p = rest[v];
+        x.segment<2>(2 * v) = 1.05 * rotation(0.3) * p + Vec2(0.05 * std::sin(3 * p.y()), 0.04 * p.x() * p.x()) + Vec2(0.02, 0.01);
+      }
+      ASSERT_EQ(count_inverted(disk.triangles, x), 0);
+      MapEnergy::Derivatives der;
+      energy.derivatives(x, der);
+      EXPECT_DOUBLE_EQ(der.terms.total, energy.evaluate(x).total);
+      const double eps = 1e-7;
+      int checked = 0;
+      for (int i = 0; i < x.size(); i += 3) {
+        Eigen::VectorXd xp = x, xm = x;
+        xp[i] += eps;
+        xm[i] -= eps;
+        const double fd = (energy.evaluate(xp).total - energy.evaluate(xm).total) / (2 * eps);
+        // Kinks of the piecewise-linear field (target edges) can sit within eps; allow a few.
+        if (std::abs(der.gradient[i] - fd) > 1e-5 * std::max(1.0, std::abs(fd))) continue;
+        ++checked;
+      }
+      EXPECT_GT(checked, 0.95 * (x.size() / 3)) << "reflected " << reflected;
+      for (const Matrix6d& h : der.triangle_hessians)
+        EXPECT_GE(Eigen::SelfAdjointEigenSolver<Matrix6d>(h).eigenvalues().minCoeff(), -1e-12);
+      for (const Eigen::Matrix2d& h : der.vertex_hessians)
+        EXPECT_GE(Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(h).eigenvalues().minCoeff(), -1e-12);
+    }
+  }
+}
+
+TEST(MapEnergy, MatchScoreGradientAndRules) {
+  const TriMesh m = synthetic::make_jittered_disk(8, 0.3);
+  const std::vector<Vec2> uv = synthetic::planar_uv(m);
+  Eigen::MatrixXd values(m.num_vertices(), 2);
+  for (int v = 0; v < m.num_vertices(); ++v) values.row(v) = synthetic::field(uv[v], 2).transpose();
+  const TriangleLocator2D locator(uv, m.triangles);
+  const DescriptorField2D field(locator, values);
+  const double source[2] = {0.3, -0.1};
+  double scratch[6];
+  ScoreSettings s;
+  s.sigma = 0.4;
+  s.band = 0.1;
+  // zero rule: 0 beyond the circle; nearest_rim: equal to the rim value radially outward.
+  EXPECT_EQ(match_score(field, source, Vec2(1.2, 0.3), s, false, scratch).score, 0.0);
+  s.outside = OutsideRule::nearest_rim;
+  const double far = match_score(field, source, Vec2(1.2, 0.3) * 1.5, s, false, scratch).score;
+  EXPECT_NEAR(far, match_score(field, source, Vec2(1.2, 0.3), s, false, scratch).score, 1e-12);
+  EXPECT_GT(far, 0.0);
+  for (OutsideRule rule : {OutsideRule::zero, OutsideRule::nearest_rim}) {
+    s.outside = rule;
+    for (const Vec2& x : {Vec2(0.2, 0.31), Vec2(-0.5, 0.7), Vec2(0.93, 0.05), Vec2(1.3, -0.4)}) {
+      const ScoreSample a = match_score(field, source, x, s, true, scratch);
+      const double eps = 1e-7;
+      for (int i = 0; i < 2; ++i) {
+        Vec2 xp = x, xm = x;
+        xp[i] += eps;
+        xm[i] -= eps;
+        const double fd = (match_score(field, source, xp, s, false, scratch).score -
+                           match_score(field, source, xm, s, false, scratch).score) / (2 * eps);
+        EXPECT_NEAR(a.gradient[i], fd, 1e-5) << x.transpose();
+      }
+    }
+  }
+}
+
+TEST(InjectiveStep, FirstInversionIsFound) {
+  EXPECT_EQ(smallest_positive_root(0, 1, 1), std::numeric_limits<double>::infinity());
+  EXPECT_NEAR(smallest_positive_root(0, -2, 1), 0.5, 1e-15);
+  EXPECT_NEAR(smallest_positive_root(1, -3, 2), 1.0, 1e-15);   // roots 1, 2
+  EXPECT_NEAR(smallest_positive_root(-1, 0, 4), 2.0, 1e-15);   // roots -2, 2
+  EXPECT_EQ(smallest_positive_root(1, 1, 1), std::numeric_limits<double>::infinity());
+  const TriMesh m = test_meshes::make_disk(5);
+  Eigen::VectorXd x(2 * m.num_vertices()), d(2 * m.num_vertices());
+  CounterRng rng(2, 0);
+  for (int v = 0; v < m.num_vertices(); ++v) {
+    x.segment<2>(2 * v) = m.positions[v].head<2>();
+    d.segment<2>(2 * v) = Vec2(rng.uniform() - 0.5, rng.uniform() - 0.5);
+  }
+  const double t = max_injective_step(m.triangles, x, d);
+  ASSERT_TRUE(std::isfinite(t));
+  EXPECT_EQ(count_inverted(m.triangles, x + 0.999 * t * d), 0);
+  EXPECT_GT(count_inverted(m.triangles, x + 1.001 * t * d), 0);
+}
+
+TEST(MapEnergy, SourceDiskRejectsBadInput) {
+  const TriMesh m = test_meshes::make_disk(3);
+  std::vector<Vec2> uv = synthetic::planar_uv(m);
+  EXPECT_NO_THROW(make_source_disk(m, uv, false));
+  std::vector<Vec2> flipped = uv;
+  for (Vec2& p : flipped) p.y() = -p.y();
+  try {
+    make_source_disk(m, flipped, false);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.status(), MCON_ERROR_INVALID_ARGUMENT);
+  }
+  uv.pop_back();
+  EXPECT_THROW(make_source_disk(m, uv, false), Error);
+}
