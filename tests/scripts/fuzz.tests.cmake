@@ -2,6 +2,10 @@
 # in <build>/fuzz, seeds it with valid libraries and fuzzes for MACROCON_FUZZ_SECONDS; any crash,
 # sanitizer report or timeout fails the test. Registered only where clang++ exists (CI installs
 # clang-14 and libclang-rt-14-dev).
+# The fuzzer is its own clang ASan build, so the sanitizer suite does not run it a second time.
+if(MACROCON_SANITIZE)
+  return()
+endif()
 find_program(MACROCON_FUZZ_CXX NAMES clang++-14 clang++)
 if(NOT MACROCON_FUZZ_CXX)
   message(STATUS "clang++ not found: scripts.fuzz_library_loader is not registered")
