@@ -255,6 +255,242 @@ MCON_API mcon_status mcon_patch_compute_descriptors(mcon_patch patch, mcon_descr
 /* ---------------------------------------------------------------------------------------------
  * Constraint libraries and retrieval (mcon_library_*)
  * ------------------------------------------------------------------------------------------- */
+/* A constraint library: macro constraints (a normalized disk patch, its metadata, its quad-meshing
+ * constraints and per-vertex fields, its descriptors and bag-of-features histogram) plus the
+ * retrieval configuration (descriptor, normalization, vocabulary, sigma, rings) they were computed
+ * with, so a query needs nothing else. Files are FlatBuffers ("MCLB"); opening treats them as
+ * hostile (MCON_ERROR_INVALID_LIBRARY with a message naming the problem, never a crash).
+ *
+ * Entries are addressed by index (0 .. count - 1, in insertion order; removing an entry shifts the
+ * later ones down) and carry a stable 64-bit id (never 0). A library is not thread-safe for
+ * modification; queries and getters on an unmodified library may run concurrently. */
+typedef struct mcon_library_t* mcon_library;
+
+/* Per-vertex descriptors a library is built on. CURV9 has the value of MCON_DESCRIPTOR_CURV9. */
+typedef enum mcon_retrieval_descriptor {
+  MCON_RETRIEVAL_DESCRIPTOR_CURV9 = 1,    /* 9 curvature values per vertex (default) */
+  MCON_RETRIEVAL_DESCRIPTOR_HKS = 3,      /* heat kernel signature, 100 times */
+  MCON_RETRIEVAL_DESCRIPTOR_WKS = 4,      /* wave kernel signature, 100 energies */
+  MCON_RETRIEVAL_DESCRIPTOR_CUSTOM = 256  /* caller-supplied per-vertex values (any dimension) */
+} mcon_retrieval_descriptor;
+
+/* A point on a patch: triangle `face` and the weights of its three corners (each >= 0, sum 1). */
+typedef struct mcon_surface_point {
+  uint32_t face;
+  double barycentric[3];
+} mcon_surface_point;
+
+typedef enum mcon_polyline_kind {
+  MCON_POLYLINE_GUIDE = 1,   /* the quad mesh should follow it */
+  MCON_POLYLINE_FEATURE = 2  /* the quad mesh must preserve it */
+} mcon_polyline_kind;
+
+typedef struct mcon_polyline {
+  uint32_t kind;   /* mcon_polyline_kind */
+  uint32_t closed; /* nonzero: the last point joins the first (then >= 3 points, else >= 2) */
+  const mcon_surface_point* points;
+  size_t point_count;
+} mcon_polyline;
+
+/* A cross-field singularity; index in quarter turns (valence = 4 - index_quarters): +1 is a
+ * valence-3 vertex, -1 a valence-5 vertex. Never 0. */
+typedef struct mcon_singularity {
+  mcon_surface_point location;
+  int32_t index_quarters;
+} mcon_singularity;
+
+typedef enum mcon_field_kind {
+  MCON_FIELD_SCALAR = 1,         /* dimension >= 1 real channels */
+  MCON_FIELD_VECTOR3 = 2,        /* dimension 3, a vector in patch coordinates */
+  MCON_FIELD_TANGENT_VECTOR = 3, /* dimension 3, tangent to the patch */
+  MCON_FIELD_INTEGER_LABEL = 4,  /* dimension >= 1 integer channels (read from `labels`) */
+  MCON_FIELD_UV = 5              /* dimension 2 */
+} mcon_field_kind;
+
+/* A named per-vertex field of an entry: one value per patch vertex and channel. Values are stored
+ * as float32 (labels as int32). */
+typedef struct mcon_vertex_field {
+  const char* name;       /* non-empty, unique within the entry, UTF-8 */
+  uint32_t kind;          /* mcon_field_kind */
+  uint32_t dimension;     /* channels per vertex */
+  const double* values;   /* every kind but INTEGER_LABEL: vertex_count rows of `dimension` */
+  const int32_t* labels;  /* INTEGER_LABEL: vertex_count rows of `dimension` */
+  size_t stride;          /* bytes between two vertices' rows; 0 = tightly packed */
+} mcon_vertex_field;
+
+typedef struct mcon_library_entry_desc {
+  uint32_t struct_size;
+  /* The entry's geometry: mesh, center and normalization are taken from the patch. */
+  mcon_patch patch;
+  uint64_t id; /* 0 = assign (largest id in the library + 1) */
+  /* Metadata (UTF-8; NULL = ""). */
+  const char* name;
+  const char* class_label;
+  const char* const* tags;
+  size_t tag_count;
+  const char* author;
+  const char* licence;
+  /* Constraints, located on the patch (faces of the patch's triangles). */
+  const mcon_polyline* polylines;
+  size_t polyline_count;
+  const mcon_singularity* singularities;
+  size_t singularity_count;
+  const mcon_vertex_field* fields;
+  size_t field_count;
+  /* Caller-supplied descriptors (for a MCON_RETRIEVAL_DESCRIPTOR_CUSTOM library): patch vertex
+   * count rows of descriptor_dimension doubles, descriptor_stride bytes apart (0 = packed). NULL
+   * when the library computes its built-in descriptor. */
+  const double* descriptors;
+  uint32_t descriptor_dimension;
+  size_t descriptor_stride;
+} mcon_library_entry_desc;
+
+MCON_API mcon_status mcon_library_entry_desc_init(mcon_library_entry_desc* desc);
+
+/* An empty library (descriptor CURV9, no vocabulary yet). */
+MCON_API mcon_status mcon_library_create(mcon_context context, mcon_library* out_library);
+/* Memory-maps and validates a library file: MCON_ERROR_IO (cannot read), MCON_ERROR_INVALID_LIBRARY
+ * (corrupt, truncated or inconsistent; the message says what and where), MCON_ERROR_UNSUPPORTED
+ * (a newer format version). `path` is UTF-8. */
+MCON_API mcon_status mcon_library_open(mcon_context context, const char* path, mcon_library* out_library);
+/* The same from a buffer in memory (copied; it may be freed when the call returns). */
+MCON_API mcon_status mcon_library_open_memory(mcon_context context, const void* data, size_t size,
+                                              mcon_library* out_library);
+MCON_API mcon_status mcon_library_retain(mcon_library library);
+MCON_API mcon_status mcon_library_release(mcon_library library);
+
+/* Writes atomically (temporary file, flush, rename): if saving fails (MCON_ERROR_IO), the file
+ * that was at `path` before is untouched. Same library, same bytes. */
+MCON_API mcon_status mcon_library_save(mcon_library library, const char* path);
+/* The file's bytes into a caller buffer; *out_size receives the size needed. With out_data NULL
+ * only the size is reported; otherwise capacity (bytes) must be >= that size. */
+MCON_API mcon_status mcon_library_save_memory(mcon_library library, void* out_data, size_t capacity,
+                                              size_t* out_size);
+
+typedef struct mcon_library_info {
+  uint32_t struct_size;
+  size_t entry_count;
+  uint32_t descriptor;           /* mcon_retrieval_descriptor */
+  uint32_t descriptor_dimension; /* values per vertex; 0 before the first entry */
+  uint32_t vocabulary_size;      /* k; 0 = no vocabulary yet (queries need mcon_library_build_retrieval) */
+  uint32_t rings;                /* 1 = plain bag-of-features */
+  uint32_t histogram_length;     /* vocabulary_size * rings */
+  double sigma_bof;
+  uint64_t seed;
+} mcon_library_info;
+
+MCON_API mcon_status mcon_library_info_init(mcon_library_info* info);
+MCON_API mcon_status mcon_library_get_info(mcon_library library, mcon_library_info* info);
+MCON_API mcon_status mcon_library_get_count(mcon_library library, size_t* out_count);
+
+/* Validates everything (constraint points on patch faces, barycentric weights, field sizes and
+ * finite values...) and appends one entry; *out_id (may be NULL) receives its id. Computes the
+ * entry's descriptors (or takes the caller's, see mcon_library_entry_desc) and, if the library
+ * has a vocabulary, its histogram, so it is found by queries at once. Errors: INVALID_ARGUMENT
+ * (naming the field), NON_FINITE, NULL_POINTER, STRUCT_SIZE; the library is unchanged. */
+MCON_API mcon_status mcon_library_add_entry(mcon_library library, const mcon_library_entry_desc* desc,
+                                            uint64_t* out_id);
+/* MCON_ERROR_NOT_FOUND if no entry has this id. */
+MCON_API mcon_status mcon_library_remove_entry(mcon_library library, uint64_t id);
+MCON_API mcon_status mcon_library_find_entry(mcon_library library, uint64_t id, size_t* out_index);
+/* Appends copies of all of `other`'s entries (other may be library itself). Ids already taken are
+ * renumbered (largest id + 1, in order). Both must use the same descriptor and dimension. With
+ * identical retrieval configurations the merged library is ready for queries; otherwise its
+ * vocabulary is dropped and mcon_library_build_retrieval must run before the next query. */
+MCON_API mcon_status mcon_library_merge(mcon_library library, mcon_library other);
+
+typedef struct mcon_retrieval_options {
+  uint32_t struct_size;
+  uint32_t descriptor;       /* mcon_retrieval_descriptor; default CURV9. CUSTOM needs entries
+                                that were added with caller-supplied descriptors. */
+  uint32_t vocabulary_size;  /* k, default 128 (fewer words if the library has fewer distinct values) */
+  uint32_t rings;            /* concentric geodesic rings, 1..64; the default is the measured best */
+  double sigma_bof;          /* soft-assignment width; 0 (default) = twice the median word distance */
+  uint64_t seed;             /* k-means seed; default 0. Same seed, same result on any thread count. */
+  mcon_progress_callback progress;
+  void* progress_user_data;
+} mcon_retrieval_options;
+
+MCON_API mcon_status mcon_retrieval_options_init(mcon_retrieval_options* options);
+/* (Re)computes the descriptors if the descriptor changed, the normalization, the vocabulary
+ * (k-means++) and every entry's histogram. Needs at least one entry. On error or cancel the
+ * library is unchanged. */
+MCON_API mcon_status mcon_library_build_retrieval(mcon_library library, const mcon_retrieval_options* options);
+
+/* The min(n, entry count) entries nearest to the patch (L1 distance of bag-of-features
+ * histograms), sorted by (distance, index). *out_count receives how many were written. Each of
+ * out_ids, out_indices, out_distances may be NULL; capacity (elements) must be >= min(n, count).
+ * The library's descriptor is computed on the patch (a CUSTOM library needs
+ * mcon_library_query_descriptors). Errors: INVALID_ARGUMENT without a vocabulary or for n = 0. */
+MCON_API mcon_status mcon_library_query(mcon_library library, mcon_patch patch, size_t n, uint64_t* out_ids,
+                                        uint32_t* out_indices, double* out_distances, size_t capacity,
+                                        size_t* out_count);
+/* The same with the caller's per-vertex descriptors of the patch (vertex count rows of `dimension`
+ * doubles, `stride` bytes apart, 0 = packed); dimension must be the library's. */
+MCON_API mcon_status mcon_library_query_descriptors(mcon_library library, mcon_patch patch, const double* descriptors,
+                                                    uint32_t dimension, size_t stride, size_t n, uint64_t* out_ids,
+                                                    uint32_t* out_indices, double* out_distances, size_t capacity,
+                                                    size_t* out_count);
+
+/* ---- Reading entries (by index). Array getters check capacity (elements) first. ---- */
+
+typedef struct mcon_library_entry_info {
+  uint32_t struct_size;
+  uint64_t id;
+  size_t vertex_count;
+  size_t triangle_count;
+  size_t tag_count;
+  size_t polyline_count;     /* guides first, then features */
+  size_t singularity_count;
+  size_t field_count;
+  mcon_surface_point center; /* the patch center, a point of the entry's mesh */
+  double source_scale;       /* normalized = (source - source_origin) / source_scale */
+  double source_origin[3];
+} mcon_library_entry_info;
+
+MCON_API mcon_status mcon_library_entry_info_init(mcon_library_entry_info* info);
+MCON_API mcon_status mcon_library_get_entry_info(mcon_library library, size_t index, mcon_library_entry_info* info);
+
+typedef enum mcon_entry_string {
+  MCON_ENTRY_NAME = 1,
+  MCON_ENTRY_CLASS_LABEL = 2,
+  MCON_ENTRY_AUTHOR = 3,
+  MCON_ENTRY_LICENCE = 4,
+  MCON_ENTRY_TAG = 5,       /* tag number `item` */
+  MCON_ENTRY_FIELD_NAME = 6 /* name of field number `item` */
+} mcon_entry_string;
+
+/* A metadata string as UTF-8 with a terminating NUL. *out_size (may be NULL) receives the bytes
+ * needed including the NUL; with out_text NULL only the size is reported, otherwise capacity
+ * (bytes) must be >= it. `item` is ignored for the first four. */
+MCON_API mcon_status mcon_library_get_entry_string(mcon_library library, size_t index, mcon_entry_string which,
+                                                   size_t item, char* out_text, size_t capacity, size_t* out_size);
+/* Normalized positions, 3 doubles per vertex; capacity in doubles. */
+MCON_API mcon_status mcon_library_get_entry_positions(mcon_library library, size_t index, double* out_xyz,
+                                                      size_t capacity);
+/* 3 indices per triangle; capacity in indices. */
+MCON_API mcon_status mcon_library_get_entry_triangles(mcon_library library, size_t index, uint32_t* out_indices,
+                                                      size_t capacity);
+/* Polyline number `polyline`: kind, closed flag and point count (each pointer may be NULL), and
+ * with out_points non-NULL its points (capacity in points). */
+MCON_API mcon_status mcon_library_get_entry_polyline(mcon_library library, size_t index, size_t polyline,
+                                                     uint32_t* out_kind, uint32_t* out_closed, size_t* out_point_count,
+                                                     mcon_surface_point* out_points, size_t capacity);
+/* capacity in singularities. */
+MCON_API mcon_status mcon_library_get_entry_singularities(mcon_library library, size_t index,
+                                                          mcon_singularity* out_singularities, size_t capacity);
+/* Field number `field`: kind and dimension (each may be NULL); with out_values (real kinds) or
+ * out_labels (INTEGER_LABEL) non-NULL, vertex_count * dimension values (capacity in values).
+ * Asking for the wrong one of the two is MCON_ERROR_INVALID_ARGUMENT. */
+MCON_API mcon_status mcon_library_get_entry_field(mcon_library library, size_t index, size_t field,
+                                                  uint32_t* out_kind, uint32_t* out_dimension, double* out_values,
+                                                  int32_t* out_labels, size_t capacity);
+/* The stored descriptors (vertex_count * descriptor_dimension) and histogram (histogram_length)
+ * of an entry; either may be NULL; capacities in values. */
+MCON_API mcon_status mcon_library_get_entry_retrieval(mcon_library library, size_t index, double* out_descriptors,
+                                                      size_t descriptor_capacity, float* out_histogram,
+                                                      size_t histogram_capacity);
+
 /* @@library-api@@ (insertion point; keep this line) */
 
 /* ---------------------------------------------------------------------------------------------
