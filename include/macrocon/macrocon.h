@@ -260,6 +260,189 @@ MCON_API mcon_status mcon_patch_compute_descriptors(mcon_patch patch, mcon_descr
 /* ---------------------------------------------------------------------------------------------
  * Re-embedding maps and constraint transfer (mcon_map_*)
  * ------------------------------------------------------------------------------------------- */
+/* Patches from plain arrays: a disk mesh that is already normalized (a constraint library entry:
+ * geodesic radius about 1 around its center). Nothing is cut; the mesh must be one topological
+ * disk. The frame says where the patch sits in its own host units (host = origin + scale * p),
+ * which is where 3D outputs of transfers onto this patch are expressed. */
+typedef struct mcon_patch_frame {
+  uint32_t struct_size;
+  /* The center as a point of the mesh (required: the default MCON_INVALID_INDEX is rejected). */
+  uint32_t center_triangle;
+  double center_barycentric[3];
+  /* host = origin + scale * normalized position; default origin 0, scale 1 (> 0). */
+  double origin[3];
+  double scale;
+} mcon_patch_frame;
+
+MCON_API mcon_status mcon_patch_frame_init(mcon_patch_frame* frame);
+/* Validates and copies the mesh (errors as mcon_mesh_create), requires one disk (else
+ * MCON_ERROR_NOT_A_DISK) and computes its unit-disk parametrization. The patch's host is the mesh
+ * itself: host vertices are the identity (t = 0), host triangles the identity. */
+MCON_API mcon_status mcon_patch_create_from_arrays(mcon_context context, const mcon_mesh_desc* mesh,
+                                                   const mcon_patch_frame* frame, mcon_patch* out_patch);
+
+typedef struct mcon_map_t* mcon_map;
+
+/* Why the optimization of the finest level stopped. */
+typedef enum mcon_map_stop_reason {
+  MCON_MAP_STOP_CONVERGED = 1,     /* the decrease fell below the tolerance */
+  MCON_MAP_STOP_STALLED = 2,       /* the line search found no acceptable step */
+  MCON_MAP_STOP_ITERATION_CAP = 3, /* max_iterations reached */
+  MCON_MAP_STOP_CANCELLED = 4      /* (never returned by a successful mcon_map_compute) */
+} mcon_map_stop_reason;
+
+typedef struct mcon_map_options {
+  uint32_t struct_size;
+  /* Seed of the rigid initialization's candidates; results are bit-identical for any thread
+   * count. Default 0. */
+  uint64_t seed;
+  /* Random rigid candidates scored at initialization (half mirrored); default 10000, >= 1. */
+  uint32_t alignment_samples;
+  /* Nonzero (default): orientation-reversing maps (a left eye onto a right eye) may win. */
+  uint32_t allow_reflection;
+  /* Newton iterations per coarse-to-fine level; default 100, >= 1. */
+  uint32_t max_iterations;
+  mcon_progress_callback progress;
+  void* progress_user_data;
+} mcon_map_options;
+
+MCON_API mcon_status mcon_map_options_init(mcon_map_options* options);
+
+/* The re-embedding map Phi from `source` onto `target` (both patches of any tessellation; the
+ * source is typically a library entry made with mcon_patch_create_from_arrays). Locally
+ * injective by construction; partial: source points whose image leaves the target have no
+ * correspondence. The map keeps a reference on both patches. Errors: NULL_POINTER,
+ * INVALID_ARGUMENT (bad handles or options), STRUCT_SIZE, CANCELLED, NUMERICAL. */
+MCON_API mcon_status mcon_map_compute(mcon_patch source, mcon_patch target, const mcon_map_options* options,
+                                      mcon_map* out_map);
+MCON_API mcon_status mcon_map_retain(mcon_map map);
+MCON_API mcon_status mcon_map_release(mcon_map map);
+
+typedef struct mcon_map_info {
+  uint32_t struct_size;
+  size_t source_vertex_count;
+  size_t target_vertex_count;
+  size_t source_vertices_inside;  /* source vertices whose image lies on the target */
+  size_t target_vertices_inside;  /* target vertices with a source preimage */
+  double overlap_ratio;           /* source 3D area mapped into the target / source area */
+  double matching_score;          /* area-weighted Gaussian matching score in [0, 1] */
+  /* Final energy terms at the finest level (unweighted) and the weighted total. */
+  double energy_total;
+  double energy_descriptor;
+  double energy_distortion;
+  double energy_area;
+  double energy_injectivity;
+  uint32_t iterations;            /* Newton iterations over all levels */
+  uint32_t stop_reason;           /* mcon_map_stop_reason of the finest level */
+  uint32_t reflected;             /* 1 if the map reverses orientation */
+  uint32_t levels;                /* coarse-to-fine descriptor levels */
+  uint32_t flipped_triangles;     /* inverted triangles of phi: always 0 (checked) */
+  double alignment_score;         /* score of the rigid initialization */
+  double alignment_seconds;
+  double optimization_seconds;
+} mcon_map_info;
+
+MCON_API mcon_status mcon_map_info_init(mcon_map_info* info);
+MCON_API mcon_status mcon_map_get_info(mcon_map map, mcon_map_info* info);
+
+typedef enum mcon_map_direction {
+  MCON_MAP_SOURCE_TO_TARGET = 1, /* per source vertex: a point of the target */
+  MCON_MAP_TARGET_TO_SOURCE = 2  /* per target vertex: a point of the source */
+} mcon_map_direction;
+
+/* Per vertex of the direction's domain: the triangle of the other patch (int32, -1 = outside the
+ * overlap) and 3 barycentric doubles (0 when outside). Either output may be NULL; capacity in
+ * vertices. */
+MCON_API mcon_status mcon_map_get_correspondences(mcon_map map, mcon_map_direction direction,
+                                                  int32_t* out_triangle, double* out_barycentric, size_t capacity);
+/* phi: the deformed source disk in the target disk's plane, 2 doubles per source vertex.
+ * capacity in doubles. */
+MCON_API mcon_status mcon_map_get_phi(mcon_map map, double* out_xy, size_t capacity);
+/* Per target vertex: 1 if it lies outside the overlap (no source preimage), else 0. capacity in
+ * vertices. */
+MCON_API mcon_status mcon_map_get_outside_mask(mcon_map map, uint8_t* out_mask, size_t capacity);
+
+/* Points (e.g. singularities, whose index the map keeps) of the source -> points of the target.
+ * Input: count points as triangle indices and 3 barycentric weights each (>= 0, summing to 1).
+ * Output, one per input point: target triangle (MCON_INVALID_INDEX if outside the overlap),
+ * barycentric weights (3 per point) and the 3D position in the target's host units (3 per
+ * point); any output may be NULL; capacity in points. */
+MCON_API mcon_status mcon_map_transfer_points(mcon_map map, const uint32_t* triangles, const double* barycentric,
+                                              size_t count, uint32_t* out_triangles, double* out_barycentric,
+                                              double* out_xyz, size_t capacity);
+
+/* Polylines on a patch: the result of a transfer, queried with counts then arrays. */
+typedef struct mcon_polyline_set_t* mcon_polyline_set;
+
+/* Guide or feature polylines of the source, mapped through Phi and re-traced on the target: every
+ * segment lies inside one target triangle (polylines are split at target edges), parts outside
+ * the overlap are dropped (so one input polyline may give several or none). Input: point_count
+ * points (triangles + 3 barycentric each), grouped in polyline_count polylines of
+ * polyline_sizes[i] >= 2 consecutive points; polyline_closed (may be NULL = all open) marks
+ * polylines whose last point joins the first. */
+MCON_API mcon_status mcon_map_transfer_polylines(mcon_map map, const uint32_t* triangles, const double* barycentric,
+                                                 size_t point_count, const uint32_t* polyline_sizes,
+                                                 const uint8_t* polyline_closed, size_t polyline_count,
+                                                 mcon_polyline_set* out_polylines);
+MCON_API mcon_status mcon_polyline_set_retain(mcon_polyline_set polylines);
+MCON_API mcon_status mcon_polyline_set_release(mcon_polyline_set polylines);
+MCON_API mcon_status mcon_polyline_set_get_counts(mcon_polyline_set polylines, size_t* polyline_count,
+                                                  size_t* point_count);
+/* Per polyline: its point count, whether it is closed (1/0) and the input polyline it came from.
+ * Any output may be NULL; capacity in polylines. */
+MCON_API mcon_status mcon_polyline_set_get_polylines(mcon_polyline_set polylines, uint32_t* out_sizes,
+                                                     uint8_t* out_closed, uint32_t* out_input_polyline,
+                                                     size_t capacity);
+/* All points, polyline after polyline: target triangle, 3 barycentric weights, 3D position in the
+ * target's host units. Any output may be NULL; capacity in points. */
+MCON_API mcon_status mcon_polyline_set_get_points(mcon_polyline_set polylines, uint32_t* out_triangles,
+                                                  double* out_barycentric, double* out_xyz, size_t capacity);
+
+/* Kinds of per-vertex fields (the same values as the constraint library's field kinds). */
+typedef enum mcon_field_kind {
+  MCON_FIELD_SCALAR = 1,         /* dimension >= 1, interpolated */
+  MCON_FIELD_VECTOR3 = 2,        /* dimension 3, interpolated */
+  MCON_FIELD_TANGENT_VECTOR = 3, /* dimension 3, pushed forward by the map's Jacobian, projected
+                                    onto the target's tangent plane */
+  MCON_FIELD_INTEGER_LABEL = 4,  /* use mcon_map_transfer_labels */
+  MCON_FIELD_UV = 5              /* dimension 2, interpolated */
+} mcon_field_kind;
+
+/* A per-vertex field of the source (source_vertex_count * dimension doubles, vertex-major)
+ * -> target vertices (target_vertex_count * dimension doubles). Vertices outside the overlap get
+ * 0 (see mcon_map_get_outside_mask). value_count and capacity in doubles. */
+MCON_API mcon_status mcon_map_transfer_field(mcon_map map, mcon_field_kind kind, uint32_t dimension,
+                                             const double* source_values, size_t value_count, double* out_values,
+                                             size_t capacity);
+/* Integer labels, never blended: each target vertex takes the label of the source corner with the
+ * largest barycentric weight; vertices outside the overlap get outside_label. Counts in int32. */
+MCON_API mcon_status mcon_map_transfer_labels(mcon_map map, uint32_t dimension, const int32_t* source_labels,
+                                              size_t label_count, int32_t outside_label, int32_t* out_labels,
+                                              size_t capacity);
+
+typedef struct mcon_cross_field_options {
+  uint32_t struct_size;
+  /* Strength of the guide alignment against smoothness; default 10, > 0. */
+  double alignment_weight;
+  /* Nonzero: also align with the patch boundary (weight boundary_weight, default 1); default 0. */
+  uint32_t align_to_boundary;
+  double boundary_weight;
+} mcon_cross_field_options;
+
+MCON_API mcon_status mcon_cross_field_options_init(mcon_cross_field_options* options);
+/* A smooth per-face 4-RoSy cross field on `patch` that follows the polylines (e.g. the guides of
+ * mcon_map_transfer_polylines onto this patch; NULL or an empty set gives the smoothest field).
+ * Per triangle one unit direction of the cross (3 doubles, normalized patch coordinates) and,
+ * optionally, a confidence in [0, 1]. capacity in triangles. INVALID_ARGUMENT if the polylines
+ * belong to another patch. */
+MCON_API mcon_status mcon_patch_compute_cross_field(mcon_patch patch, mcon_polyline_set guides,
+                                                    const mcon_cross_field_options* options, double* out_directions,
+                                                    double* out_confidence, size_t capacity);
+/* Writes a QuadWild `.rosy` file (one direction per triangle, as mcon_patch_compute_cross_field
+ * gives them; triangle_count must equal the patch's); a `.gz` path is compressed. IO on failure. */
+MCON_API mcon_status mcon_patch_write_rosy(mcon_patch patch, const double* directions, size_t triangle_count,
+                                           const char* path);
+
 /* @@map-api@@ (insertion point; keep this line) */
 
 #ifdef __cplusplus
