@@ -255,11 +255,430 @@ MCON_API mcon_status mcon_patch_compute_descriptors(mcon_patch patch, mcon_descr
 /* ---------------------------------------------------------------------------------------------
  * Constraint libraries and retrieval (mcon_library_*)
  * ------------------------------------------------------------------------------------------- */
+/* A constraint library: macro constraints (a normalized disk patch, its metadata, its quad-meshing
+ * constraints and per-vertex fields, its descriptors and bag-of-features histogram) plus the
+ * retrieval configuration (descriptor, normalization, vocabulary, sigma, rings) they were computed
+ * with, so a query needs nothing else. Files are FlatBuffers ("MCLB"); opening treats them as
+ * hostile (MCON_ERROR_INVALID_LIBRARY with a message naming the problem, never a crash).
+ *
+ * Entries are addressed by index (0 .. count - 1, in insertion order; removing an entry shifts the
+ * later ones down) and carry a stable 64-bit id (never 0). A library is not thread-safe for
+ * modification; queries and getters on an unmodified library may run concurrently. */
+typedef struct mcon_library_t* mcon_library;
+
+/* Per-vertex descriptors a library is built on. CURV9 has the value of MCON_DESCRIPTOR_CURV9. */
+typedef enum mcon_retrieval_descriptor {
+  MCON_RETRIEVAL_DESCRIPTOR_CURV9 = 1,    /* 9 curvature values per vertex (default) */
+  MCON_RETRIEVAL_DESCRIPTOR_HKS = 3,      /* heat kernel signature, 100 times */
+  MCON_RETRIEVAL_DESCRIPTOR_WKS = 4,      /* wave kernel signature, 100 energies */
+  MCON_RETRIEVAL_DESCRIPTOR_CUSTOM = 256  /* caller-supplied per-vertex values (any dimension) */
+} mcon_retrieval_descriptor;
+
+/* A point on a patch: triangle `face` and the weights of its three corners (each >= 0, sum 1). */
+typedef struct mcon_surface_point {
+  uint32_t face;
+  double barycentric[3];
+} mcon_surface_point;
+
+typedef enum mcon_polyline_kind {
+  MCON_POLYLINE_GUIDE = 1,   /* the quad mesh should follow it */
+  MCON_POLYLINE_FEATURE = 2  /* the quad mesh must preserve it */
+} mcon_polyline_kind;
+
+typedef struct mcon_polyline {
+  uint32_t kind;   /* mcon_polyline_kind */
+  uint32_t closed; /* nonzero: the last point joins the first (then >= 3 points, else >= 2) */
+  const mcon_surface_point* points;
+  size_t point_count;
+} mcon_polyline;
+
+/* A cross-field singularity; index in quarter turns (valence = 4 - index_quarters): +1 is a
+ * valence-3 vertex, -1 a valence-5 vertex. Never 0. */
+typedef struct mcon_singularity {
+  mcon_surface_point location;
+  int32_t index_quarters;
+} mcon_singularity;
+
+typedef enum mcon_field_kind {
+  MCON_FIELD_SCALAR = 1,         /* dimension >= 1 real channels */
+  MCON_FIELD_VECTOR3 = 2,        /* dimension 3, a vector in patch coordinates */
+  MCON_FIELD_TANGENT_VECTOR = 3, /* dimension 3, tangent to the patch */
+  MCON_FIELD_INTEGER_LABEL = 4,  /* dimension >= 1 integer channels (read from `labels`) */
+  MCON_FIELD_UV = 5              /* dimension 2 */
+} mcon_field_kind;
+
+/* A named per-vertex field of an entry: one value per patch vertex and channel. Values are stored
+ * as float32 (labels as int32). */
+typedef struct mcon_vertex_field {
+  const char* name;       /* non-empty, unique within the entry, UTF-8 */
+  uint32_t kind;          /* mcon_field_kind */
+  uint32_t dimension;     /* channels per vertex */
+  const double* values;   /* every kind but INTEGER_LABEL: vertex_count rows of `dimension` */
+  const int32_t* labels;  /* INTEGER_LABEL: vertex_count rows of `dimension` */
+  size_t stride;          /* bytes between two vertices' rows; 0 = tightly packed */
+} mcon_vertex_field;
+
+typedef struct mcon_library_entry_desc {
+  uint32_t struct_size;
+  /* The entry's geometry: mesh, center and normalization are taken from the patch. */
+  mcon_patch patch;
+  uint64_t id; /* 0 = assign (largest id in the library + 1) */
+  /* Metadata (UTF-8; NULL = ""). */
+  const char* name;
+  const char* class_label;
+  const char* const* tags;
+  size_t tag_count;
+  const char* author;
+  const char* licence;
+  /* Constraints, located on the patch (faces of the patch's triangles). */
+  const mcon_polyline* polylines;
+  size_t polyline_count;
+  const mcon_singularity* singularities;
+  size_t singularity_count;
+  const mcon_vertex_field* fields;
+  size_t field_count;
+  /* Caller-supplied descriptors (for a MCON_RETRIEVAL_DESCRIPTOR_CUSTOM library): patch vertex
+   * count rows of descriptor_dimension doubles, descriptor_stride bytes apart (0 = packed). NULL
+   * when the library computes its built-in descriptor. */
+  const double* descriptors;
+  uint32_t descriptor_dimension;
+  size_t descriptor_stride;
+} mcon_library_entry_desc;
+
+MCON_API mcon_status mcon_library_entry_desc_init(mcon_library_entry_desc* desc);
+
+/* An empty library (descriptor CURV9, no vocabulary yet). */
+MCON_API mcon_status mcon_library_create(mcon_context context, mcon_library* out_library);
+/* Memory-maps and validates a library file: MCON_ERROR_IO (cannot read), MCON_ERROR_INVALID_LIBRARY
+ * (corrupt, truncated or inconsistent; the message says what and where), MCON_ERROR_UNSUPPORTED
+ * (a newer format version). `path` is UTF-8. */
+MCON_API mcon_status mcon_library_open(mcon_context context, const char* path, mcon_library* out_library);
+/* The same from a buffer in memory (copied; it may be freed when the call returns). */
+MCON_API mcon_status mcon_library_open_memory(mcon_context context, const void* data, size_t size,
+                                              mcon_library* out_library);
+MCON_API mcon_status mcon_library_retain(mcon_library library);
+MCON_API mcon_status mcon_library_release(mcon_library library);
+
+/* Writes atomically (temporary file, flush, rename): if saving fails (MCON_ERROR_IO), the file
+ * that was at `path` before is untouched. Same library, same bytes. */
+MCON_API mcon_status mcon_library_save(mcon_library library, const char* path);
+/* The file's bytes into a caller buffer; *out_size receives the size needed. With out_data NULL
+ * only the size is reported; otherwise capacity (bytes) must be >= that size. */
+MCON_API mcon_status mcon_library_save_memory(mcon_library library, void* out_data, size_t capacity,
+                                              size_t* out_size);
+
+typedef struct mcon_library_info {
+  uint32_t struct_size;
+  size_t entry_count;
+  uint32_t descriptor;           /* mcon_retrieval_descriptor */
+  uint32_t descriptor_dimension; /* values per vertex; 0 before the first entry */
+  uint32_t vocabulary_size;      /* k; 0 = no vocabulary yet (queries need mcon_library_build_retrieval) */
+  uint32_t rings;                /* 1 = plain bag-of-features */
+  uint32_t histogram_length;     /* vocabulary_size * rings */
+  double sigma_bof;
+  uint64_t seed;
+} mcon_library_info;
+
+MCON_API mcon_status mcon_library_info_init(mcon_library_info* info);
+MCON_API mcon_status mcon_library_get_info(mcon_library library, mcon_library_info* info);
+MCON_API mcon_status mcon_library_get_count(mcon_library library, size_t* out_count);
+
+/* Validates everything (constraint points on patch faces, barycentric weights, field sizes and
+ * finite values...) and appends one entry; *out_id (may be NULL) receives its id. Computes the
+ * entry's descriptors (or takes the caller's, see mcon_library_entry_desc) and, if the library
+ * has a vocabulary, its histogram, so it is found by queries at once. Errors: INVALID_ARGUMENT
+ * (naming the field), NON_FINITE, NULL_POINTER, STRUCT_SIZE; the library is unchanged. */
+MCON_API mcon_status mcon_library_add_entry(mcon_library library, const mcon_library_entry_desc* desc,
+                                            uint64_t* out_id);
+/* MCON_ERROR_NOT_FOUND if no entry has this id. */
+MCON_API mcon_status mcon_library_remove_entry(mcon_library library, uint64_t id);
+MCON_API mcon_status mcon_library_find_entry(mcon_library library, uint64_t id, size_t* out_index);
+/* Appends copies of all of `other`'s entries (other may be library itself). Ids already taken are
+ * renumbered (largest id + 1, in order). Both must use the same descriptor and dimension. With
+ * identical retrieval configurations the merged library is ready for queries; otherwise its
+ * vocabulary is dropped and mcon_library_build_retrieval must run before the next query. */
+MCON_API mcon_status mcon_library_merge(mcon_library library, mcon_library other);
+
+typedef struct mcon_retrieval_options {
+  uint32_t struct_size;
+  uint32_t descriptor;       /* mcon_retrieval_descriptor; default CURV9. CUSTOM needs entries
+                                that were added with caller-supplied descriptors. */
+  uint32_t vocabulary_size;  /* k, default 128 (fewer words if the library has fewer distinct values) */
+  uint32_t rings;            /* concentric geodesic rings, 1..64; the default is the measured best */
+  double sigma_bof;          /* soft-assignment width; 0 (default) = twice the median word distance */
+  uint64_t seed;             /* k-means seed; default 0. Same seed, same result on any thread count. */
+  mcon_progress_callback progress;
+  void* progress_user_data;
+} mcon_retrieval_options;
+
+MCON_API mcon_status mcon_retrieval_options_init(mcon_retrieval_options* options);
+/* (Re)computes the descriptors if the descriptor changed, the normalization, the vocabulary
+ * (k-means++) and every entry's histogram. Needs at least one entry. On error or cancel the
+ * library is unchanged. */
+MCON_API mcon_status mcon_library_build_retrieval(mcon_library library, const mcon_retrieval_options* options);
+
+/* The min(n, entry count) entries nearest to the patch (L1 distance of bag-of-features
+ * histograms), sorted by (distance, index). *out_count receives how many were written. Each of
+ * out_ids, out_indices, out_distances may be NULL; capacity (elements) must be >= min(n, count).
+ * The library's descriptor is computed on the patch (a CUSTOM library needs
+ * mcon_library_query_descriptors). Errors: INVALID_ARGUMENT without a vocabulary or for n = 0. */
+MCON_API mcon_status mcon_library_query(mcon_library library, mcon_patch patch, size_t n, uint64_t* out_ids,
+                                        uint32_t* out_indices, double* out_distances, size_t capacity,
+                                        size_t* out_count);
+/* The same with the caller's per-vertex descriptors of the patch (vertex count rows of `dimension`
+ * doubles, `stride` bytes apart, 0 = packed); dimension must be the library's. */
+MCON_API mcon_status mcon_library_query_descriptors(mcon_library library, mcon_patch patch, const double* descriptors,
+                                                    uint32_t dimension, size_t stride, size_t n, uint64_t* out_ids,
+                                                    uint32_t* out_indices, double* out_distances, size_t capacity,
+                                                    size_t* out_count);
+
+/* ---- Reading entries (by index). Array getters check capacity (elements) first. ---- */
+
+typedef struct mcon_library_entry_info {
+  uint32_t struct_size;
+  uint64_t id;
+  size_t vertex_count;
+  size_t triangle_count;
+  size_t tag_count;
+  size_t polyline_count;     /* guides first, then features */
+  size_t singularity_count;
+  size_t field_count;
+  mcon_surface_point center; /* the patch center, a point of the entry's mesh */
+  double source_scale;       /* normalized = (source - source_origin) / source_scale */
+  double source_origin[3];
+} mcon_library_entry_info;
+
+MCON_API mcon_status mcon_library_entry_info_init(mcon_library_entry_info* info);
+MCON_API mcon_status mcon_library_get_entry_info(mcon_library library, size_t index, mcon_library_entry_info* info);
+
+typedef enum mcon_entry_string {
+  MCON_ENTRY_NAME = 1,
+  MCON_ENTRY_CLASS_LABEL = 2,
+  MCON_ENTRY_AUTHOR = 3,
+  MCON_ENTRY_LICENCE = 4,
+  MCON_ENTRY_TAG = 5,       /* tag number `item` */
+  MCON_ENTRY_FIELD_NAME = 6 /* name of field number `item` */
+} mcon_entry_string;
+
+/* A metadata string as UTF-8 with a terminating NUL. *out_size (may be NULL) receives the bytes
+ * needed including the NUL; with out_text NULL only the size is reported, otherwise capacity
+ * (bytes) must be >= it. `item` is ignored for the first four. */
+MCON_API mcon_status mcon_library_get_entry_string(mcon_library library, size_t index, mcon_entry_string which,
+                                                   size_t item, char* out_text, size_t capacity, size_t* out_size);
+/* Normalized positions, 3 doubles per vertex; capacity in doubles. */
+MCON_API mcon_status mcon_library_get_entry_positions(mcon_library library, size_t index, double* out_xyz,
+                                                      size_t capacity);
+/* 3 indices per triangle; capacity in indices. */
+MCON_API mcon_status mcon_library_get_entry_triangles(mcon_library library, size_t index, uint32_t* out_indices,
+                                                      size_t capacity);
+/* Polyline number `polyline`: kind, closed flag and point count (each pointer may be NULL), and
+ * with out_points non-NULL its points (capacity in points). */
+MCON_API mcon_status mcon_library_get_entry_polyline(mcon_library library, size_t index, size_t polyline,
+                                                     uint32_t* out_kind, uint32_t* out_closed, size_t* out_point_count,
+                                                     mcon_surface_point* out_points, size_t capacity);
+/* capacity in singularities. */
+MCON_API mcon_status mcon_library_get_entry_singularities(mcon_library library, size_t index,
+                                                          mcon_singularity* out_singularities, size_t capacity);
+/* Field number `field`: kind and dimension (each may be NULL); with out_values (real kinds) or
+ * out_labels (INTEGER_LABEL) non-NULL, vertex_count * dimension values (capacity in values).
+ * Asking for the wrong one of the two is MCON_ERROR_INVALID_ARGUMENT. */
+MCON_API mcon_status mcon_library_get_entry_field(mcon_library library, size_t index, size_t field,
+                                                  uint32_t* out_kind, uint32_t* out_dimension, double* out_values,
+                                                  int32_t* out_labels, size_t capacity);
+/* The stored descriptors (vertex_count * descriptor_dimension) and histogram (histogram_length)
+ * of an entry; either may be NULL; capacities in values. */
+MCON_API mcon_status mcon_library_get_entry_retrieval(mcon_library library, size_t index, double* out_descriptors,
+                                                      size_t descriptor_capacity, float* out_histogram,
+                                                      size_t histogram_capacity);
+
 /* @@library-api@@ (insertion point; keep this line) */
 
 /* ---------------------------------------------------------------------------------------------
  * Re-embedding maps and constraint transfer (mcon_map_*)
  * ------------------------------------------------------------------------------------------- */
+/* Patches from plain arrays: a disk mesh that is already normalized (a constraint library entry:
+ * geodesic radius about 1 around its center). Nothing is cut; the mesh must be one topological
+ * disk. The frame says where the patch sits in its own host units (host = origin + scale * p),
+ * which is where 3D outputs of transfers onto this patch are expressed. */
+typedef struct mcon_patch_frame {
+  uint32_t struct_size;
+  /* The center as a point of the mesh (required: the default MCON_INVALID_INDEX is rejected). */
+  uint32_t center_triangle;
+  double center_barycentric[3];
+  /* host = origin + scale * normalized position; default origin 0, scale 1 (> 0). */
+  double origin[3];
+  double scale;
+} mcon_patch_frame;
+
+MCON_API mcon_status mcon_patch_frame_init(mcon_patch_frame* frame);
+/* Validates and copies the mesh (errors as mcon_mesh_create), requires one disk (else
+ * MCON_ERROR_NOT_A_DISK) and computes its unit-disk parametrization. The patch's host is the mesh
+ * itself: host vertices are the identity (t = 0), host triangles the identity. */
+MCON_API mcon_status mcon_patch_create_from_arrays(mcon_context context, const mcon_mesh_desc* mesh,
+                                                   const mcon_patch_frame* frame, mcon_patch* out_patch);
+
+typedef struct mcon_map_t* mcon_map;
+
+/* Why the optimization of the finest level stopped. */
+typedef enum mcon_map_stop_reason {
+  MCON_MAP_STOP_CONVERGED = 1,     /* the decrease fell below the tolerance */
+  MCON_MAP_STOP_STALLED = 2,       /* the line search found no acceptable step */
+  MCON_MAP_STOP_ITERATION_CAP = 3, /* max_iterations reached */
+  MCON_MAP_STOP_CANCELLED = 4      /* (never returned by a successful mcon_map_compute) */
+} mcon_map_stop_reason;
+
+typedef struct mcon_map_options {
+  uint32_t struct_size;
+  /* Seed of the rigid initialization's candidates; results are bit-identical for any thread
+   * count. Default 0. */
+  uint64_t seed;
+  /* Random rigid candidates scored at initialization (half mirrored); default 10000, >= 1. */
+  uint32_t alignment_samples;
+  /* Nonzero (default): orientation-reversing maps (a left eye onto a right eye) may win. */
+  uint32_t allow_reflection;
+  /* Newton iterations per coarse-to-fine level; default 100, >= 1. */
+  uint32_t max_iterations;
+  mcon_progress_callback progress;
+  void* progress_user_data;
+} mcon_map_options;
+
+MCON_API mcon_status mcon_map_options_init(mcon_map_options* options);
+
+/* The re-embedding map Phi from `source` onto `target` (both patches of any tessellation; the
+ * source is typically a library entry made with mcon_patch_create_from_arrays). Locally
+ * injective by construction; partial: source points whose image leaves the target have no
+ * correspondence. The map keeps a reference on both patches. Errors: NULL_POINTER,
+ * INVALID_ARGUMENT (bad handles or options), STRUCT_SIZE, CANCELLED, NUMERICAL. */
+MCON_API mcon_status mcon_map_compute(mcon_patch source, mcon_patch target, const mcon_map_options* options,
+                                      mcon_map* out_map);
+MCON_API mcon_status mcon_map_retain(mcon_map map);
+MCON_API mcon_status mcon_map_release(mcon_map map);
+
+typedef struct mcon_map_info {
+  uint32_t struct_size;
+  size_t source_vertex_count;
+  size_t target_vertex_count;
+  size_t source_vertices_inside;  /* source vertices whose image lies on the target */
+  size_t target_vertices_inside;  /* target vertices with a source preimage */
+  double overlap_ratio;           /* source 3D area mapped into the target / source area */
+  double matching_score;          /* area-weighted Gaussian matching score in [0, 1] */
+  /* Final energy terms at the finest level (unweighted) and the weighted total. */
+  double energy_total;
+  double energy_descriptor;
+  double energy_distortion;
+  double energy_area;
+  double energy_injectivity;
+  uint32_t iterations;            /* Newton iterations over all levels */
+  uint32_t stop_reason;           /* mcon_map_stop_reason of the finest level */
+  uint32_t reflected;             /* 1 if the map reverses orientation */
+  uint32_t levels;                /* coarse-to-fine descriptor levels */
+  uint32_t flipped_triangles;     /* inverted triangles of phi: always 0 (checked) */
+  double alignment_score;         /* score of the rigid initialization */
+  double alignment_seconds;
+  double optimization_seconds;
+} mcon_map_info;
+
+MCON_API mcon_status mcon_map_info_init(mcon_map_info* info);
+MCON_API mcon_status mcon_map_get_info(mcon_map map, mcon_map_info* info);
+
+typedef enum mcon_map_direction {
+  MCON_MAP_SOURCE_TO_TARGET = 1, /* per source vertex: a point of the target */
+  MCON_MAP_TARGET_TO_SOURCE = 2  /* per target vertex: a point of the source */
+} mcon_map_direction;
+
+/* Per vertex of the direction's domain: the triangle of the other patch (int32, -1 = outside the
+ * overlap) and 3 barycentric doubles (0 when outside). Either output may be NULL; capacity in
+ * vertices. */
+MCON_API mcon_status mcon_map_get_correspondences(mcon_map map, mcon_map_direction direction,
+                                                  int32_t* out_triangle, double* out_barycentric, size_t capacity);
+/* phi: the deformed source disk in the target disk's plane, 2 doubles per source vertex.
+ * capacity in doubles. */
+MCON_API mcon_status mcon_map_get_phi(mcon_map map, double* out_xy, size_t capacity);
+/* Per target vertex: 1 if it lies outside the overlap (no source preimage), else 0. capacity in
+ * vertices. */
+MCON_API mcon_status mcon_map_get_outside_mask(mcon_map map, uint8_t* out_mask, size_t capacity);
+
+/* Points (e.g. singularities, whose index the map keeps) of the source -> points of the target.
+ * Input: count points as triangle indices and 3 barycentric weights each (>= 0, summing to 1).
+ * Output, one per input point: target triangle (MCON_INVALID_INDEX if outside the overlap),
+ * barycentric weights (3 per point) and the 3D position in the target's host units (3 per
+ * point); any output may be NULL; capacity in points. */
+MCON_API mcon_status mcon_map_transfer_points(mcon_map map, const uint32_t* triangles, const double* barycentric,
+                                              size_t count, uint32_t* out_triangles, double* out_barycentric,
+                                              double* out_xyz, size_t capacity);
+
+/* Polylines on a patch: the result of a transfer, queried with counts then arrays. */
+typedef struct mcon_polyline_set_t* mcon_polyline_set;
+
+/* Guide or feature polylines of the source, mapped through Phi and re-traced on the target: every
+ * segment lies inside one target triangle (polylines are split at target edges), parts outside
+ * the overlap are dropped (so one input polyline may give several or none). Input: point_count
+ * points (triangles + 3 barycentric each), grouped in polyline_count polylines of
+ * polyline_sizes[i] >= 2 consecutive points; polyline_closed (may be NULL = all open) marks
+ * polylines whose last point joins the first. */
+MCON_API mcon_status mcon_map_transfer_polylines(mcon_map map, const uint32_t* triangles, const double* barycentric,
+                                                 size_t point_count, const uint32_t* polyline_sizes,
+                                                 const uint8_t* polyline_closed, size_t polyline_count,
+                                                 mcon_polyline_set* out_polylines);
+MCON_API mcon_status mcon_polyline_set_retain(mcon_polyline_set polylines);
+MCON_API mcon_status mcon_polyline_set_release(mcon_polyline_set polylines);
+MCON_API mcon_status mcon_polyline_set_get_counts(mcon_polyline_set polylines, size_t* polyline_count,
+                                                  size_t* point_count);
+/* Per polyline: its point count, whether it is closed (1/0) and the input polyline it came from.
+ * Any output may be NULL; capacity in polylines. */
+MCON_API mcon_status mcon_polyline_set_get_polylines(mcon_polyline_set polylines, uint32_t* out_sizes,
+                                                     uint8_t* out_closed, uint32_t* out_input_polyline,
+                                                     size_t capacity);
+/* All points, polyline after polyline: target triangle, 3 barycentric weights, 3D position in the
+ * target's host units. Any output may be NULL; capacity in points. */
+MCON_API mcon_status mcon_polyline_set_get_points(mcon_polyline_set polylines, uint32_t* out_triangles,
+                                                  double* out_barycentric, double* out_xyz, size_t capacity);
+
+/* Kinds of per-vertex fields (the same values as the constraint library's field kinds). */
+typedef enum mcon_field_kind {
+  MCON_FIELD_SCALAR = 1,         /* dimension >= 1, interpolated */
+  MCON_FIELD_VECTOR3 = 2,        /* dimension 3, interpolated */
+  MCON_FIELD_TANGENT_VECTOR = 3, /* dimension 3, pushed forward by the map's Jacobian, projected
+                                    onto the target's tangent plane */
+  MCON_FIELD_INTEGER_LABEL = 4,  /* use mcon_map_transfer_labels */
+  MCON_FIELD_UV = 5              /* dimension 2, interpolated */
+} mcon_field_kind;
+
+/* A per-vertex field of the source (source_vertex_count * dimension doubles, vertex-major)
+ * -> target vertices (target_vertex_count * dimension doubles). Vertices outside the overlap get
+ * 0 (see mcon_map_get_outside_mask). value_count and capacity in doubles. */
+MCON_API mcon_status mcon_map_transfer_field(mcon_map map, mcon_field_kind kind, uint32_t dimension,
+                                             const double* source_values, size_t value_count, double* out_values,
+                                             size_t capacity);
+/* Integer labels, never blended: each target vertex takes the label of the source corner with the
+ * largest barycentric weight; vertices outside the overlap get outside_label. Counts in int32. */
+MCON_API mcon_status mcon_map_transfer_labels(mcon_map map, uint32_t dimension, const int32_t* source_labels,
+                                              size_t label_count, int32_t outside_label, int32_t* out_labels,
+                                              size_t capacity);
+
+typedef struct mcon_cross_field_options {
+  uint32_t struct_size;
+  /* Strength of the guide alignment against smoothness; default 10, > 0. */
+  double alignment_weight;
+  /* Nonzero: also align with the patch boundary (weight boundary_weight, default 1); default 0. */
+  uint32_t align_to_boundary;
+  double boundary_weight;
+} mcon_cross_field_options;
+
+MCON_API mcon_status mcon_cross_field_options_init(mcon_cross_field_options* options);
+/* A smooth per-face 4-RoSy cross field on `patch` that follows the polylines (e.g. the guides of
+ * mcon_map_transfer_polylines onto this patch; NULL or an empty set gives the smoothest field).
+ * Per triangle one unit direction of the cross (3 doubles, normalized patch coordinates) and,
+ * optionally, a confidence in [0, 1]. capacity in triangles. INVALID_ARGUMENT if the polylines
+ * belong to another patch. */
+MCON_API mcon_status mcon_patch_compute_cross_field(mcon_patch patch, mcon_polyline_set guides,
+                                                    const mcon_cross_field_options* options, double* out_directions,
+                                                    double* out_confidence, size_t capacity);
+/* Writes a QuadWild `.rosy` file (one direction per triangle, as mcon_patch_compute_cross_field
+ * gives them; triangle_count must equal the patch's); a `.gz` path is compressed. IO on failure. */
+MCON_API mcon_status mcon_patch_write_rosy(mcon_patch patch, const double* directions, size_t triangle_count,
+                                           const char* path);
+
 /* @@map-api@@ (insertion point; keep this line) */
 
 #ifdef __cplusplus
