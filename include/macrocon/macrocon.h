@@ -634,15 +634,9 @@ MCON_API mcon_status mcon_polyline_set_get_polylines(mcon_polyline_set polylines
 MCON_API mcon_status mcon_polyline_set_get_points(mcon_polyline_set polylines, uint32_t* out_triangles,
                                                   double* out_barycentric, double* out_xyz, size_t capacity);
 
-/* Kinds of per-vertex fields (the same values as the constraint library's field kinds). */
-typedef enum mcon_field_kind {
-  MCON_FIELD_SCALAR = 1,         /* dimension >= 1, interpolated */
-  MCON_FIELD_VECTOR3 = 2,        /* dimension 3, interpolated */
-  MCON_FIELD_TANGENT_VECTOR = 3, /* dimension 3, pushed forward by the map's Jacobian, projected
-                                    onto the target's tangent plane */
-  MCON_FIELD_INTEGER_LABEL = 4,  /* use mcon_map_transfer_labels */
-  MCON_FIELD_UV = 5              /* dimension 2, interpolated */
-} mcon_field_kind;
+/* Field kinds: mcon_field_kind (declared with the library API). Integer labels go through
+ * mcon_map_transfer_labels; tangent vectors are pushed forward by the map's Jacobian and projected
+ * onto the target's tangent plane; the other kinds are interpolated. */
 
 /* A per-vertex field of the source (source_vertex_count * dimension doubles, vertex-major)
  * -> target vertices (target_vertex_count * dimension doubles). Vertices outside the overlap get
