@@ -77,7 +77,7 @@ struct EntryContent {
   std::vector<double> sizing, direction, normal, uv;
   std::vector<int32_t> region;
   std::vector<mcon_vertex_field> fields;
-  std::vector<const char*> tags{"face", "symmetric"};
+  std::vector<const char*> tags;
   mcon_library_entry_desc desc{};
 };
 
@@ -93,6 +93,8 @@ inline void fill_entry(EntryContent& c, mcon_patch patch, const char* name, cons
   if (!full) return;
   c.desc.author = "Vendor GmbH";
   c.desc.licence = "CC-BY-4.0";
+  c.tags.push_back("face");
+  c.tags.push_back("symmetric");
   c.desc.tags = c.tags.data();
   c.desc.tag_count = c.tags.size();
   const uint32_t m = static_cast<uint32_t>(info.triangle_count);
