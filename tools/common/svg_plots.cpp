@@ -182,7 +182,7 @@ void write_scatter_svg(const std::string& path, const ScatterPlot& plot) {
   const auto Y = [&](double y) { return top + ph / 2 - (y - cy) * scale; };
   std::ostringstream s;
   s << svg_header(W, H);
-  s << text((left + pw) / 2.0 + 10, 28, plot.title, 15, "middle", "font-weight=\"bold\"");
+  s << text(W / 2.0, 28, plot.title, 15, "middle", "font-weight=\"bold\"");
   s << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << pw << "\" height=\"" << ph
     << "\" fill=\"none\" stroke=\"#999\"/>\n";
   const auto mark = [&](double x, double y, int g, int m) {
