@@ -38,7 +38,8 @@ const char* kUsage =
     "the vocabulary answering a query is fitted on the patches of the other subjects only.\n"
     "Defaults: seed 1, 8 people and 8 faces (160 patches), curv9, 1 ring (plain), k 128, sigma by the median rule.\n"
     "--compare also evaluates curv9, hks and wks with 1, 2, 4 and 8 rings on the same patches.\n"
-    "--json prints one JSON object; --plot DIR writes precision_recall.svg and mds.svg.\n";
+    "--json prints one JSON object; --plot DIR writes precision_recall.svg and mds.svg (and mds_zoom.svg, the\n"
+    "larger of two well-separated groups alone).\n";
 
 tools::Json number_array(const std::vector<double>& v) {
   tools::Json a = tools::Json::array();
@@ -164,8 +165,9 @@ int run_eval_retrieval(const Args& args) {
     if (!plot_dir.empty()) {
       tools::PrecisionRecallPlot pr;
       char title[160];
-      std::snprintf(title, sizeof title, "%s, %u ring%s, k = %d: %zu patches, nn accuracy %.3f", main_ev.descriptor.c_str(),
-                    main_ev.rings, main_ev.rings == 1 ? "" : "s", main_ev.vocabulary_size, n, main_ev.nn_accuracy);
+      std::snprintf(title, sizeof title, "%s, %u ring%s, k = %d: %zu patches, nn accuracy %.3f, P@4 %.3f", main_ev.descriptor.c_str(),
+                    main_ev.rings, main_ev.rings == 1 ? "" : "s", main_ev.vocabulary_size, n, main_ev.nn_accuracy,
+                    main_ev.precision_at[3]);
       pr.title = title;
       pr.precision = main_ev.precision_at;
       pr.recall = main_ev.recall_at;
@@ -183,6 +185,41 @@ int run_eval_retrieval(const Args& args) {
         sc.marker.push_back(bp.model == "ict" ? 1 : 0);
       }
       tools::write_scatter_svg(plot_dir + "/mds.svg", sc);
+      // A well-separated group (hands and feet, far from the head classes) squeezes the rest into a
+      // corner of the picture: if the first axis has a gap of more than 30% of its span, also draw
+      // the MDS recomputed on the larger side alone (mds_zoom.svg).
+      std::vector<std::size_t> order(n);
+      for (std::size_t i = 0; i < n; ++i) order[i] = i;
+      std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return sc.xy[2 * a] < sc.xy[2 * b]; });
+      double best_gap = 0;
+      std::size_t split = 0;
+      for (std::size_t i = 1; i < n; ++i) {
+        const double gap = sc.xy[2 * order[i]] - sc.xy[2 * order[i - 1]];
+        if (gap > best_gap) best_gap = gap, split = i;
+      }
+      const double span = n ? sc.xy[2 * order[n - 1]] - sc.xy[2 * order[0]] : 0.0;
+      if (n >= 4 && span > 0 && best_gap > 0.3 * span) {
+        std::vector<std::size_t> keep(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(split));
+        if (keep.size() < n - split) keep.assign(order.begin() + static_cast<std::ptrdiff_t>(split), order.end());
+        std::sort(keep.begin(), keep.end());
+        const std::size_t m = keep.size();
+        std::vector<double> sub(m * m);
+        for (std::size_t a = 0; a < m; ++a)
+          for (std::size_t b = 0; b < m; ++b) sub[a * m + b] = main_ev.distances[keep[a] * n + keep[b]];
+        tools::ScatterPlot zoom;
+        std::snprintf(title, sizeof title, "MDS of the %zu patches of the larger group (%s, %u ring%s; 2 axes keep %.0f%%)", m,
+                      main_ev.descriptor.c_str(), main_ev.rings, main_ev.rings == 1 ? "" : "s",
+                      100 * tools::classical_mds_2d_explained(sub, m));
+        zoom.title = title;
+        zoom.xy = tools::classical_mds_2d(sub, m);
+        zoom.groups = sc.groups;
+        zoom.markers = sc.markers;
+        for (const std::size_t i : keep) {
+          zoom.group.push_back(sc.group[i]);
+          zoom.marker.push_back(sc.marker[i]);
+        }
+        tools::write_scatter_svg(plot_dir + "/mds_zoom.svg", zoom);
+      }
     }
 
     if (json) {

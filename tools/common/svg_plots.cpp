@@ -132,24 +132,39 @@ void write_precision_recall_svg(const std::string& path, const PrecisionRecallPl
   s << text(left + pw / 2, H - 15, "number of retrieved patches n", 13, "middle");
   s << text(18, top + ph / 2, "ratio", 13, "middle",
             ("transform=\"rotate(-90 18 " + fmt(top + ph / 2) + ")\"").c_str());
-  const auto curve = [&](const std::vector<double>& v, const char* colour, const char* name, double legend_y) {
+  const auto curve = [&](const std::vector<double>& v, const char* colour) {
     s << "<polyline fill=\"none\" stroke=\"" << colour << "\" stroke-width=\"2.5\" points=\"";
     for (std::size_t i = 0; i < v.size(); ++i) s << fmt(X(static_cast<double>(i + 1))) << "," << fmt(Y(v[i])) << " ";
     s << "\"/>\n";
     for (std::size_t i = 0; i < v.size(); ++i)
       s << "<circle cx=\"" << fmt(X(static_cast<double>(i + 1))) << "\" cy=\"" << fmt(Y(v[i])) << "\" r=\"4\" fill=\""
         << colour << "\"/>\n";
-    const double lx = left + pw - 150;
-    s << "<line x1=\"" << fmt(lx) << "\" y1=\"" << fmt(legend_y) << "\" x2=\"" << fmt(lx + 28) << "\" y2=\""
-      << fmt(legend_y) << "\" stroke=\"" << colour << "\" stroke-width=\"2.5\"/>\n";
-    s << text(lx + 36, legend_y + 4, name, 13);
   };
-  // Legend in the middle right, where precision (high) and recall (rising) leave room.
-  const double ly = top + ph * 0.55;
-  s << "<rect x=\"" << fmt(left + pw - 160) << "\" y=\"" << fmt(ly - 16) << "\" width=\"150\" height=\"52\" "
+  // Legend at the right end, in a band that neither curve crosses over the last few n (the curves
+  // are drawn first, the legend box on top of them).
+  const double candidates[][2] = {{0.62, 0.47}, {0.22, 0.07}, {0.88, 0.73}, {0.45, 0.30}};
+  double band_top = candidates[0][0];
+  for (const auto& c : candidates) {
+    bool free = true;
+    for (std::size_t i = count * 6 / 10; i < count; ++i)
+      for (const double v : {plot.precision[i], plot.recall[i]}) free = free && (v > c[0] + 0.02 || v < c[1] - 0.02);
+    if (free) {
+      band_top = c[0];
+      break;
+    }
+  }
+  curve(plot.precision, "#4e79a7");
+  curve(plot.recall, "#e15759");
+  const double lx = left + pw - 160, ly = Y(band_top);
+  s << "<rect x=\"" << fmt(lx) << "\" y=\"" << fmt(ly) << "\" width=\"150\" height=\"52\" "
     << "fill=\"white\" stroke=\"#999\"/>\n";
-  curve(plot.precision, "#4e79a7", "precision", ly);
-  curve(plot.recall, "#e15759", "recall", ly + 22);
+  const auto legend = [&](const char* colour, const char* name, double y) {
+    s << "<line x1=\"" << fmt(lx + 10) << "\" y1=\"" << fmt(y) << "\" x2=\"" << fmt(lx + 38) << "\" y2=\"" << fmt(y)
+      << "\" stroke=\"" << colour << "\" stroke-width=\"2.5\"/>\n";
+    s << text(lx + 46, y + 4, name, 13);
+  };
+  legend("#4e79a7", "precision", ly + 16);
+  legend("#e15759", "recall", ly + 38);
   s << "</svg>\n";
   write_text_file(path, s.str());
 }
