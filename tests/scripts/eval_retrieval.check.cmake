@@ -2,8 +2,10 @@
 file(REMOVE_RECURSE ${OUT})
 file(MAKE_DIRECTORY ${OUT})
 set(failures 0)
+# check("<if() condition>" "message"): the condition is split into if() arguments like a shell line.
 macro(check condition message)
-  if(NOT (${condition}))
+  separate_arguments(_cond UNIX_COMMAND "${condition}")
+  if(NOT (${_cond}))
     message(SEND_ERROR "${message}")
     math(EXPR failures "${failures} + 1")
   endif()
