@@ -66,13 +66,6 @@ tools::Json evaluation_summary(const tools::RetrievalEvaluation& ev) {
   return j;
 }
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  const std::size_t h = v.size() / 2;
-  return v.size() % 2 ? v[h] : 0.5 * (v[h - 1] + v[h]);
-}
-
 int run_eval_retrieval(const Args& args) {
   if (!args.empty() && (args[0] == "--help" || args[0] == "-h")) {
     std::fputs(kUsage, stdout);
@@ -266,8 +259,8 @@ int run_eval_retrieval(const Args& args) {
       j.set("library_build_seconds", main_ev.library_build_seconds);
       j.set("vocabulary_seconds", main_ev.vocabulary_seconds);
       j.set("query_seconds_median", main_ev.query_seconds_median);
-      j.set("describe_seconds_median", median(describe_s));
-      j.set("prepare_seconds_median", median(prepare_s));
+      j.set("describe_seconds_median", tools::median_of(describe_s));
+      j.set("prepare_seconds_median", tools::median_of(prepare_s));
       j.set("instances_seconds", set.instances_seconds);
       j.set("patches_seconds", set.patches_seconds);
       j.set("threads", tbb::this_task_arena::max_concurrency());
@@ -275,7 +268,8 @@ int run_eval_retrieval(const Args& args) {
       j.set("vocabulary_rule",
             "leave-one-out; the normalization, k-means vocabulary and sigma_bof answering a query are fitted on "
             "the patches of the other folds only (fold = subject number mod folds; person i and face i are "
-            "subject i), so neither the query nor its own person or face shapes the words");
+            "subject i; with a single subject, patch number mod 2), so neither the query nor its own person "
+            "or face shapes the words");
       j.set("retessellation",
             "per patch: quad diagonals alternate or random, then seeded halfedge-collapse decimation of the "
             "instance removing 20-40% of its vertices (center kept), then the heat-method geodesic disk");

@@ -28,13 +28,6 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  const std::size_t h = v.size() / 2;
-  return v.size() % 2 ? v[h] : 0.5 * (v[h - 1] + v[h]);
-}
-
 // One model's instances and classes, ready for patch cutting.
 struct ModelData {
   std::string name;
@@ -222,9 +215,8 @@ std::vector<RetrievalEvaluation> evaluate_retrieval(const RetrievalBenchmark& se
   };
 
   const std::size_t R = options.rings.size();
-  // histograms[r][p] of patch p under the vocabulary of p's own fold (the one that answers it) ...
-  // distances are then computed per query fold, with every patch histogrammed under that fold's
-  // vocabulary.
+  // Per fold: the vocabulary of the other folds, every patch histogrammed with it, and the fold's
+  // queries answered against all other patches. distance[r] row q is d_q(q, .) under q's vocabulary.
   std::vector<RetrievalEvaluation> results(R);
   std::vector<std::vector<double>> distance(R, std::vector<double>(n * n, 0.0));  // d_i(i, j), row i
   std::vector<std::vector<double>> query_seconds(R), build_seconds(R);
@@ -310,8 +302,8 @@ std::vector<RetrievalEvaluation> evaluate_retrieval(const RetrievalBenchmark& se
     RetrievalEvaluation& ev = results[r];
     ev.descriptor = set.descriptors[descriptor_index];
     ev.rings = options.rings[r];
-    ev.vocabulary_size = static_cast<int>(median(vocab_sizes));
-    ev.sigma_bof = median(sigmas);
+    ev.vocabulary_size = static_cast<int>(median_of(vocab_sizes));
+    ev.sigma_bof = median_of(sigmas);
     ev.class_size = class_size;
     ev.precision_at.assign(kTop, 0.0);
     ev.recall_at.assign(kTop, 0.0);
@@ -351,15 +343,22 @@ std::vector<RetrievalEvaluation> evaluate_retrieval(const RetrievalBenchmark& se
     for (double& v : ev.recall_at) v = recall_queries > 0 ? v / recall_queries : 0.0;
     for (const auto& [label, size] : class_size)
       ev.class_nn_accuracy[label] = static_cast<double>(class_hits[label]) / static_cast<double>(size);
-    ev.library_build_seconds = median(build_seconds[r]);
-    ev.vocabulary_seconds = median(vocab_seconds);
-    ev.query_seconds_median = median(query_seconds[r]);
+    ev.library_build_seconds = median_of(build_seconds[r]);
+    ev.vocabulary_seconds = median_of(vocab_seconds);
+    ev.query_seconds_median = median_of(query_seconds[r]);
     ev.distances.assign(n * n, 0.0);
     for (std::size_t i = 0; i < n; ++i)
       for (std::size_t j = 0; j < n; ++j)
         ev.distances[i * n + j] = 0.5 * (distance[r][i * n + j] + distance[r][j * n + i]);
   }
   return results;
+}
+
+double median_of(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  const std::size_t h = v.size() / 2;
+  return v.size() % 2 ? v[h] : 0.5 * (v[h - 1] + v[h]);
 }
 
 }  // namespace mcon::tools

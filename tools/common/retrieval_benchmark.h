@@ -95,7 +95,9 @@ struct RetrievalEvaluation {
     int query = 0, neighbour = 0, first_correct_rank = 0;
   };
   std::vector<Miss> misses;
-  double library_build_seconds = 0;  // median over folds: vocabulary + histograms of the library
+  // Median over folds of: vocabulary (wall clock) + the sum of the library entries' histogram times
+  // (each timed alone, so the sum is what one thread would spend).
+  double library_build_seconds = 0;
   double vocabulary_seconds = 0;     // median over folds: normalization + k-means + sigma
   double query_seconds_median = 0;   // histogram of the query + top-10 scan over the library
   // Symmetrized L1 distances, patches x patches row-major: (d_i(i,j) + d_j(i,j)) / 2 with d_i
@@ -107,5 +109,8 @@ struct RetrievalEvaluation {
 // for how vocabularies are fitted), one result per options.rings entry.
 std::vector<RetrievalEvaluation> evaluate_retrieval(const RetrievalBenchmark& set, std::size_t descriptor_index,
                                                     const RetrievalEvalOptions& options);
+
+// Median of the values (mean of the middle two for an even count); 0 for none.
+double median_of(std::vector<double> values);
 
 }  // namespace mcon::tools
