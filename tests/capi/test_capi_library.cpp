@@ -205,7 +205,7 @@ TEST_F(LibraryTest, QueriesFindEachEntryFirstAndSurviveSaveAndOpen) {
   mcon_retrieval_options o = small_options();
   ASSERT_EQ(mcon_library_build_retrieval(lib.get(), &o), MCON_OK) << last_message();
   const mcon_library_info info = library_info(lib.get());
-  EXPECT_EQ(info.rings, 4u);  // the default (kDefaultRetrievalRings)
+  EXPECT_EQ(info.rings, 1u);  // the default (kDefaultRetrievalRings)
   EXPECT_GE(info.vocabulary_size, 2u);
   EXPECT_LE(info.vocabulary_size, 16u);
   EXPECT_EQ(info.histogram_length, info.vocabulary_size * info.rings);

@@ -277,7 +277,7 @@ TEST_F(LibraryArgs, BuildRetrievalOptionsAreChecked) {
   EXPECT_STATUS(mcon_library_build_retrieval(empty.get(), &o), MCON_ERROR_INVALID_ARGUMENT);
   // NULL options = the defaults.
   EXPECT_STATUS(mcon_library_build_retrieval(lib_.get(), nullptr), MCON_OK);
-  EXPECT_EQ(library_info(lib_.get()).rings, 4u);
+  EXPECT_EQ(library_info(lib_.get()).rings, 1u);
 }
 
 TEST_F(LibraryArgs, BadConstraintsAndFieldsAreRefusedWithoutChange) {

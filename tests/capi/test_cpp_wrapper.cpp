@@ -266,7 +266,7 @@ TEST(CppWrapper, LibraryAddBuildQuerySaveOpenMergeAndEntries) {
   EXPECT_NE(std::string(no_vocabulary.what()).find("vocabulary"), std::string::npos);
 
   mcon_retrieval_options o = macrocon::Library::default_retrieval_options();
-  EXPECT_EQ(o.rings, 4u);
+  EXPECT_EQ(o.rings, 1u);
   EXPECT_EQ(o.vocabulary_size, 128u);
   o.vocabulary_size = 8;
   lib.build_retrieval(o);
