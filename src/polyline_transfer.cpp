@@ -208,7 +208,9 @@ std::vector<TracedPolyline> PolylineTransfer::map_polylines(const std::vector<Po
           left_edge = {cur, edge};
           cur = -1;
           entry = -1;
-          s = s_exit;
+          // Re-enter only strictly later: a segment grazing a boundary vertex could otherwise
+          // "enter" through the other boundary edge at the same point and circle the vertex.
+          s = s_exit + 1e-9;
           continue;
         }
         entry = I.corner_facing(next, cur);
