@@ -193,7 +193,9 @@ std::vector<MappingPairResult> run_mapping_evaluation(const MappingEvalOptions& 
             "eval-mapping: unknown method '" + m + "'");
   const std::vector<MappingSlot> slots = mapping_slots(options.shared_dir, options.parts);
   require(!slots.empty(), MCON_ERROR_INVALID_ARGUMENT, "eval-mapping: no class selected");
-  const int pairs = options.pairs > 0 ? options.pairs : static_cast<int>(slots.size());
+  const int makehuman_slots = static_cast<int>(
+      std::count_if(slots.begin(), slots.end(), [](const MappingSlot& s) { return s.model == "makehuman"; }));
+  const int pairs = options.pairs > 0 ? options.pairs : (makehuman_slots > 0 ? makehuman_slots : static_cast<int>(slots.size()));
   auto wants = [&](const char* m) {
     return std::find(options.methods.begin(), options.methods.end(), m) != options.methods.end();
   };

@@ -38,7 +38,7 @@ struct MappingSlot {
 struct MappingEvalOptions {
   std::string shared_dir;
   std::uint64_t seed = 1;
-  int pairs = 0;                         // 0: one pair per slot (the default run)
+  int pairs = 0;                         // 0: one pair per MakeHuman slot (the default run)
   std::vector<std::string> parts;        // empty: all parts
   std::vector<std::string> methods = {"macrocon", "rigid", "thesis"};
   int alignment_samples = 10000;         // rigid candidates (thesis: 10,000)
