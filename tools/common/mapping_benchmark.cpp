@@ -218,15 +218,30 @@ std::vector<MappingPairResult> run_mapping_evaluation(const MappingEvalOptions& 
     res.person_a = 2 * i;
     res.person_b = 2 * i + 1;
     arena.execute([&] {
-      const TriMesh a = model.instance(options.seed, res.person_a);
-      const TriMesh b = model.instance(options.seed, res.person_b);
       const BenchClass& src_cls = model.bench.spec.find(slot.source_class);
       const BenchClass& dst_cls = model.bench.spec.find(slot.target_class);
-      DecimationOptions dec;
-      dec.keep = {dst_cls.center_vertex};
-      const Retessellation re = decimate(b, options.seed * 1000003ull + static_cast<std::uint64_t>(i), dec);
-      const CutPatch src = cut(model, src_cls, a, nullptr, nullptr);
-      const CutPatch dst = cut(model, dst_cls, b, &re.mesh, &re.to_original);
+      // A scaled-radius ball can still stop being a disk on a rare person or decimation (the
+      // forearm wraps into a ring, bench/README.md); such a pair moves on to the next people
+      // (2i + 1000k, 2i + 1 + 1000k), deterministically.
+      CutPatch src, dst;
+      for (int attempt = 0;; ++attempt) {
+        res.person_a = 2 * i + 1000 * attempt;
+        res.person_b = res.person_a + 1;
+        try {
+          const TriMesh a = model.instance(options.seed, res.person_a);
+          const TriMesh b = model.instance(options.seed, res.person_b);
+          DecimationOptions dec;
+          dec.keep = {dst_cls.center_vertex};
+          const Retessellation re =
+              decimate(b, options.seed * 1000003ull + static_cast<std::uint64_t>(i) + 7919ull * attempt, dec);
+          src = cut(model, src_cls, a, nullptr, nullptr);
+          dst = cut(model, dst_cls, b, &re.mesh, &re.to_original);
+          break;
+        } catch (const Error& e) {
+          if (e.status() != MCON_ERROR_NOT_A_DISK || attempt >= 4) throw;
+          if (options.log) options.log("pair " + std::to_string(i) + ": " + e.what() + "; next people");
+        }
+      }
       res.source_vertices = src.patch.mesh.num_vertices();
       res.target_vertices = dst.patch.mesh.num_vertices();
 
