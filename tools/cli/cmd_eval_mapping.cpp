@@ -58,7 +58,7 @@ int run_eval_mapping(const Args& args) {
   require(o.pairs >= 0 && o.pairs <= 100000, MCON_ERROR_INVALID_ARGUMENT, "--pairs must be in [1, 100000]");
   require(!p.has("pairs") || o.pairs >= 1, MCON_ERROR_INVALID_ARGUMENT, "--pairs must be in [1, 100000]");
   if (p.has("classes")) o.parts = split(p.get("classes"));
-  if (p.has("method")) o.methods = {p.get("method")};
+  if (p.has("method")) o.methods = split(p.get("method"));
   o.alignment_samples = static_cast<int>(p.integer("samples", o.alignment_samples));
   o.thesis_iterations = static_cast<int>(p.integer("thesis-iterations", o.thesis_iterations));
   o.max_evaluated_vertices = static_cast<int>(p.integer("eval-vertices", o.max_evaluated_vertices));

@@ -355,6 +355,7 @@ std::vector<MappingPairResult> run_mapping_evaluation(const MappingEvalOptions& 
         r.evaluated = count;
         r.mean_eps = count ? sum / count : 0.0;
         r.within_0_05 = count ? static_cast<double>(within) / count : 0.0;
+        r.reflected = reflected[name];
         r.flipped_triangles = flipped(src.patch.mesh, p, reflected[name]);
         double inside = 0;
         for (std::size_t v = 0; v < p.size(); ++v)
@@ -368,7 +369,7 @@ std::vector<MappingPairResult> run_mapping_evaluation(const MappingEvalOptions& 
            << " (" << res.source_vertices << " -> " << res.target_vertices << " vertices, "
            << res.ground_truth_vertices << " with ground truth):";
       for (const auto& [name, r] : res.methods)
-        line << " " << name << " eps100 " << fmt(100 * r.mean_eps) << " within " << fmt(r.within_0_05) << " flips "
+        line << " " << name << (r.reflected ? " (mirrored)" : "") << " eps100 " << fmt(100 * r.mean_eps) << " within " << fmt(r.within_0_05) << " flips "
              << r.flipped_triangles << " overlap " << fmt(r.overlap) << " " << fmt(r.seconds) << "s it "
              << r.iterations << ";";
       options.log(line.str());

@@ -56,6 +56,7 @@ struct MethodPairResult {
   double overlap = 0;       // source vertex area mapped inside the target / total
   double seconds = 0;
   int iterations = 0;
+  bool reflected = false;   // the map reverses orientation (expected exactly for mirrored pairs)
 };
 
 struct MappingPairResult {
