@@ -11,6 +11,8 @@ namespace mcon {
 
 namespace {
 
+constexpr double kChiralityCenterRadius = 0.3;  // normalized geodesic radius of the center normal
+
 // Per-vertex channels of one patch before the joint normalization: mean curvature at sigma 0.1
 // (thesis §4.4: smooth, orientation-blind), the geodesic distance from the patch center and the
 // straight-line (3D) distance from it. Both patches are geodesic disks around corresponding
@@ -20,7 +22,7 @@ namespace {
 // patch apart (across vs. along a forearm, where intrinsic descriptors are blind).
 Eigen::MatrixXd raw_channels(const Patch& patch, bool center_channels) {
   const int n = patch.mesh.num_vertices();
-  Eigen::MatrixXd c(n, center_channels ? 3 : 1);
+  Eigen::MatrixXd c(n, center_channels ? 4 : 1);
   c.col(0) = mean_curvature_descriptor(patch.mesh);
   if (!center_channels) return c;
   require(patch.center_triangle >= 0 && patch.center_triangle < patch.mesh.num_triangles(),
@@ -32,6 +34,24 @@ Eigen::MatrixXd raw_channels(const Patch& patch, bool center_channels) {
   const Vec3 center = b[0] * patch.mesh.positions[t[0]] + b[1] * patch.mesh.positions[t[1]] +
                       b[2] * patch.mesh.positions[t[2]];
   for (int v = 0; v < n; ++v) c(v, 2) = (patch.mesh.positions[v] - center).norm();
+  // Chirality: n_c . ((p - c) x n_p), with n_p the vertex normal and n_c the mean normal around
+  // the center. It is invariant to rigid motions and changes sign under a reflection, so unlike
+  // every other channel it tells a right foot from a left one (orientation-blind descriptors rate
+  // a patch and its mirror image alike, which made the mirror decision a coin toss on feet).
+  std::vector<Vec3> normal(n, Vec3::Zero());
+  for (const Tri& tr : patch.mesh.triangles) {
+    const Vec3 a = (patch.mesh.positions[tr[1]] - patch.mesh.positions[tr[0]])
+                       .cross(patch.mesh.positions[tr[2]] - patch.mesh.positions[tr[0]]);
+    for (int k = 0; k < 3; ++k) normal[tr[k]] += a;
+  }
+  Vec3 nc = Vec3::Zero();
+  for (int v = 0; v < n; ++v)
+    if (c(v, 1) < kChiralityCenterRadius) nc += normal[v];
+  if (nc.norm() > 0) nc.normalize();
+  for (int v = 0; v < n; ++v) {
+    const double len = normal[v].norm();
+    c(v, 3) = len > 0 ? nc.dot((patch.mesh.positions[v] - center).cross(normal[v] / len)) : 0.0;
+  }
   require(c.allFinite(), MCON_ERROR_NUMERICAL, "map_patches: non-finite center distance");
   return c;
 }
@@ -43,10 +63,12 @@ SurfaceMap map_patches(const Patch& source, const Patch& target, const PatchMapO
   require(options.center_distance_weight >= 0 && options.chord_weight >= 0 &&
               std::isfinite(options.center_distance_weight) && std::isfinite(options.chord_weight),
           MCON_ERROR_INVALID_ARGUMENT, "map_patches: invalid descriptor weights");
-  const bool center = options.center_distance_weight > 0 || options.chord_weight > 0;
+  require(options.chirality_weight >= 0 && std::isfinite(options.chirality_weight), MCON_ERROR_INVALID_ARGUMENT,
+          "map_patches: invalid chirality weight");
+  const bool center = options.center_distance_weight > 0 || options.chord_weight > 0 || options.chirality_weight > 0;
   Eigen::MatrixXd s = raw_channels(source, center), t = raw_channels(target, center);
   // Joint normalization (thesis §3.1: every dimension std 1 over both patches), then weights.
-  const double weights[3] = {1.0, options.center_distance_weight, options.chord_weight};
+  const double weights[4] = {1.0, options.center_distance_weight, options.chord_weight, options.chirality_weight};
   for (int k = 0; k < s.cols(); ++k) {
     // The chord channel carries the chord/arc difference, which is what distinguishes
     // directions; the arc itself is already channel 1.
@@ -63,8 +85,10 @@ SurfaceMap map_patches(const Patch& source, const Patch& target, const PatchMapO
   }
   const std::vector<Eigen::MatrixXd> source_levels = descriptor_pyramid(source.mesh, s, options.pyramid_sigmas);
   const std::vector<Eigen::MatrixXd> target_levels = descriptor_pyramid(target.mesh, t, options.pyramid_sigmas);
+  SurfaceMapOptions map_options = options.map;
+  if (center && options.chirality_weight > 0) map_options.chiral_columns = {3};
   return compute_surface_map({source.mesh, source.uv, source_levels}, {target.mesh, target.uv, target_levels},
-                             options.map);
+                             map_options);
 }
 
 }  // namespace mcon

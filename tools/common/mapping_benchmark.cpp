@@ -282,6 +282,15 @@ std::vector<MappingPairResult> run_mapping_evaluation(const MappingEvalOptions& 
       const SurfaceMap map = map_patches(src.patch, dst.patch, mo);
       const double map_seconds = seconds_since(t0);
       const RigidTransform2D T = map.alignment.transform;
+      {
+        std::ostringstream o;
+        o << "rigid scores plain " << fmt(map.alignment.score_unreflected) << " mirrored "
+          << fmt(map.alignment.score_reflected);
+        if (map.orientation_compared)
+          o << ", level-0 energies plain " << fmt(map.level0_energy_unreflected) << " mirrored "
+            << fmt(map.level0_energy_reflected);
+        res.orientation_note = o.str();
+      }
       if (wants("macrocon")) {
         phi["macrocon"] = map.phi;
         reflected["macrocon"] = map.reflected;
@@ -372,6 +381,7 @@ std::vector<MappingPairResult> run_mapping_evaluation(const MappingEvalOptions& 
         line << " " << name << (r.reflected ? " (mirrored)" : "") << " eps100 " << fmt(100 * r.mean_eps) << " within " << fmt(r.within_0_05) << " flips "
              << r.flipped_triangles << " overlap " << fmt(r.overlap) << " " << fmt(r.seconds) << "s it "
              << r.iterations << ";";
+      if (!res.orientation_note.empty()) line << " (" << res.orientation_note << ")";
       options.log(line.str());
     }
     results.push_back(std::move(res));

@@ -64,6 +64,7 @@ struct MappingPairResult {
   int person_a = 0, person_b = 0;
   int source_vertices = 0, target_vertices = 0;
   int ground_truth_vertices = 0;  // source vertices with a surviving true vertex
+  std::string orientation_note;   // the map's orientation evidence (rigid scores, level-0 energies)
   std::map<std::string, MethodPairResult> methods;
 };
 
