@@ -1,28 +1,94 @@
 #include "patch_map.h"
 
+#include <cmath>
+
 #include "curvature_descriptors.h"
 #include "descriptor_pyramid.h"
 #include "error.h"
+#include "heat_geodesics.h"
 
 namespace mcon {
 
 namespace {
 
-// Mean curvature at sigma 0.1 (thesis §4.2: one smooth, orientation-blind scalar suffices for the
-// map; the pyramid adds the coarser scales).
-std::vector<Eigen::MatrixXd> map_descriptor_levels(const Patch& patch, const std::vector<double>& sigmas) {
-  const Eigen::MatrixXd h = mean_curvature_descriptor(patch.mesh);
-  return descriptor_pyramid(patch.mesh, h, sigmas);
+constexpr double kChiralityCenterRadius = 0.3;  // normalized geodesic radius of the center normal
+
+// Per-vertex channels of one patch before the joint normalization: mean curvature at sigma 0.1
+// (thesis §4.4: smooth, orientation-blind), the geodesic distance from the patch center and the
+// straight-line (3D) distance from it. Both patches are geodesic disks around corresponding
+// centers (design-notes §1: "patches are disks with a known center"), so the center distance
+// pins every point's ring, which curvature alone cannot on parts with repeated features
+// (fingers, toes); the chord/arc difference is extrinsic and tells the directions of a bent
+// patch apart (across vs. along a forearm, where intrinsic descriptors are blind).
+Eigen::MatrixXd raw_channels(const Patch& patch, bool center_channels) {
+  const int n = patch.mesh.num_vertices();
+  Eigen::MatrixXd c(n, center_channels ? 4 : 1);
+  c.col(0) = mean_curvature_descriptor(patch.mesh);
+  if (!center_channels) return c;
+  require(patch.center_triangle >= 0 && patch.center_triangle < patch.mesh.num_triangles(),
+          MCON_ERROR_INVALID_ARGUMENT, "map_patches: the patch has no center triangle");
+  const HeatGeodesics heat(patch.mesh);
+  const Vec3 b = patch.center_barycentric.cwiseMax(0.0) / patch.center_barycentric.cwiseMax(0.0).sum();
+  c.col(1) = heat.from_point(patch.center_triangle, b);
+  const Tri& t = patch.mesh.triangles[patch.center_triangle];
+  const Vec3 center = b[0] * patch.mesh.positions[t[0]] + b[1] * patch.mesh.positions[t[1]] +
+                      b[2] * patch.mesh.positions[t[2]];
+  for (int v = 0; v < n; ++v) c(v, 2) = (patch.mesh.positions[v] - center).norm();
+  // Chirality: n_c . ((p - c) x n_p), with n_p the vertex normal and n_c the mean normal around
+  // the center. It is invariant to rigid motions and changes sign under a reflection, so unlike
+  // every other channel it tells a right foot from a left one (orientation-blind descriptors rate
+  // a patch and its mirror image alike, which made the mirror decision a coin toss on feet).
+  std::vector<Vec3> normal(n, Vec3::Zero());
+  for (const Tri& tr : patch.mesh.triangles) {
+    const Vec3 a = (patch.mesh.positions[tr[1]] - patch.mesh.positions[tr[0]])
+                       .cross(patch.mesh.positions[tr[2]] - patch.mesh.positions[tr[0]]);
+    for (int k = 0; k < 3; ++k) normal[tr[k]] += a;
+  }
+  Vec3 nc = Vec3::Zero();
+  for (int v = 0; v < n; ++v)
+    if (c(v, 1) < kChiralityCenterRadius) nc += normal[v];
+  if (nc.norm() > 0) nc.normalize();
+  for (int v = 0; v < n; ++v) {
+    const double len = normal[v].norm();
+    c(v, 3) = len > 0 ? nc.dot((patch.mesh.positions[v] - center).cross(normal[v] / len)) : 0.0;
+  }
+  require(c.allFinite(), MCON_ERROR_NUMERICAL, "map_patches: non-finite center distance");
+  return c;
 }
 
 }  // namespace
 
 SurfaceMap map_patches(const Patch& source, const Patch& target, const PatchMapOptions& options) {
   require(!options.pyramid_sigmas.empty(), MCON_ERROR_INVALID_ARGUMENT, "map_patches: no descriptor levels");
-  const std::vector<Eigen::MatrixXd> source_levels = map_descriptor_levels(source, options.pyramid_sigmas);
-  const std::vector<Eigen::MatrixXd> target_levels = map_descriptor_levels(target, options.pyramid_sigmas);
+  require(options.center_distance_weight >= 0 && options.chord_weight >= 0 &&
+              std::isfinite(options.center_distance_weight) && std::isfinite(options.chord_weight),
+          MCON_ERROR_INVALID_ARGUMENT, "map_patches: invalid descriptor weights");
+  require(options.chirality_weight >= 0 && std::isfinite(options.chirality_weight), MCON_ERROR_INVALID_ARGUMENT,
+          "map_patches: invalid chirality weight");
+  const bool center = options.center_distance_weight > 0 || options.chord_weight > 0 || options.chirality_weight > 0;
+  Eigen::MatrixXd s = raw_channels(source, center), t = raw_channels(target, center);
+  // Joint normalization (thesis §3.1: every dimension std 1 over both patches), then weights.
+  const double weights[4] = {1.0, options.center_distance_weight, options.chord_weight, options.chirality_weight};
+  for (int k = 0; k < s.cols(); ++k) {
+    // The chord channel carries the chord/arc difference, which is what distinguishes
+    // directions; the arc itself is already channel 1.
+    if (k == 2) {
+      s.col(2) = s.col(1) - s.col(2);
+      t.col(2) = t.col(1) - t.col(2);
+    }
+    const double mean = (s.col(k).sum() + t.col(k).sum()) / static_cast<double>(s.rows() + t.rows());
+    const double var = ((s.col(k).array() - mean).square().sum() + (t.col(k).array() - mean).square().sum()) /
+                       static_cast<double>(s.rows() + t.rows());
+    const double scale = weights[k] / std::sqrt(std::max(var, 1e-24));
+    s.col(k) = (s.col(k).array() - mean) * scale;
+    t.col(k) = (t.col(k).array() - mean) * scale;
+  }
+  const std::vector<Eigen::MatrixXd> source_levels = descriptor_pyramid(source.mesh, s, options.pyramid_sigmas);
+  const std::vector<Eigen::MatrixXd> target_levels = descriptor_pyramid(target.mesh, t, options.pyramid_sigmas);
+  SurfaceMapOptions map_options = options.map;
+  if (center && options.chirality_weight > 0) map_options.chiral_columns = {3};
   return compute_surface_map({source.mesh, source.uv, source_levels}, {target.mesh, target.uv, target_levels},
-                             options.map);
+                             map_options);
 }
 
 }  // namespace mcon

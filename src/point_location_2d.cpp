@@ -107,6 +107,25 @@ TriangleLocator2D::TriangleLocator2D(const std::vector<Vec2>& points, const std:
 // intervals, so a point on a cell border finds every triangle touching it in either cell).
 void TriangleLocator2D::build(int self, const Vec2& lo, const Vec2& hi, std::vector<int> tris, int depth) {
   constexpr int kLeafSize = 8, kMaxDepth = 24;
+  // Triangles whose box covers the whole cell are candidates for every point of it: they stay at
+  // this node instead of being copied into every descendant. Without this, a few long slivers
+  // over a dense cluster (an eye socket or fingertips squeezed by the disk parametrization) were
+  // copied into thousands of deep leaves and made every cell look overfull: building the tree
+  // took seconds on 600-triangle patches.
+  {
+    std::vector<int> rest;
+    rest.reserve(tris.size());
+    nodes_[self].full_first = static_cast<int>(full_items_.size());
+    for (int i : tris) {
+      if (depth > 0 && box_lo_[i].x() <= lo.x() && box_lo_[i].y() <= lo.y() && box_hi_[i].x() >= hi.x() &&
+          box_hi_[i].y() >= hi.y())
+        full_items_.push_back(i);
+      else
+        rest.push_back(i);
+    }
+    nodes_[self].full_count = static_cast<int>(full_items_.size()) - nodes_[self].full_first;
+    tris.swap(rest);
+  }
   if (static_cast<int>(tris.size()) <= kLeafSize || depth >= kMaxDepth) {
     nodes_[self].first = static_cast<int>(items_.size());
     nodes_[self].count = static_cast<int>(tris.size());
@@ -147,26 +166,28 @@ void TriangleLocator2D::build(int self, const Vec2& lo, const Vec2& hi, std::vec
 PointLocation TriangleLocator2D::locate(const Vec2& p) const {
   PointLocation best;
   if (nodes_.empty() || !std::isfinite(p.x()) || !std::isfinite(p.y())) return best;
-  int node = 0;
-  while (nodes_[node].children >= 0) {
-    const Vec2& c = nodes_[node].center;
-    node = nodes_[node].children + (p.x() >= c.x() ? 1 : 0) + (p.y() >= c.y() ? 2 : 0);
-  }
   double best_min = -kInsideTolerance;
-  const Node& leaf = nodes_[node];
-  for (int k = leaf.first; k < leaf.first + leaf.count; ++k) {
-    const int i = items_[k];
-    if (p.x() < box_lo_[i].x() || p.y() < box_lo_[i].y() || p.x() > box_hi_[i].x() || p.y() > box_hi_[i].y()) continue;
+  auto consider = [&](int i) {
+    if (p.x() < box_lo_[i].x() || p.y() < box_lo_[i].y() || p.x() > box_hi_[i].x() || p.y() > box_hi_[i].y()) return;
     const Tri& t = triangles_[i];
     const Vec3 l = barycentric_2d(p, points_[t[0]], points_[t[1]], points_[t[2]]);
     const double m = l.minCoeff();
-    // Leaves list triangles in ascending index order: ties keep the lowest index.
-    if (m > best_min || (m >= best_min && best.triangle < 0)) {
+    // Deepest wins, ties keep the lowest index: independent of the order candidates come in.
+    if (m > best_min || (m >= best_min && (best.triangle < 0 || i < best.triangle))) {
       best_min = m;
       best.triangle = i;
       best.barycentric = l;
     }
+  };
+  int node = 0;
+  for (;;) {
+    const Node& nd = nodes_[node];
+    for (int k = nd.full_first; k < nd.full_first + nd.full_count; ++k) consider(full_items_[k]);
+    if (nd.children < 0) break;
+    node = nd.children + (p.x() >= nd.center.x() ? 1 : 0) + (p.y() >= nd.center.y() ? 2 : 0);
   }
+  const Node& leaf = nodes_[node];
+  for (int k = leaf.first; k < leaf.first + leaf.count; ++k) consider(items_[k]);
   if (best.triangle >= 0) {
     Vec3& l = best.barycentric;
     l = l.cwiseMax(0.0);
@@ -184,17 +205,20 @@ PointLocation TriangleLocator2D::locate_nearest(const Vec2& p, double max_distan
   double best_d2 = max_distance * max_distance;
   {
     const Vec2 q = p.cwiseMax(root_lo_).cwiseMin(root_hi_);
-    int node = 0;
-    while (nodes_[node].children >= 0) {
-      const Vec2& c = nodes_[node].center;
-      node = nodes_[node].children + (q.x() >= c.x() ? 1 : 0) + (q.y() >= c.y() ? 2 : 0);
-    }
-    for (int k = nodes_[node].first; k < nodes_[node].first + nodes_[node].count; ++k) {
-      const Tri& t = triangles_[items_[k]];
+    auto bound = [&](int i) {
+      const Tri& t = triangles_[i];
       const Vec3 l = closest_barycentric(p, points_[t[0]], points_[t[1]], points_[t[2]]);
       const Vec2 c = l[0] * points_[t[0]] + l[1] * points_[t[1]] + l[2] * points_[t[2]];
       best_d2 = std::min(best_d2, (c - p).squaredNorm() * (1 + 1e-12) + 1e-300);
+    };
+    int node = 0;
+    for (;;) {
+      const Node& nd = nodes_[node];
+      for (int k = nd.full_first; k < nd.full_first + nd.full_count; ++k) bound(full_items_[k]);
+      if (nd.children < 0) break;
+      node = nd.children + (q.x() >= nd.center.x() ? 1 : 0) + (q.y() >= nd.center.y() ? 2 : 0);
     }
+    for (int k = nodes_[node].first; k < nodes_[node].first + nodes_[node].count; ++k) bound(items_[k]);
   }
   for (int i : boundary_) {  // ascending: ties keep the lowest index
     const Vec2 q0 = p.cwiseMax(box_lo_[i]).cwiseMin(box_hi_[i]);

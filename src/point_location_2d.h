@@ -52,6 +52,8 @@ class TriangleLocator2D {
                         // left, 1 = lower right, 2 = upper left, 3 = upper right); leaf: -1
     int first = 0;      // leaf: range in items_
     int count = 0;
+    int full_first = 0;  // any node: triangles whose box covers the whole cell (range in full_items_)
+    int full_count = 0;
   };
   void build(int self, const Vec2& lo, const Vec2& hi, std::vector<int> tris, int depth);
 
@@ -61,6 +63,7 @@ class TriangleLocator2D {
   std::vector<Node> nodes_;
   Vec2 root_lo_ = Vec2::Zero(), root_hi_ = Vec2::Zero();
   std::vector<int> items_;             // triangle indices of the leaves, ascending per leaf
+  std::vector<int> full_items_;        // triangles kept at inner nodes (Node::full_first)
   std::vector<int> boundary_;          // triangles with an edge used by no other triangle
 };
 

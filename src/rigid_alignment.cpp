@@ -201,9 +201,14 @@ RigidAlignmentResult align_rigid(const std::vector<Vec2>& uv, const std::vector<
   std::vector<double> picked_weight;
   subsample_source(uv, vertex_weight, options.subsample, picked, picked_weight);
   const int m = static_cast<int>(picked.size());
-  std::vector<double> picked_values(static_cast<std::size_t>(m) * d);
+  std::vector<double> picked_values(static_cast<std::size_t>(m) * d), picked_values_reflected;
   for (int k = 0; k < m; ++k)
     for (int c = 0; c < d; ++c) picked_values[static_cast<std::size_t>(k) * d + c] = (*coarse.source_values)(picked[k], c);
+  picked_values_reflected = picked_values;
+  if (coarse.source_values_reflected)
+    for (int k = 0; k < m; ++k)
+      for (int c = 0; c < d; ++c)
+        picked_values_reflected[static_cast<std::size_t>(k) * d + c] = (*coarse.source_values_reflected)(picked[k], c);
   const double inv_2s2 = 0.5 / (coarse.score.sigma * coarse.score.sigma);
 
   std::vector<double> scores(options.samples, 0.0);
@@ -215,6 +220,7 @@ RigidAlignmentResult align_rigid(const std::vector<Vec2>& uv, const std::vector<
       for (int i = start + begin; i < start + end; ++i) {
         const RigidTransform2D T = rigid_candidate(options, i);
         const Eigen::Matrix2d R = rotation(T.angle);
+        const std::vector<double>& pv = T.reflected ? picked_values_reflected : picked_values;
         double sum = 0;
         for (int k = 0; k < m; ++k) {
           const Vec2 x = R * mirror(uv[picked[k]], T.reflected) + T.translation;
@@ -224,7 +230,7 @@ RigidAlignmentResult align_rigid(const std::vector<Vec2>& uv, const std::vector<
           image.sample(x, value.data());
           double r2 = 0;
           for (int c = 0; c < d; ++c) {
-            const double r = value[c] - picked_values[static_cast<std::size_t>(k) * d + c];
+            const double r = value[c] - pv[static_cast<std::size_t>(k) * d + c];
             r2 += r * r;
           }
           sum += picked_weight[k] * w * std::exp(-r2 * inv_2s2);
@@ -270,31 +276,41 @@ RigidAlignmentResult align_rigid(const std::vector<Vec2>& uv, const std::vector<
   std::vector<double> fine_weight;
   subsample_source(uv, vertex_weight, options.refine_subsample, fine, fine_weight);
   std::vector<Vec2> fine_uv(fine.size());
-  std::vector<Eigen::MatrixXd> fine_values(levels.size());
-  std::vector<MatchLevel> fine_levels(levels);
+  std::vector<Eigen::MatrixXd> fine_values(levels.size()), fine_values_reflected(levels.size());
+  std::vector<MatchLevel> fine_levels(levels), fine_levels_reflected(levels);
   for (std::size_t k = 0; k < fine.size(); ++k) fine_uv[k] = uv[fine[k]];
   for (std::size_t l = 0; l < levels.size(); ++l) {
+    const Eigen::MatrixXd* refl = levels[l].source_values_reflected ? levels[l].source_values_reflected
+                                                                    : levels[l].source_values;
     fine_values[l].resize(static_cast<Eigen::Index>(fine.size()), levels[l].source_values->cols());
-    for (std::size_t k = 0; k < fine.size(); ++k) fine_values[l].row(k) = levels[l].source_values->row(fine[k]);
+    fine_values_reflected[l].resize(static_cast<Eigen::Index>(fine.size()), levels[l].source_values->cols());
+    for (std::size_t k = 0; k < fine.size(); ++k) {
+      fine_values[l].row(k) = levels[l].source_values->row(fine[k]);
+      fine_values_reflected[l].row(k) = refl->row(fine[k]);
+    }
     fine_levels[l].source_values = &fine_values[l];
+    fine_levels_reflected[l].source_values = &fine_values_reflected[l];
   }
   // Refinement reads the target beyond its rim by the nearest rim value (matching_score.h): the
   // overlap reward of the "0 outside" score, right for choosing among candidates, would pull a
   // partially overlapping alignment toward the center. The winner is still chosen by the
   // "0 outside" score.
-  std::vector<MatchLevel> neutral_levels(fine_levels);
+  std::vector<MatchLevel> neutral_levels(fine_levels), neutral_levels_reflected(fine_levels_reflected);
   for (MatchLevel& l : neutral_levels) l.score.outside = OutsideRule::nearest_rim;
+  for (MatchLevel& l : neutral_levels_reflected) l.score.outside = OutsideRule::nearest_rim;
   const int nc = static_cast<int>(chosen.size());
   std::vector<RigidTransform2D> refined(nc);
   std::vector<double> refined_score(nc, 0.0);
   for_each_block(nc, 1, [&](int begin, int end, int) {
     for (int c = begin; c < end; ++c) {
       RigidTransform2D T = rigid_candidate(options, chosen[c]);
+      const std::vector<MatchLevel>& neutral = T.reflected ? neutral_levels_reflected : neutral_levels;
+      const std::vector<MatchLevel>& exact = T.reflected ? fine_levels_reflected : fine_levels;
       std::vector<Vec2> rest(fine_uv.size());
       for (std::size_t v = 0; v < fine_uv.size(); ++v) rest[v] = mirror(fine_uv[v], T.reflected);
       Eigen::Vector3d g;
       Eigen::Matrix3d negH;
-      double S = full_score(rest, fine_weight, neutral_levels, T.angle, T.translation, &g, &negH);
+      double S = full_score(rest, fine_weight, neutral, T.angle, T.translation, &g, &negH);
       double damping = 1e-3;
       for (int it = 0; it < options.refine_iterations; ++it) {
         const double scale = std::max(negH.trace() / 3, 1e-12);
@@ -306,12 +322,12 @@ RigidAlignmentResult align_rigid(const std::vector<Vec2>& uv, const std::vector<
         for (int k = 0; k < 12; ++k) {
           const double a = T.angle + alpha * step[0];
           const Vec2 t = T.translation + alpha * step.tail<2>();
-          const double Sn = full_score(rest, fine_weight, neutral_levels, a, t, nullptr, nullptr);
+          const double Sn = full_score(rest, fine_weight, neutral, a, t, nullptr, nullptr);
           if (Sn > S) {
             const double gain = Sn - S;
             T.angle = a;
             T.translation = t;
-            S = full_score(rest, fine_weight, neutral_levels, T.angle, T.translation, &g, &negH);
+            S = full_score(rest, fine_weight, neutral, T.angle, T.translation, &g, &negH);
             improved = gain > 1e-10 * std::max(S, 1e-12);
             break;
           }
@@ -322,7 +338,7 @@ RigidAlignmentResult align_rigid(const std::vector<Vec2>& uv, const std::vector<
       T.angle = std::fmod(T.angle, kTwoPi);
       if (T.angle < 0) T.angle += kTwoPi;
       refined[c] = T;
-      refined_score[c] = full_score(rest, fine_weight, fine_levels, T.angle, T.translation, nullptr, nullptr);
+      refined_score[c] = full_score(rest, fine_weight, exact, T.angle, T.translation, nullptr, nullptr);
     }
   });
   report(1.0);

@@ -38,6 +38,9 @@ struct RigidTransform2D {
 // All levels' fields must live on the same target triangulation (lookups are shared).
 struct MatchLevel {
   const Eigen::MatrixXd* source_values = nullptr;
+  // The source's values as a mirrored candidate sees them (chiral channels change sign under a
+  // reflection); nullptr: the same as source_values.
+  const Eigen::MatrixXd* source_values_reflected = nullptr;
   const DescriptorField2D* target_field = nullptr;
   ScoreSettings score;
 };

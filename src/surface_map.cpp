@@ -125,9 +125,22 @@ SurfaceMap compute_surface_map(const MapDomain& source, const MapDomain& target,
   std::vector<MatchLevel> levels(L);
   SurfaceMap out;
   out.levels.resize(L);
+  for (int c : options.chiral_columns)
+    require(c >= 0 && c < source.descriptor_levels[0].cols(), MCON_ERROR_INVALID_ARGUMENT,
+            "chiral column " + std::to_string(c) + " is not a descriptor column");
+  std::vector<Eigen::MatrixXd> reflected_levels;  // the source as a mirrored map sees it
+  if (!options.chiral_columns.empty())
+    for (int l = 0; l < L; ++l) {
+      reflected_levels.push_back(source.descriptor_levels[l]);
+      for (int c : options.chiral_columns) reflected_levels.back().col(c) *= -1.0;
+    }
+  auto source_values = [&](int l, bool reflected) -> const Eigen::MatrixXd& {
+    return reflected && !reflected_levels.empty() ? reflected_levels[l] : source.descriptor_levels[l];
+  };
   for (int l = 0; l < L; ++l) {
     fields.push_back(std::make_unique<DescriptorField2D>(target_locator, target.descriptor_levels[l]));
     levels[l].source_values = &source.descriptor_levels[l];
+    if (!reflected_levels.empty()) levels[l].source_values_reflected = &reflected_levels[l];
     levels[l].target_field = fields.back().get();
     levels[l].score.sigma =
         options.sigma_scale * descriptor_sigma(source.descriptor_levels[l], target.descriptor_levels[l]);
@@ -153,7 +166,7 @@ SurfaceMap compute_surface_map(const MapDomain& source, const MapDomain& target,
   auto run_level = [&](int l, const SourceDisk& disk, Eigen::VectorXd& x, double progress_from, double progress_to) {
     ScoreSettings score = levels[l].score;
     score.outside = OutsideRule::nearest_rim;
-    const MapEnergy energy(disk, *fields[l], source.descriptor_levels[l], score, options.weights);
+    const MapEnergy energy(disk, *fields[l], source_values(l, disk.reflected), score, options.weights);
     bool cancelled = false;
     NewtonOptions newton = options.newton;
     newton.energy_scale = std::max(newton.energy_scale, energy_scale);

@@ -43,6 +43,9 @@ struct SurfaceMapOptions {
   // be lower by the relative margin (orientation-blind descriptors rate a symmetric patch and its
   // mirror image alike, and then the orientation-preserving map is the safe answer).
   double orientation_ambiguity = 0.05;
+  // Descriptor columns that change sign under a reflection (chiral channels, patch_map.cpp): a
+  // mirrored map compares the source's negated values with the target's.
+  std::vector<int> chiral_columns;
   double mirror_energy_margin = 0.1;
   // Progress in [0, 1] on the calling thread; returning false throws MCON_ERROR_CANCELLED.
   std::function<bool(double)> progress;

@@ -117,3 +117,40 @@ TEST(PointLocation2D, RejectsBadInput) {
   const TriangleLocator2D ok({Vec2(0, 0), Vec2(1, 0), Vec2(0, 1)}, {Tri{0, 1, 2}});
   EXPECT_EQ(ok.locate(Vec2(nan, 0)).triangle, -1);
 }
+
+// A disk squeezed toward its center (as disk parametrizations squeeze fingers or an eye socket):
+// a dense cluster under the boxes of long triangles, which the tree keeps at inner nodes instead
+// of copying them into every leaf below. Queries concentrated in the cluster must still find the
+// deepest containing triangle, with the lowest index among ties.
+TEST(PointLocation2D, SqueezedClusterMatchesBruteForce) {
+  Planar d = jittered_disk();
+  for (Vec2& p : d.points) p *= std::pow(p.norm(), 5.0);
+  const TriangleLocator2D locator(d.points, d.triangles);
+  CounterRng rng(5, 0);
+  int inside = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const double r = std::pow(rng.uniform(), 4.0), a = 6.283185307179586 * rng.uniform();
+    const Vec2 p(r * std::cos(a), r * std::sin(a));
+    const PointLocation loc = locator.locate(p);
+    double best = -std::numeric_limits<double>::infinity();
+    int best_t = -1;
+    for (int t = 0; t < static_cast<int>(d.triangles.size()); ++t) {
+      const double m = min_bary(d, t, p);
+      if (m > best) {
+        best = m;
+        best_t = t;
+      }
+    }
+    if (best >= 1e-9) {
+      ASSERT_GE(loc.triangle, 0) << "missed point " << p.transpose();
+      EXPECT_NEAR(min_bary(d, loc.triangle, p), best, 1e-12);
+      if (min_bary(d, loc.triangle, p) == best) {
+        EXPECT_LE(loc.triangle, best_t);
+      }
+      ++inside;
+    } else if (best < -1e-9) {
+      EXPECT_EQ(loc.triangle, -1) << "false hit at " << p.transpose();
+    }
+  }
+  EXPECT_GT(inside, 2000);
+}

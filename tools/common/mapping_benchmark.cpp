@@ -1,0 +1,451 @@
+#include "common/mapping_benchmark.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <sstream>
+
+#include <tbb/task_arena.h>
+
+#include "common/bench_spec.h"
+#include "common/ict_faces.h"
+#include "common/makehuman_people.h"
+#include "common/patch_instances.h"
+#include "common/retessellate.h"
+#include "common/thesis_gradient_descent.h"
+#include "curvature_descriptors.h"
+#include "error.h"
+#include "geodesic_disk_patch.h"
+#include "heat_geodesics.h"
+#include "parallel_blocks.h"
+#include "patch_map.h"
+#include "point_location_2d.h"
+
+namespace mcon::tools {
+
+const char* const kMappingMethods[3] = {"macrocon", "rigid", "thesis"};
+const char* const kMappingParts[8] = {"eye", "nose", "mouth", "ear", "face", "hand", "foot", "arm"};
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+const BenchClass* find_class(const BenchSpec& spec, const std::string& name) {
+  for (const BenchClass& c : spec.classes)
+    if (c.name == name) return &c;
+  return nullptr;
+}
+
+// One model's data: the base mesh, its instances, the bench classes and the mirror involution.
+struct Model {
+  std::string name;
+  BenchModelData bench;
+  std::unique_ptr<MakeHumanPeople> people;
+  std::unique_ptr<IctFaces> faces;
+  std::vector<int> mirror;  // base vertex -> vertex nearest to its mirror image (x -> -x)
+
+  const io::LoadedMesh& base() const { return people ? people->base() : faces->neutral(); }
+  TriMesh instance(std::uint64_t seed, int index) const {
+    return people ? people->person(seed, static_cast<std::uint64_t>(index))
+                  : faces->face(seed, static_cast<std::uint64_t>(index));
+  }
+};
+
+// The mirror involution by nearest mirrored vertex: MakeHuman is exactly x -> -x symmetric, ICT
+// to 0.005 cm (shared/bench/README.md). A uniform grid keeps it near-linear.
+std::vector<int> mirror_map(const TriMesh& mesh) {
+  const int n = mesh.num_vertices();
+  Vec3 lo = mesh.positions[0], hi = lo;
+  for (const Vec3& p : mesh.positions) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const double cell = std::max((hi - lo).maxCoeff() / 64.0, 1e-9);
+  auto key = [&](const Vec3& p, int dx, int dy, int dz) {
+    const long ix = static_cast<long>(std::floor((p.x() - lo.x()) / cell)) + dx;
+    const long iy = static_cast<long>(std::floor((p.y() - lo.y()) / cell)) + dy;
+    const long iz = static_cast<long>(std::floor((p.z() - lo.z()) / cell)) + dz;
+    return (ix * 1000003L + iy) * 1000033L + iz;
+  };
+  std::multimap<long, int> grid;
+  for (int v = 0; v < n; ++v) grid.emplace(key(mesh.positions[v], 0, 0, 0), v);
+  std::vector<int> out(n, -1);
+  for (int v = 0; v < n; ++v) {
+    const Vec3 q(-mesh.positions[v].x(), mesh.positions[v].y(), mesh.positions[v].z());
+    double best = 1e300;
+    for (int r = 1; out[v] < 0 || r <= 1; ++r) {
+      for (int dx = -r; dx <= r; ++dx)
+        for (int dy = -r; dy <= r; ++dy)
+          for (int dz = -r; dz <= r; ++dz) {
+            auto range = grid.equal_range(key(q, dx, dy, dz));
+            for (auto it = range.first; it != range.second; ++it) {
+              const double d = (mesh.positions[it->second] - q).squaredNorm();
+              if (d < best || (d == best && it->second < out[v])) {
+                best = d;
+                out[v] = it->second;
+              }
+            }
+          }
+      if (r > 64) break;
+    }
+  }
+  return out;
+}
+
+Model load_model(const std::string& shared, const std::string& name) {
+  Model m;
+  m.name = name;
+  m.bench = read_bench_model(shared, name);
+  if (name == "makehuman")
+    m.people = std::make_unique<MakeHumanPeople>(shared);
+  else
+    m.faces = std::make_unique<IctFaces>(shared);
+  const io::LoadedMesh& base = m.base();
+  for (int v = 0; v < base.mesh.num_vertices(); ++v)
+    require(base.mesh_to_file[v] == v, MCON_ERROR_INVALID_ARGUMENT,
+            "eval-mapping: the " + name + " surface does not keep the file's vertex numbering");
+  return m;
+}
+
+struct CutPatch {
+  Patch patch;
+  std::vector<int> host;  // patch vertex -> instance vertex (original numbering), -1 if none
+};
+
+CutPatch cut(const Model& model, const BenchClass& cls, const TriMesh& instance, const TriMesh* decimated,
+             const std::vector<int>* to_original) {
+  const io::LoadedMesh& base = model.base();
+  const InstancePatch ip =
+      instance_patch(cls, model.bench.patches.find(cls.name).vertices, base.mesh, instance, base.triangle_to_face);
+  PatchOptions po;
+  po.radius = ip.radius;
+  po.fill_holes = cls.fill_holes;
+  po.center.vertex = cls.center_vertex;
+  if (decimated) {
+    const auto it = std::find(to_original->begin(), to_original->end(), cls.center_vertex);
+    require(it != to_original->end(), MCON_ERROR_NUMERICAL, "eval-mapping: decimation removed the patch center");
+    po.center.vertex = static_cast<int>(it - to_original->begin());
+  }
+  CutPatch out{extract_geodesic_disk(decimated ? *decimated : instance, po), {}};
+  out.host.assign(out.patch.mesh.positions.size(), -1);
+  for (std::size_t v = 0; v < out.host.size(); ++v) {
+    const HostPoint& h = out.patch.host_vertex[v];
+    if (h.v0 >= 0 && h.v0 == h.v1) out.host[v] = decimated ? (*to_original)[h.v0] : h.v0;
+  }
+  return out;
+}
+
+int flipped(const TriMesh& mesh, const std::vector<Vec2>& phi, bool reflected) {
+  int count = 0;
+  for (const Tri& t : mesh.triangles) {
+    const Vec2 e1 = phi[t[1]] - phi[t[0]], e2 = phi[t[2]] - phi[t[0]];
+    const double a = e1.x() * e2.y() - e1.y() * e2.x();
+    if ((reflected ? -a : a) <= 0) ++count;
+  }
+  return count;
+}
+
+double patch_area(const TriMesh& mesh) {
+  double a = 0;
+  for (int t = 0; t < mesh.num_triangles(); ++t) a += triangle_area(mesh, t);
+  return a;
+}
+
+std::string fmt(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3f", v);
+  return buf;
+}
+
+}  // namespace
+
+std::vector<MappingSlot> mapping_slots(const std::string& shared_dir, const std::vector<std::string>& parts) {
+  for (const std::string& p : parts)
+    require(std::find_if(std::begin(kMappingParts), std::end(kMappingParts),
+                         [&](const char* k) { return p == k; }) != std::end(kMappingParts),
+            MCON_ERROR_INVALID_ARGUMENT, "eval-mapping: unknown class '" + p + "'");
+  std::vector<MappingSlot> slots;
+  for (const char* model : {"makehuman", "ict"}) {
+    const BenchModelData data = read_bench_model(shared_dir, model);
+    for (const char* part : kMappingParts) {
+      if (!parts.empty() && std::find(parts.begin(), parts.end(), part) == parts.end()) continue;
+      const std::string p(part);
+      if (find_class(data.spec, p + "_r") && find_class(data.spec, p + "_l")) {
+        slots.push_back({model, p, false, p + "_r", p + "_r"});
+        slots.push_back({model, p, true, p + "_r", p + "_l"});
+      } else if (find_class(data.spec, p)) {
+        slots.push_back({model, p, false, p, p});
+      }
+    }
+  }
+  return slots;
+}
+
+std::vector<MappingPairResult> run_mapping_evaluation(const MappingEvalOptions& options) {
+  require(options.pairs >= 0 && options.threads >= 1 && options.alignment_samples >= 1 &&
+              options.thesis_iterations >= 0 && options.max_evaluated_vertices >= 1,
+          MCON_ERROR_INVALID_ARGUMENT, "eval-mapping: invalid options");
+  for (const std::string& m : options.methods)
+    require(m == "macrocon" || m == "rigid" || m == "thesis", MCON_ERROR_INVALID_ARGUMENT,
+            "eval-mapping: unknown method '" + m + "'");
+  const std::vector<MappingSlot> slots = mapping_slots(options.shared_dir, options.parts);
+  require(!slots.empty(), MCON_ERROR_INVALID_ARGUMENT, "eval-mapping: no class selected");
+  const int makehuman_slots = static_cast<int>(
+      std::count_if(slots.begin(), slots.end(), [](const MappingSlot& s) { return s.model == "makehuman"; }));
+  const int pairs = options.pairs > 0 ? options.pairs : (makehuman_slots > 0 ? makehuman_slots : static_cast<int>(slots.size()));
+  auto wants = [&](const char* m) {
+    return std::find(options.methods.begin(), options.methods.end(), m) != options.methods.end();
+  };
+
+  tbb::task_arena arena(options.threads);
+  std::map<std::string, Model> models;
+  std::vector<MappingPairResult> results;
+  for (int i = 0; i < pairs; ++i) {
+    const MappingSlot& slot = slots[static_cast<std::size_t>(i) % slots.size()];
+    if (!models.count(slot.model)) {
+      Model m = load_model(options.shared_dir, slot.model);
+      bool any_mirror = false;
+      for (const MappingSlot& s : slots) any_mirror = any_mirror || (s.model == slot.model && s.mirrored);
+      if (any_mirror) m.mirror = mirror_map(m.base().mesh);
+      models.emplace(slot.model, std::move(m));
+    }
+    const Model& model = models.at(slot.model);
+    MappingPairResult res;
+    res.slot = slot;
+    res.person_a = 2 * i;
+    res.person_b = 2 * i + 1;
+    arena.execute([&] {
+      const BenchClass& src_cls = model.bench.spec.find(slot.source_class);
+      const BenchClass& dst_cls = model.bench.spec.find(slot.target_class);
+      // A scaled-radius ball can still stop being a disk on a rare person or decimation (the
+      // forearm wraps into a ring, bench/README.md); such a pair moves on to the next people
+      // (2i + 1000k, 2i + 1 + 1000k), deterministically.
+      CutPatch src, dst;
+      for (int attempt = 0;; ++attempt) {
+        res.person_a = 2 * i + 1000 * attempt;
+        res.person_b = res.person_a + 1;
+        try {
+          const TriMesh a = model.instance(options.seed, res.person_a);
+          const TriMesh b = model.instance(options.seed, res.person_b);
+          DecimationOptions dec;
+          dec.keep = {dst_cls.center_vertex};
+          const Retessellation re =
+              decimate(b, options.seed * 1000003ull + static_cast<std::uint64_t>(i) + 7919ull * attempt, dec);
+          src = cut(model, src_cls, a, nullptr, nullptr);
+          dst = cut(model, dst_cls, b, &re.mesh, &re.to_original);
+          break;
+        } catch (const Error& e) {
+          if (e.status() != MCON_ERROR_NOT_A_DISK || attempt >= 4) throw;
+          if (options.log) options.log("pair " + std::to_string(i) + ": " + e.what() + "; next people");
+        }
+      }
+      res.source_vertices = src.patch.mesh.num_vertices();
+      res.target_vertices = dst.patch.mesh.num_vertices();
+
+      // Ground truth: source vertex -> target patch vertex of the same (mirrored) body vertex.
+      std::map<int, int> target_of_host;
+      for (std::size_t w = 0; w < dst.host.size(); ++w)
+        if (dst.host[w] >= 0) target_of_host.emplace(dst.host[w], static_cast<int>(w));
+      std::vector<int> sources, truths;
+      for (std::size_t v = 0; v < src.host.size(); ++v) {
+        if (src.host[v] < 0) continue;
+        const int truth = slot.mirrored ? model.mirror[static_cast<std::size_t>(src.host[v])] : src.host[v];
+        const auto it = target_of_host.find(truth);
+        if (it == target_of_host.end()) continue;
+        sources.push_back(static_cast<int>(v));
+        truths.push_back(it->second);
+      }
+      res.ground_truth_vertices = static_cast<int>(sources.size());
+      if (static_cast<int>(sources.size()) > options.max_evaluated_vertices) {
+        const double stride = static_cast<double>(sources.size()) / options.max_evaluated_vertices;
+        std::vector<int> s2, t2;
+        for (int k = 0; k < options.max_evaluated_vertices; ++k) {
+          const std::size_t idx = static_cast<std::size_t>(std::floor(k * stride));
+          s2.push_back(sources[idx]);
+          t2.push_back(truths[idx]);
+        }
+        sources.swap(s2);
+        truths.swap(t2);
+      }
+
+      // The maps.
+      std::map<std::string, std::vector<Vec2>> phi;
+      std::map<std::string, bool> reflected;
+      PatchMapOptions mo;
+      mo.map.alignment.samples = options.alignment_samples;
+      mo.map.alignment.seed = options.seed;
+      if (!wants("macrocon")) mo.map.newton.max_iterations = 0;  // the rigid start only
+      const auto t0 = std::chrono::steady_clock::now();
+      const SurfaceMap map = map_patches(src.patch, dst.patch, mo);
+      const double map_seconds = seconds_since(t0);
+      const RigidTransform2D T = map.alignment.transform;
+      {
+        std::ostringstream o;
+        o << "rigid scores plain " << fmt(map.alignment.score_unreflected) << " mirrored "
+          << fmt(map.alignment.score_reflected);
+        if (map.orientation_compared)
+          o << ", level-0 energies plain " << fmt(map.level0_energy_unreflected) << " mirrored "
+            << fmt(map.level0_energy_reflected);
+        res.orientation_note = o.str();
+      }
+      if (wants("macrocon")) {
+        phi["macrocon"] = map.phi;
+        reflected["macrocon"] = map.reflected;
+        res.methods["macrocon"].seconds = map_seconds;
+        res.methods["macrocon"].iterations = map.iterations;
+      }
+      std::vector<Vec2> rigid(src.patch.uv.size());
+      for (std::size_t v = 0; v < rigid.size(); ++v) rigid[v] = T.apply(src.patch.uv[v]);
+      if (wants("rigid")) {
+        phi["rigid"] = rigid;
+        reflected["rigid"] = T.reflected;
+        res.methods["rigid"].seconds = map.alignment_seconds;
+      }
+      if (wants("thesis")) {
+        ThesisDescentOptions to;
+        to.iterations = options.thesis_iterations;
+        const ThesisDescentResult th = thesis_gradient_descent(
+            src.patch.mesh, src.patch.uv, mean_curvature_descriptor(src.patch.mesh), dst.patch.mesh, dst.patch.uv,
+            mean_curvature_descriptor(dst.patch.mesh), rigid, T.reflected, to);
+        phi["thesis"] = th.phi;
+        reflected["thesis"] = T.reflected;
+        res.methods["thesis"].seconds = map.alignment_seconds + th.seconds;
+        res.methods["thesis"].iterations = th.iterations;
+      }
+
+      // Where each evaluated point lands, per method, then one heat solve per true vertex.
+      const TriangleLocator2D locator(dst.patch.uv, dst.patch.mesh.triangles);
+      std::map<std::string, std::vector<PointLocation>> landed;
+      for (auto& [name, p] : phi) {
+        std::vector<PointLocation>& l = landed[name];
+        l.resize(sources.size());
+        for_each_block(static_cast<int>(sources.size()), 64, [&](int begin, int end, int) {
+          for (int k = begin; k < end; ++k) l[k] = locator.locate(p[sources[k]]);
+        });
+      }
+      const HeatGeodesics heat(dst.patch.mesh);
+      const double scale = 1.0 / std::sqrt(patch_area(dst.patch.mesh));
+      std::map<std::string, std::vector<double>> eps;
+      for (auto& [name, l] : landed) eps[name].assign(sources.size(), -1.0);
+      for_each_block(static_cast<int>(sources.size()), 8, [&](int begin, int end, int) {
+        for (int k = begin; k < end; ++k) {
+          bool needed = false;
+          for (auto& [name, l] : landed) needed = needed || l[k].triangle >= 0;
+          if (!needed) continue;
+          const Eigen::VectorXd d = heat.from_vertices({truths[k]});
+          for (auto& [name, l] : landed) {
+            if (l[k].triangle < 0) continue;
+            const Tri& t = dst.patch.mesh.triangles[l[k].triangle];
+            eps[name][k] = scale * std::max(0.0, l[k].barycentric[0] * d[t[0]] + l[k].barycentric[1] * d[t[1]] +
+                                                     l[k].barycentric[2] * d[t[2]]);
+          }
+        }
+      });
+      // Overlap: source vertex area mapped inside the target.
+      const Eigen::VectorXd va = [&] {
+        Eigen::VectorXd areas = Eigen::VectorXd::Zero(src.patch.mesh.num_vertices());
+        for (int t = 0; t < src.patch.mesh.num_triangles(); ++t)
+          for (int k = 0; k < 3; ++k) areas[src.patch.mesh.triangles[t][k]] += triangle_area(src.patch.mesh, t) / 3;
+        return areas;
+      }();
+      for (auto& [name, p] : phi) {
+        MethodPairResult& r = res.methods[name];
+        double sum = 0;
+        int within = 0, count = 0;
+        for (double e : eps[name]) {
+          if (e < 0) continue;
+          sum += e;
+          within += e <= 0.05;
+          ++count;
+        }
+        r.evaluated = count;
+        r.mean_eps = count ? sum / count : 0.0;
+        r.within_0_05 = count ? static_cast<double>(within) / count : 0.0;
+        r.reflected = reflected[name];
+        r.flipped_triangles = flipped(src.patch.mesh, p, reflected[name]);
+        double inside = 0;
+        for (std::size_t v = 0; v < p.size(); ++v)
+          if (locator.locate(p[v]).triangle >= 0) inside += va[static_cast<Eigen::Index>(v)];
+        r.overlap = inside / va.sum();
+      }
+    });
+    if (options.log) {
+      std::ostringstream line;
+      line << "pair " << i << " " << slot.model << " " << slot.source_class << " -> " << slot.target_class
+           << " (" << res.source_vertices << " -> " << res.target_vertices << " vertices, "
+           << res.ground_truth_vertices << " with ground truth):";
+      for (const auto& [name, r] : res.methods)
+        line << " " << name << (r.reflected ? " (mirrored)" : "") << " eps100 " << fmt(100 * r.mean_eps) << " within " << fmt(r.within_0_05) << " flips "
+             << r.flipped_triangles << " overlap " << fmt(r.overlap) << " " << fmt(r.seconds) << "s it "
+             << r.iterations << ";";
+      if (!res.orientation_note.empty()) line << " (" << res.orientation_note << ")";
+      options.log(line.str());
+    }
+    results.push_back(std::move(res));
+  }
+  return results;
+}
+
+namespace {
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  const std::size_t h = v.size() / 2;
+  return v.size() % 2 ? v[h] : 0.5 * (v[h - 1] + v[h]);
+}
+
+Json summary(const std::vector<const MethodPairResult*>& rs) {
+  double eps = 0, within = 0, overlap = 0;
+  int flips = 0;
+  std::vector<double> secs, its;
+  for (const MethodPairResult* r : rs) {
+    eps += r->mean_eps;
+    within += r->within_0_05;
+    overlap += r->overlap;
+    flips += r->flipped_triangles;
+    secs.push_back(r->seconds);
+    its.push_back(r->iterations);
+  }
+  const double n = rs.empty() ? 1.0 : static_cast<double>(rs.size());
+  Json m = Json::object();
+  m.set("mean_eps100", 100 * eps / n);
+  m.set("within_0_05", within / n);
+  m.set("flipped_triangles", flips);
+  m.set("overlap", overlap / n);
+  m.set("seconds_median", median(secs));
+  m.set("iterations_median", median(its));
+  return m;
+}
+
+}  // namespace
+
+Json mapping_evaluation_json(const std::vector<MappingPairResult>& pairs, const std::vector<std::string>& methods) {
+  Json out = Json::object();
+  out.set("pairs", static_cast<int>(pairs.size()));
+  Json ms = Json::object();
+  for (const std::string& m : methods) {
+    std::vector<const MethodPairResult*> all;
+    std::map<std::string, std::vector<const MethodPairResult*>> by_part;
+    for (const MappingPairResult& p : pairs) {
+      const auto it = p.methods.find(m);
+      if (it == p.methods.end()) continue;
+      all.push_back(&it->second);
+      by_part[p.slot.part].push_back(&it->second);
+    }
+    Json entry = Json::object();
+    entry.set("overall", summary(all));
+    Json per = Json::object();
+    for (const char* part : kMappingParts)
+      if (by_part.count(part)) per.set(part, summary(by_part[part]));
+    entry.set("per_class", per);
+    ms.set(m, entry);
+  }
+  out.set("methods", ms);
+  return out;
+}
+
+}  // namespace mcon::tools

@@ -1,0 +1,84 @@
+// Map quality on ground truth (`macrocon eval-mapping`, design-notes §3): pairs of the same patch
+// class cut on two different random people (MakeHuman) or faces (ICT), the target re-tessellated
+// by seeded random decimation (surviving vertices keep their identity), mirrored pairs included
+// (a right eye onto a left eye; the ground truth then goes through the base mesh's mirror
+// involution). For each source vertex that is a host vertex whose true vertex survives in the
+// target patch, eps = geodesic distance on the target patch (heat method) between the mapped
+// point and the true vertex, divided by sqrt(target patch area); only points mapped inside the
+// target count (the overlap is reported separately). Several methods run on the same pairs:
+//   macrocon  the SDK's map (map_patches)
+//   rigid     its rigid initialization alone
+//   thesis    the thesis' fixed-step gradient descent from the same rigid start
+//             (common/thesis_gradient_descent.h)
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "common/json.h"
+
+namespace mcon::tools {
+
+extern const char* const kMappingMethods[3];  // "macrocon", "rigid", "thesis"
+extern const char* const kMappingParts[8];    // eye, nose, mouth, ear, face, hand, foot, arm
+
+// One kind of pair: model ("makehuman" or "ict"), body part, and whether the target is the
+// other side's class (sided parts only).
+struct MappingSlot {
+  std::string model;
+  std::string part;
+  bool mirrored = false;
+  std::string source_class;  // e.g. "eye_r"
+  std::string target_class;  // e.g. "eye_l" for a mirrored pair
+};
+
+struct MappingEvalOptions {
+  std::string shared_dir;
+  std::uint64_t seed = 1;
+  int pairs = 0;                         // 0: one pair per MakeHuman slot (the default run)
+  std::vector<std::string> parts;        // empty: all parts
+  std::vector<std::string> methods = {"macrocon", "rigid", "thesis"};
+  int alignment_samples = 10000;         // rigid candidates (thesis: 10,000)
+  int thesis_iterations = 15000;
+  int max_evaluated_vertices = 300;      // per pair, deterministic stride subsample
+  int threads = 2;
+  std::function<void(const std::string&)> log;  // one line per pair (stderr in the CLI)
+};
+
+struct MethodPairResult {
+  double mean_eps = 0;      // mean eps over evaluated points mapped inside the target
+  double within_0_05 = 0;   // share of those points with eps <= 0.05
+  int evaluated = 0;        // points that entered the mean
+  int flipped_triangles = 0;
+  double overlap = 0;       // source vertex area mapped inside the target / total
+  double seconds = 0;
+  int iterations = 0;
+  bool reflected = false;   // the map reverses orientation (expected exactly for mirrored pairs)
+};
+
+struct MappingPairResult {
+  MappingSlot slot;
+  int person_a = 0, person_b = 0;
+  int source_vertices = 0, target_vertices = 0;
+  int ground_truth_vertices = 0;  // source vertices with a surviving true vertex
+  std::string orientation_note;   // the map's orientation evidence (rigid scores, level-0 energies)
+  std::map<std::string, MethodPairResult> methods;
+};
+
+// The slots in run order: MakeHuman first (eye same side, eye mirrored, nose, mouth, ...), then
+// ICT; restricted to `parts` if non-empty. Throws INVALID_ARGUMENT for an unknown part.
+std::vector<MappingSlot> mapping_slots(const std::string& shared_dir, const std::vector<std::string>& parts);
+
+// Runs the evaluation (pair i uses slot i mod #slots and people/faces 2i, 2i+1 of the seed).
+// Throws mcon::Error (IO for missing data, INVALID_ARGUMENT for bad options).
+std::vector<MappingPairResult> run_mapping_evaluation(const MappingEvalOptions& options);
+
+// {"pairs": N, "methods": {m: {"overall": M, "per_class": {part: M}}}} with M = {mean_eps100,
+// within_0_05, flipped_triangles, overlap, seconds_median, iterations_median}; mean_eps100,
+// within_0_05 and overlap are means over pairs (each pair weighs the same).
+Json mapping_evaluation_json(const std::vector<MappingPairResult>& pairs, const std::vector<std::string>& methods);
+
+}  // namespace mcon::tools
