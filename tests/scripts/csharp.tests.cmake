@@ -18,7 +18,7 @@ if(NOT MACROCON_SANITIZE AND MACROCON_MCS AND MACROCON_MONO)
   add_custom_target(macrocon_csharp ALL DEPENDS ${cs_dir}/MacroconTests.exe ${cs_dir}/CleanExit.exe)
   add_test(NAME csharp.tests COMMAND ${MACROCON_MONO} ${cs_dir}/MacroconTests.exe WORKING_DIRECTORY ${cs_dir})
   set_tests_properties(csharp.tests PROPERTIES
-    ENVIRONMENT "LD_LIBRARY_PATH=$<TARGET_FILE_DIR:macrocon>" TIMEOUT 900
+    ENVIRONMENT "LD_LIBRARY_PATH=$<TARGET_FILE_DIR:macrocon>;MACROCON_INCLUDE_DIR=${PROJECT_SOURCE_DIR}/include" TIMEOUT 900
     PASS_REGULAR_EXPRESSION "[1-9][0-9]* passed, 0 failed" FAIL_REGULAR_EXPRESSION "FAIL ")
   # A Mono process exits with status 0 after heavy parallel work, through the binding's exit hook
   # (handles left open on purpose; mcon_shutdown must report Ok). Several runs: it was intermittent.

@@ -2,6 +2,7 @@
 // non-zero on any failure.
 using System;
 using System.Collections.Generic;
+using System.Runtime.InteropServices;
 using Macrocon;
 
 static class Tests
@@ -511,10 +512,71 @@ static class Tests
                 using (var patch = Patch.Extract(m, 40 * 81 + 40, 0.2 + 0.1 * i)) patch.Descriptors(Descriptor.Curv9);
     }
 
+    // Every struct handed to the C ABI against macrocon.h: its size and the offset of each field whose
+    // snake_case name exists in C, measured by a C probe compiled with `cc` (MACROCON_INCLUDE_DIR).
+    static void TestLayout()
+    {
+        string include = Environment.GetEnvironmentVariable("MACROCON_INCLUDE_DIR");
+        Check(!string.IsNullOrEmpty(include) && System.IO.File.Exists(System.IO.Path.Combine(include, "macrocon", "macrocon.h")),
+              "MACROCON_INCLUDE_DIR must name the include directory");
+        var types = new Dictionary<string, Type>
+        {
+            { "mcon_context_options", typeof(Native.ContextOptions) }, { "mcon_mesh_desc", typeof(Native.MeshDesc) },
+            { "mcon_patch_options", typeof(Native.PatchOptions) }, { "mcon_patch_info", typeof(Native.PatchInfo) },
+            { "mcon_polyline", typeof(Native.PolylineDesc) }, { "mcon_vertex_field", typeof(Native.VertexField) },
+            { "mcon_library_entry_desc", typeof(Native.EntryDesc) }, { "mcon_retrieval_options", typeof(Native.RetrievalOptions) },
+            { "mcon_patch_frame", typeof(Native.PatchFrame) }, { "mcon_map_options", typeof(Native.MapOptions) },
+            { "mcon_cross_field_options", typeof(Native.CrossFieldOptions) }, { "mcon_surface_point", typeof(SurfacePoint) },
+            { "mcon_singularity", typeof(Singularity) }, { "mcon_library_info", typeof(LibraryInfo) },
+            { "mcon_library_entry_info", typeof(EntryInfo) }, { "mcon_map_info", typeof(MapInfo) },
+        };
+        var probe = new System.Text.StringBuilder("#include <stddef.h>\n#include <stdio.h>\n#include \"macrocon/macrocon.h\"\nint main(void) {\n");
+        var expected = new List<string>();
+        foreach (var kv in types)
+        {
+            probe.Append($"  printf(\"{kv.Key} %zu\\n\", sizeof({kv.Key}));\n");
+            expected.Add(kv.Key + " " + Marshal.SizeOf(kv.Value));
+            foreach (var f in kv.Value.GetFields(System.Reflection.BindingFlags.Instance | System.Reflection.BindingFlags.Public))
+            {
+                string snake = System.Text.RegularExpressions.Regex.Replace(f.Name, "(?<=[a-z0-9])([A-Z])", "_$1").ToLowerInvariant();
+                string[] notInC = { "b0", "b1", "b2", "source_origin_x", "source_origin_y", "source_origin_z" };
+                if (Array.IndexOf(notInC, snake) >= 0) continue;
+                probe.Append($"  printf(\"{kv.Key}.{snake} %zu\\n\", offsetof({kv.Key}, {snake}));\n");
+                expected.Add(kv.Key + "." + snake + " " + (long)Marshal.OffsetOf(kv.Value, f.Name));
+            }
+        }
+        probe.Append("  return 0;\n}\n");
+        string dir = System.IO.Path.Combine(System.IO.Path.GetTempPath(), "macrocon-cs-layout-" + System.Diagnostics.Process.GetCurrentProcess().Id);
+        System.IO.Directory.CreateDirectory(dir);
+        try
+        {
+            System.IO.File.WriteAllText(System.IO.Path.Combine(dir, "layout.c"), probe.ToString());
+            Check(Shell("cc", $"-std=c99 -I \"{include}\" layout.c -o layout", dir) != null, "compiling the probe");
+            var measured = Shell(System.IO.Path.Combine(dir, "layout"), "", dir).TrimEnd('\n').Split('\n');
+            Check(measured.Length == expected.Count && expected.Count > 100, "probe lines: " + measured.Length + " vs " + expected.Count);
+            for (int i = 0; i < measured.Length; ++i) Check(measured[i] == expected[i], "C says " + measured[i] + ", C# " + expected[i]);
+        }
+        finally
+        {
+            System.IO.Directory.Delete(dir, true);
+        }
+    }
+
+    static string Shell(string exe, string args, string dir)
+    {
+        var psi = new System.Diagnostics.ProcessStartInfo(exe, args) { WorkingDirectory = dir, UseShellExecute = false, RedirectStandardOutput = true };
+        using (var p = System.Diagnostics.Process.Start(psi))
+        {
+            string output = p.StandardOutput.ReadToEnd();
+            p.WaitForExit();
+            return p.ExitCode == 0 ? output : null;
+        }
+    }
+
     // No tuple deconstruction (`var (a, b) = ...`) anywhere here: mcs 6.8 silently drops a lambda that
     // contains one (which hid most of this runner's tests before) or crashes when a lambda captures
     // a deconstructed variable. The runner also checks how many tests ran.
-    const int ExpectedTests = 11;
+    const int ExpectedTests = 12;
 
     static int Main()
     {
@@ -528,6 +590,7 @@ static class Tests
         Run("library: retrieval finds each entry itself; cancel leaves it unchanged", Test7);
         Run("library: bad input, forged bytes, disposed handles", Test8);
         Run("map: from arrays, compute, correspondences, transfer, cross field", Test9);
+        Run("struct layouts match macrocon.h", TestLayout);
         Run("heavy parallel work then shutdown", Test10);
         GC.Collect();
         GC.WaitForPendingFinalizers();
