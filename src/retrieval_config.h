@@ -9,6 +9,13 @@
 
 namespace mcon {
 
+// Concentric geodesic rings of the default bag-of-features (1 = plain, thesis eq. 3.1; > 1 = the
+// ringed variant of design-notes §1). The one place the measured best default lives: the C API's
+// mcon_retrieval_options_init and the CLI read it from here.
+inline constexpr std::uint32_t kDefaultRetrievalRings = 4;
+// Vocabulary size k of the default (thesis §3.2 uses 128 words).
+inline constexpr std::uint32_t kDefaultVocabularySize = 128;
+
 struct RetrievalConfig {
   std::string descriptor = "curv9";        // "curv9", "hks", "wks", "custom:<name>"
   std::uint32_t dimension = 0;             // descriptor values per vertex (d)

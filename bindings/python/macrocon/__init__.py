@@ -10,9 +10,24 @@ from .core import (
     Context,
     Mesh,
     Patch,
+    close_all,
     shutdown,
     version,
 )
+from .library import (
+    Entry,
+    EntryInfo,
+    Field,
+    FieldKind,
+    Library,
+    LibraryInfo,
+    Polyline,
+    PolylineKind,
+    QueryResult,
+    RetrievalDescriptor,
+    Singularities,
+)
+from .mapping import Direction, Map, MapInfo, PolylineSet, StopReason
 from .errors import (
     BufferTooSmallError,
     CancelledError,
@@ -24,6 +39,8 @@ from .errors import (
     NotFoundError,
     NullPointerError,
     NumericalError,
+    OutOfMemoryError,
+    IOError_,
     StructSizeError,
     UnsupportedError,
     status_name,
@@ -35,5 +52,8 @@ __all__ = [
     "ABI_MAJOR", "library_version", "version", "shutdown", "Context", "Mesh", "Patch",
     "DESCRIPTOR_CURV9", "DESCRIPTOR_MEAN_CURVATURE", "Error", "InvalidArgumentError", "NullPointerError",
     "StructSizeError", "BufferTooSmallError", "CancelledError", "InvalidMeshError", "NotADiskError",
-    "NumericalError", "InvalidLibraryError", "UnsupportedError", "NotFoundError", "status_name",
+    "NumericalError", "InvalidLibraryError", "UnsupportedError", "NotFoundError", "status_name", "close_all",
+    "Library", "Entry", "EntryInfo", "LibraryInfo", "QueryResult", "Polyline", "PolylineKind", "Singularities",
+    "Field", "FieldKind", "RetrievalDescriptor", "Map", "MapInfo", "PolylineSet", "StopReason", "Direction",
+    "OutOfMemoryError", "IOError_",
 ]

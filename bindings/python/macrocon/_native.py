@@ -74,6 +74,160 @@ class PatchInfo(ctypes.Structure):
     ]
 
 
+# ---- constraint libraries and retrieval (mcon_library_*) ----
+
+class SurfacePoint(ctypes.Structure):
+    _fields_ = [("face", ctypes.c_uint32), ("barycentric", ctypes.c_double * 3)]
+
+
+class Polyline(ctypes.Structure):
+    _fields_ = [
+        ("kind", ctypes.c_uint32),
+        ("closed", ctypes.c_uint32),
+        ("points", ctypes.c_void_p),
+        ("point_count", c_size),
+    ]
+
+
+class Singularity(ctypes.Structure):
+    _fields_ = [("location", SurfacePoint), ("index_quarters", ctypes.c_int32)]
+
+
+class VertexField(ctypes.Structure):
+    _fields_ = [
+        ("name", ctypes.c_char_p),
+        ("kind", ctypes.c_uint32),
+        ("dimension", ctypes.c_uint32),
+        ("values", ctypes.c_void_p),
+        ("labels", ctypes.c_void_p),
+        ("stride", c_size),
+    ]
+
+
+class LibraryEntryDesc(ctypes.Structure):
+    _fields_ = [
+        ("struct_size", ctypes.c_uint32),
+        ("patch", ctypes.c_void_p),
+        ("id", ctypes.c_uint64),
+        ("name", ctypes.c_char_p),
+        ("class_label", ctypes.c_char_p),
+        ("tags", ctypes.POINTER(ctypes.c_char_p)),
+        ("tag_count", c_size),
+        ("author", ctypes.c_char_p),
+        ("licence", ctypes.c_char_p),
+        ("polylines", ctypes.POINTER(Polyline)),
+        ("polyline_count", c_size),
+        ("singularities", ctypes.c_void_p),
+        ("singularity_count", c_size),
+        ("fields", ctypes.POINTER(VertexField)),
+        ("field_count", c_size),
+        ("descriptors", ctypes.c_void_p),
+        ("descriptor_dimension", ctypes.c_uint32),
+        ("descriptor_stride", c_size),
+    ]
+
+
+class LibraryInfo(ctypes.Structure):
+    _fields_ = [
+        ("struct_size", ctypes.c_uint32),
+        ("entry_count", c_size),
+        ("descriptor", ctypes.c_uint32),
+        ("descriptor_dimension", ctypes.c_uint32),
+        ("vocabulary_size", ctypes.c_uint32),
+        ("rings", ctypes.c_uint32),
+        ("histogram_length", ctypes.c_uint32),
+        ("sigma_bof", ctypes.c_double),
+        ("seed", ctypes.c_uint64),
+    ]
+
+
+class RetrievalOptions(ctypes.Structure):
+    _fields_ = [
+        ("struct_size", ctypes.c_uint32),
+        ("descriptor", ctypes.c_uint32),
+        ("vocabulary_size", ctypes.c_uint32),
+        ("rings", ctypes.c_uint32),
+        ("sigma_bof", ctypes.c_double),
+        ("seed", ctypes.c_uint64),
+        ("progress", PROGRESS_CALLBACK),
+        ("progress_user_data", ctypes.c_void_p),
+    ]
+
+
+class LibraryEntryInfo(ctypes.Structure):
+    _fields_ = [
+        ("struct_size", ctypes.c_uint32),
+        ("id", ctypes.c_uint64),
+        ("vertex_count", c_size),
+        ("triangle_count", c_size),
+        ("tag_count", c_size),
+        ("polyline_count", c_size),
+        ("singularity_count", c_size),
+        ("field_count", c_size),
+        ("center", SurfacePoint),
+        ("source_scale", ctypes.c_double),
+        ("source_origin", ctypes.c_double * 3),
+    ]
+
+
+# ---- re-embedding maps and transfer (mcon_map_*) ----
+
+class PatchFrame(ctypes.Structure):
+    _fields_ = [
+        ("struct_size", ctypes.c_uint32),
+        ("center_triangle", ctypes.c_uint32),
+        ("center_barycentric", ctypes.c_double * 3),
+        ("origin", ctypes.c_double * 3),
+        ("scale", ctypes.c_double),
+    ]
+
+
+class MapOptions(ctypes.Structure):
+    _fields_ = [
+        ("struct_size", ctypes.c_uint32),
+        ("seed", ctypes.c_uint64),
+        ("alignment_samples", ctypes.c_uint32),
+        ("allow_reflection", ctypes.c_uint32),
+        ("max_iterations", ctypes.c_uint32),
+        ("progress", PROGRESS_CALLBACK),
+        ("progress_user_data", ctypes.c_void_p),
+    ]
+
+
+class MapInfo(ctypes.Structure):
+    _fields_ = [
+        ("struct_size", ctypes.c_uint32),
+        ("source_vertex_count", c_size),
+        ("target_vertex_count", c_size),
+        ("source_vertices_inside", c_size),
+        ("target_vertices_inside", c_size),
+        ("overlap_ratio", ctypes.c_double),
+        ("matching_score", ctypes.c_double),
+        ("energy_total", ctypes.c_double),
+        ("energy_descriptor", ctypes.c_double),
+        ("energy_distortion", ctypes.c_double),
+        ("energy_area", ctypes.c_double),
+        ("energy_injectivity", ctypes.c_double),
+        ("iterations", ctypes.c_uint32),
+        ("stop_reason", ctypes.c_uint32),
+        ("reflected", ctypes.c_uint32),
+        ("levels", ctypes.c_uint32),
+        ("flipped_triangles", ctypes.c_uint32),
+        ("alignment_score", ctypes.c_double),
+        ("alignment_seconds", ctypes.c_double),
+        ("optimization_seconds", ctypes.c_double),
+    ]
+
+
+class CrossFieldOptions(ctypes.Structure):
+    _fields_ = [
+        ("struct_size", ctypes.c_uint32),
+        ("alignment_weight", ctypes.c_double),
+        ("align_to_boundary", ctypes.c_uint32),
+        ("boundary_weight", ctypes.c_double),
+    ]
+
+
 def _candidates() -> list[str]:
     env = os.environ.get("MACROCON_LIBRARY")
     if env:
@@ -130,10 +284,92 @@ _SIGNATURES = {
     "mcon_patch_get_host_triangles": [ctypes.c_void_p, c_uint32_p, c_size],
     "mcon_descriptor_get_dimension": [ctypes.c_int32, ctypes.POINTER(ctypes.c_uint32)],
     "mcon_patch_compute_descriptors": [ctypes.c_void_p, ctypes.c_int32, c_double_p, c_size],
+    # constraint libraries and retrieval; array pointers are c_void_p (numpy .ctypes.data or None)
+    "mcon_library_entry_desc_init": [ctypes.POINTER(LibraryEntryDesc)],
+    "mcon_library_create": [ctypes.c_void_p, ctypes.POINTER(ctypes.c_void_p)],
+    "mcon_library_open": [ctypes.c_void_p, ctypes.c_char_p, ctypes.POINTER(ctypes.c_void_p)],
+    "mcon_library_open_memory": [ctypes.c_void_p, ctypes.c_void_p, c_size, ctypes.POINTER(ctypes.c_void_p)],
+    "mcon_library_retain": [ctypes.c_void_p],
+    "mcon_library_release": [ctypes.c_void_p],
+    "mcon_library_save": [ctypes.c_void_p, ctypes.c_char_p],
+    "mcon_library_save_memory": [ctypes.c_void_p, ctypes.c_void_p, c_size, ctypes.POINTER(c_size)],
+    "mcon_library_info_init": [ctypes.POINTER(LibraryInfo)],
+    "mcon_library_get_info": [ctypes.c_void_p, ctypes.POINTER(LibraryInfo)],
+    "mcon_library_get_count": [ctypes.c_void_p, ctypes.POINTER(c_size)],
+    "mcon_library_add_entry": [ctypes.c_void_p, ctypes.POINTER(LibraryEntryDesc), ctypes.POINTER(ctypes.c_uint64)],
+    "mcon_library_remove_entry": [ctypes.c_void_p, ctypes.c_uint64],
+    "mcon_library_find_entry": [ctypes.c_void_p, ctypes.c_uint64, ctypes.POINTER(c_size)],
+    "mcon_library_merge": [ctypes.c_void_p, ctypes.c_void_p],
+    "mcon_retrieval_options_init": [ctypes.POINTER(RetrievalOptions)],
+    "mcon_library_build_retrieval": [ctypes.c_void_p, ctypes.POINTER(RetrievalOptions)],
+    "mcon_library_query": [ctypes.c_void_p, ctypes.c_void_p, c_size, ctypes.c_void_p, ctypes.c_void_p,
+                           ctypes.c_void_p, c_size, ctypes.POINTER(c_size)],
+    "mcon_library_query_descriptors": [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_void_p, ctypes.c_uint32, c_size,
+                                       c_size, ctypes.c_void_p, ctypes.c_void_p, ctypes.c_void_p, c_size,
+                                       ctypes.POINTER(c_size)],
+    "mcon_library_entry_info_init": [ctypes.POINTER(LibraryEntryInfo)],
+    "mcon_library_get_entry_info": [ctypes.c_void_p, c_size, ctypes.POINTER(LibraryEntryInfo)],
+    "mcon_library_get_entry_string": [ctypes.c_void_p, c_size, ctypes.c_uint32, c_size, ctypes.c_void_p, c_size,
+                                      ctypes.POINTER(c_size)],
+    "mcon_library_get_entry_positions": [ctypes.c_void_p, c_size, ctypes.c_void_p, c_size],
+    "mcon_library_get_entry_triangles": [ctypes.c_void_p, c_size, ctypes.c_void_p, c_size],
+    "mcon_library_get_entry_polyline": [ctypes.c_void_p, c_size, c_size, ctypes.POINTER(ctypes.c_uint32),
+                                        ctypes.POINTER(ctypes.c_uint32), ctypes.POINTER(c_size), ctypes.c_void_p, c_size],
+    "mcon_library_get_entry_singularities": [ctypes.c_void_p, c_size, ctypes.c_void_p, c_size],
+    "mcon_library_get_entry_field": [ctypes.c_void_p, c_size, c_size, ctypes.POINTER(ctypes.c_uint32),
+                                     ctypes.POINTER(ctypes.c_uint32), ctypes.c_void_p, ctypes.c_void_p, c_size],
+    "mcon_library_get_entry_retrieval": [ctypes.c_void_p, c_size, ctypes.c_void_p, c_size, ctypes.c_void_p, c_size],
+    # maps and transfer
+    "mcon_patch_frame_init": [ctypes.POINTER(PatchFrame)],
+    "mcon_patch_create_from_arrays": [ctypes.c_void_p, ctypes.POINTER(MeshDesc), ctypes.POINTER(PatchFrame),
+                                      ctypes.POINTER(ctypes.c_void_p)],
+    "mcon_map_options_init": [ctypes.POINTER(MapOptions)],
+    "mcon_map_compute": [ctypes.c_void_p, ctypes.c_void_p, ctypes.POINTER(MapOptions), ctypes.POINTER(ctypes.c_void_p)],
+    "mcon_map_retain": [ctypes.c_void_p],
+    "mcon_map_release": [ctypes.c_void_p],
+    "mcon_map_info_init": [ctypes.POINTER(MapInfo)],
+    "mcon_map_get_info": [ctypes.c_void_p, ctypes.POINTER(MapInfo)],
+    "mcon_map_get_correspondences": [ctypes.c_void_p, ctypes.c_int32, ctypes.c_void_p, ctypes.c_void_p, c_size],
+    "mcon_map_get_phi": [ctypes.c_void_p, ctypes.c_void_p, c_size],
+    "mcon_map_get_outside_mask": [ctypes.c_void_p, ctypes.c_void_p, c_size],
+    "mcon_map_transfer_points": [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_void_p, c_size, ctypes.c_void_p,
+                                 ctypes.c_void_p, ctypes.c_void_p, c_size],
+    "mcon_map_transfer_polylines": [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_void_p, c_size, ctypes.c_void_p,
+                                    ctypes.c_void_p, c_size, ctypes.POINTER(ctypes.c_void_p)],
+    "mcon_polyline_set_retain": [ctypes.c_void_p],
+    "mcon_polyline_set_release": [ctypes.c_void_p],
+    "mcon_polyline_set_get_counts": [ctypes.c_void_p, ctypes.POINTER(c_size), ctypes.POINTER(c_size)],
+    "mcon_polyline_set_get_polylines": [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_void_p, ctypes.c_void_p, c_size],
+    "mcon_polyline_set_get_points": [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_void_p, ctypes.c_void_p, c_size],
+    "mcon_map_transfer_field": [ctypes.c_void_p, ctypes.c_int32, ctypes.c_uint32, ctypes.c_void_p, c_size,
+                                ctypes.c_void_p, c_size],
+    "mcon_map_transfer_labels": [ctypes.c_void_p, ctypes.c_uint32, ctypes.c_void_p, c_size, ctypes.c_int32,
+                                 ctypes.c_void_p, c_size],
+    "mcon_cross_field_options_init": [ctypes.POINTER(CrossFieldOptions)],
+    "mcon_patch_compute_cross_field": [ctypes.c_void_p, ctypes.c_void_p, ctypes.POINTER(CrossFieldOptions),
+                                       ctypes.c_void_p, ctypes.c_void_p, c_size],
+    "mcon_patch_write_rosy": [ctypes.c_void_p, ctypes.c_void_p, c_size, ctypes.c_char_p],
 }
 
+#: Functions this package declares that the loaded library does not export (a build older than
+#: the header, or an API still being implemented). Calling one raises NotImplementedError.
+MISSING: list[str] = []
+
+
+def _missing(name: str):
+    def call(*_args):
+        raise NotImplementedError(f"{name} is declared in macrocon.h but not exported by the loaded libmacrocon")
+
+    return call
+
+
 for _name, _args in _SIGNATURES.items():
-    _fn = getattr(lib, _name)
+    try:
+        _fn = getattr(lib, _name)
+    except AttributeError:
+        MISSING.append(_name)
+        setattr(lib, _name, _missing(_name))
+        continue
     _fn.argtypes = _args
     _fn.restype = c_status
 

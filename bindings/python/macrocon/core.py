@@ -3,6 +3,8 @@ from __future__ import annotations
 
 import atexit
 import ctypes
+import sys
+import weakref
 from typing import Callable, Optional
 
 import numpy as np
@@ -23,11 +25,46 @@ def version() -> tuple[int, int, int]:
 
 
 def shutdown() -> None:
-    """Waits for the SDK's worker threads (registered with atexit; safe to call more than once)."""
+    """Waits for the SDK's worker threads. Release every handle first (or call ``close_all``).
+
+    Registered with atexit (see ``_exit_hook``); safe to call more than once.
+    """
     check(_native.lib.mcon_shutdown())
 
 
-atexit.register(lambda: _native.lib.mcon_shutdown())
+#: Every open handle object, so the exit hook can release what the program left open:
+#: mcon_shutdown refuses while a context is alive (design-notes §5: without it TBB's workers
+#: outlive the interpreter's teardown).
+_live: "weakref.WeakSet[_Handle]" = weakref.WeakSet()
+
+#: Status of the exit hook's mcon_shutdown call (None until it ran); for tests and diagnostics.
+exit_status: Optional[int] = None
+
+
+def close_all() -> None:
+    """Releases every open handle of this process (objects become closed)."""
+    # Dependents first; the C side keeps its own references, so the order only matters for speed.
+    for handle in sorted(list(_live), key=lambda h: isinstance(h, Context)):
+        handle.close()
+
+
+def _exit_hook() -> None:
+    global exit_status
+    close_all()
+    exit_status = _native.lib.mcon_shutdown()
+    if exit_status != 0:
+        msg = ctypes.c_char_p()
+        _native.lib.mcon_get_last_error(None, ctypes.byref(msg))
+        sys.stderr.write(f"macrocon: mcon_shutdown at exit failed: {(msg.value or b'').decode()}\n")
+
+
+atexit.register(_exit_hook)
+
+
+def require_type(value, cls, name: str) -> None:
+    """A TypeError (instead of a NULL handle reaching the C side) for None or a wrong object."""
+    if not isinstance(value, cls):
+        raise TypeError(f"{name} must be a macrocon.{cls.__name__}, got {type(value).__name__}")
 
 
 class _Handle:
@@ -37,6 +74,7 @@ class _Handle:
 
     def __init__(self, handle: ctypes.c_void_p):
         self._handle = handle
+        _live.add(self)
 
     @property
     def handle(self) -> ctypes.c_void_p:
@@ -114,6 +152,7 @@ class Mesh(_Handle):
     _release = _native.lib.mcon_mesh_release
 
     def __init__(self, context: Context, positions, triangles):
+        require_type(context, Context, "context")
         p = _as_array("positions", positions, (np.float32, np.float64), 3)
         t = _as_array("triangles", triangles, (np.uint32,), 3)
         desc = _native.MeshDesc()
@@ -156,6 +195,7 @@ class Patch(_Handle):
         snap_fraction: Optional[float] = None,
         progress: Optional[ProgressCallback] = None,
     ) -> "Patch":
+        require_type(mesh, Mesh, "mesh")
         options = _native.PatchOptions()
         check(_native.lib.mcon_patch_options_init(ctypes.byref(options)))
         if (center_vertex is None) == (center_triangle is None):
@@ -177,6 +217,81 @@ class Patch(_Handle):
         status = _native.lib.mcon_patch_extract(mesh.handle, ctypes.byref(options), ctypes.byref(handle))
         cb.check(status)
         return cls(handle)
+
+    @classmethod
+    def from_arrays(
+        cls,
+        context: Context,
+        positions,
+        triangles,
+        center_triangle: int,
+        center_barycentric=(1 / 3, 1 / 3, 1 / 3),
+        origin=(0.0, 0.0, 0.0),
+        scale: float = 1.0,
+    ) -> "Patch":
+        """A patch from an already normalized disk mesh (e.g. a library entry); nothing is cut.
+
+        ``origin`` and ``scale`` place it in its own host units (host = origin + scale * p), where
+        3D outputs of transfers onto this patch are expressed.
+        """
+        require_type(context, Context, "context")
+        p = _as_array("positions", positions, (np.float32, np.float64), 3)
+        t = _as_array("triangles", triangles, (np.uint32,), 3)
+        desc = _native.MeshDesc()
+        check(_native.lib.mcon_mesh_desc_init(ctypes.byref(desc)))
+        desc.positions, desc.position_type, desc.vertex_count = p.ctypes.data, 1 if p.dtype == np.float32 else 2, p.shape[0]
+        desc.indices, desc.triangle_count = t.ctypes.data, t.shape[0]
+        frame = _native.PatchFrame()
+        check(_native.lib.mcon_patch_frame_init(ctypes.byref(frame)))
+        frame.center_triangle = int(center_triangle)
+        if len(center_barycentric) != 3 or len(origin) != 3:
+            raise ValueError("center_barycentric and origin need 3 values each")
+        for i in range(3):
+            frame.center_barycentric[i] = float(center_barycentric[i])
+            frame.origin[i] = float(origin[i])
+        frame.scale = float(scale)
+        handle = ctypes.c_void_p()
+        check(_native.lib.mcon_patch_create_from_arrays(context.handle, ctypes.byref(desc), ctypes.byref(frame),
+                                                        ctypes.byref(handle)))
+        return cls(handle)
+
+    def cross_field(
+        self,
+        guides=None,
+        alignment_weight: Optional[float] = None,
+        align_to_boundary: bool = False,
+        boundary_weight: Optional[float] = None,
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """A smooth per-face 4-RoSy field following ``guides`` (a PolylineSet on this patch, or None).
+
+        Returns (directions (m, 3), confidence (m,)).
+        """
+        from .mapping import PolylineSet  # mapping imports this module
+
+        if guides is not None:
+            require_type(guides, PolylineSet, "guides")
+        o = _native.CrossFieldOptions()
+        check(_native.lib.mcon_cross_field_options_init(ctypes.byref(o)))
+        if alignment_weight is not None:
+            o.alignment_weight = float(alignment_weight)
+        o.align_to_boundary = 1 if align_to_boundary else 0
+        if boundary_weight is not None:
+            o.boundary_weight = float(boundary_weight)
+        m = self.triangle_count
+        directions, confidence = np.empty((m, 3), np.float64), np.empty(m, np.float64)
+        check(_native.lib.mcon_patch_compute_cross_field(self.handle, None if guides is None else guides.handle,
+                                                         ctypes.byref(o), directions.ctypes.data,
+                                                         confidence.ctypes.data, m))
+        return directions, confidence
+
+    def write_rosy(self, directions, path) -> None:
+        """Writes a QuadWild ``.rosy`` file (``.gz`` compresses); directions (triangle_count, 3) float64."""
+        import os
+
+        d = _as_array("directions", directions, (np.float64,), 3)
+        if d.shape[0] != self.triangle_count:
+            raise ValueError(f"directions has {d.shape[0]} rows, the patch {self.triangle_count} triangles")
+        check(_native.lib.mcon_patch_write_rosy(self.handle, d.ctypes.data, d.shape[0], os.fsencode(path)))
 
     @property
     def info(self) -> _native.PatchInfo:
@@ -253,4 +368,4 @@ class Patch(_Handle):
         return out
 
 
-__all__ = ["Context", "Mesh", "Patch", "Error", "CancelledError", "version", "shutdown"]
+__all__ = ["Context", "Mesh", "Patch", "Error", "CancelledError", "version", "shutdown", "close_all"]

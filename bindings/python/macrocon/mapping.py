@@ -1,0 +1,213 @@
+"""Re-embedding maps and constraint transfer (mcon_map_*, mcon_polyline_set_*)."""
+from __future__ import annotations
+
+import ctypes
+from dataclasses import dataclass
+from enum import IntEnum
+from typing import List, Optional, Sequence, Tuple
+
+import numpy as np
+
+from . import _native
+from ._arrays import checked, ptr, rows
+from .core import Patch, ProgressCallback, _Handle, _Progress, require_type
+from .errors import check
+from .library import FieldKind, Polyline
+
+
+class StopReason(IntEnum):
+    CONVERGED = 1
+    STALLED = 2
+    ITERATION_CAP = 3
+    CANCELLED = 4
+
+
+class Direction(IntEnum):
+    SOURCE_TO_TARGET = 1
+    TARGET_TO_SOURCE = 2
+
+
+@dataclass(frozen=True)
+class MapInfo:
+    source_vertex_count: int
+    target_vertex_count: int
+    source_vertices_inside: int
+    target_vertices_inside: int
+    overlap_ratio: float
+    matching_score: float
+    energy_total: float
+    energy_descriptor: float
+    energy_distortion: float
+    energy_area: float
+    energy_injectivity: float
+    iterations: int
+    stop_reason: StopReason
+    reflected: bool
+    levels: int
+    flipped_triangles: int
+    alignment_score: float
+    alignment_seconds: float
+    optimization_seconds: float
+
+
+class PolylineSet(_Handle):
+    """Polylines re-traced on a target patch (every segment inside one target triangle)."""
+
+    _release = _native.lib.mcon_polyline_set_release
+
+    @property
+    def counts(self) -> Tuple[int, int]:
+        """(polyline count, point count)."""
+        n, p = _native.c_size(), _native.c_size()
+        check(_native.lib.mcon_polyline_set_get_counts(self.handle, ctypes.byref(n), ctypes.byref(p)))
+        return n.value, p.value
+
+    def __len__(self) -> int:
+        return self.counts[0]
+
+    def polyline_arrays(self) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(sizes uint32, closed bool, input_polyline uint32), one per polyline."""
+        n = self.counts[0]
+        sizes, closed, source = np.zeros(n, np.uint32), np.zeros(n, np.uint8), np.zeros(n, np.uint32)
+        check(_native.lib.mcon_polyline_set_get_polylines(self.handle, ptr(sizes), ptr(closed), ptr(source), n))
+        return sizes, closed.astype(bool), source
+
+    def point_arrays(self) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(triangles (p,) uint32, barycentric (p, 3), xyz (p, 3) in the target's host units)."""
+        p = self.counts[1]
+        tri, bary, xyz = np.zeros(p, np.uint32), np.zeros((p, 3)), np.zeros((p, 3))
+        check(_native.lib.mcon_polyline_set_get_points(self.handle, ptr(tri), ptr(bary), ptr(xyz), p))
+        return tri, bary, xyz
+
+    def polylines(self) -> List[Polyline]:
+        """The set as Polyline objects (kind GUIDE), e.g. to store in a library entry of the target."""
+        sizes, closed, _ = self.polyline_arrays()
+        tri, bary, _ = self.point_arrays()
+        starts = np.concatenate([[0], np.cumsum(sizes, dtype=np.int64)])
+        return [Polyline(tri[a:b].copy(), bary[a:b].copy(), closed=bool(c))
+                for a, b, c in zip(starts[:-1], starts[1:], closed)]
+
+
+def _points(name: str, triangles, barycentric) -> Tuple[np.ndarray, np.ndarray]:
+    t = checked(f"{name} triangles", triangles, np.uint32, (None,))
+    b = checked(f"{name} barycentric", barycentric, np.float64, (t.shape[0], 3))
+    return t, b
+
+
+class Map(_Handle):
+    """The re-embedding map Phi from a source patch onto a target patch (locally injective, partial)."""
+
+    _release = _native.lib.mcon_map_release
+
+    def __init__(self, handle: ctypes.c_void_p, source: Patch, target: Patch):
+        super().__init__(handle)
+        self.source, self.target = source, target
+
+    @classmethod
+    def compute(
+        cls,
+        source: Patch,
+        target: Patch,
+        seed: int = 0,
+        alignment_samples: Optional[int] = None,
+        allow_reflection: bool = True,
+        max_iterations: Optional[int] = None,
+        progress: Optional[ProgressCallback] = None,
+    ) -> "Map":
+        require_type(source, Patch, "source")
+        require_type(target, Patch, "target")
+        o = _native.MapOptions()
+        check(_native.lib.mcon_map_options_init(ctypes.byref(o)))
+        o.seed = int(seed)
+        if alignment_samples is not None:
+            o.alignment_samples = int(alignment_samples)
+        o.allow_reflection = 1 if allow_reflection else 0
+        if max_iterations is not None:
+            o.max_iterations = int(max_iterations)
+        cb = _Progress(progress)
+        o.progress = cb.c_fn
+        handle = ctypes.c_void_p()
+        cb.check(_native.lib.mcon_map_compute(source.handle, target.handle, ctypes.byref(o), ctypes.byref(handle)))
+        return cls(handle, source, target)
+
+    @property
+    def info(self) -> MapInfo:
+        i = _native.MapInfo()
+        check(_native.lib.mcon_map_info_init(ctypes.byref(i)))
+        check(_native.lib.mcon_map_get_info(self.handle, ctypes.byref(i)))
+        return MapInfo(i.source_vertex_count, i.target_vertex_count, i.source_vertices_inside, i.target_vertices_inside,
+                       i.overlap_ratio, i.matching_score, i.energy_total, i.energy_descriptor, i.energy_distortion,
+                       i.energy_area, i.energy_injectivity, i.iterations, StopReason(i.stop_reason), bool(i.reflected),
+                       i.levels, i.flipped_triangles, i.alignment_score, i.alignment_seconds, i.optimization_seconds)
+
+    def correspondences(self, direction: Direction = Direction.SOURCE_TO_TARGET) -> Tuple[np.ndarray, np.ndarray]:
+        """Per vertex of the direction's domain: (triangle of the other patch, -1 = outside; barycentric (n, 3))."""
+        d = Direction(direction)
+        n = self.source.vertex_count if d == Direction.SOURCE_TO_TARGET else self.target.vertex_count
+        tri, bary = np.zeros(n, np.int32), np.zeros((n, 3))
+        check(_native.lib.mcon_map_get_correspondences(self.handle, int(d), ptr(tri), ptr(bary), n))
+        return tri, bary
+
+    @property
+    def phi(self) -> np.ndarray:
+        """(source vertices, 2): the deformed source disk in the target disk's plane."""
+        out = np.zeros((self.source.vertex_count, 2))
+        check(_native.lib.mcon_map_get_phi(self.handle, ptr(out), out.size))
+        return out
+
+    @property
+    def outside_mask(self) -> np.ndarray:
+        """(target vertices,) bool: True where a target vertex has no source preimage."""
+        out = np.zeros(self.target.vertex_count, np.uint8)
+        check(_native.lib.mcon_map_get_outside_mask(self.handle, ptr(out), out.size))
+        return out.astype(bool)
+
+    def transfer_points(self, triangles, barycentric) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Source points -> (target triangles (0xFFFFFFFF = outside), barycentric (n, 3), xyz (n, 3))."""
+        t, b = _points("points", triangles, barycentric)
+        n = t.shape[0]
+        ot, ob, oxyz = np.zeros(n, np.uint32), np.zeros((n, 3)), np.zeros((n, 3))
+        check(_native.lib.mcon_map_transfer_points(self.handle, ptr(t), ptr(b), n, ptr(ot), ptr(ob), ptr(oxyz), n))
+        return ot, ob, oxyz
+
+    def transfer_polylines(self, polylines: Sequence[Polyline]) -> PolylineSet:
+        """Source polylines (e.g. ``Entry.polylines``) mapped and re-traced on the target."""
+        if isinstance(polylines, Polyline):
+            polylines = [polylines]
+        parts_t, parts_b, sizes, closed = [], [], [], []
+        for i, line in enumerate(polylines):
+            require_type(line, Polyline, "polylines[i]")
+            t, b = _points(f"polylines[{i}]", line.faces, line.barycentric)
+            parts_t.append(t), parts_b.append(b), sizes.append(t.shape[0]), closed.append(1 if line.closed else 0)
+        t = np.concatenate(parts_t) if parts_t else np.zeros(0, np.uint32)
+        b = np.concatenate(parts_b) if parts_b else np.zeros((0, 3))
+        s, c = np.array(sizes, np.uint32), np.array(closed, np.uint8)
+        handle = ctypes.c_void_p()
+        check(_native.lib.mcon_map_transfer_polylines(self.handle, ptr(t), ptr(b), t.shape[0], ptr(s), ptr(c), s.size,
+                                                      ctypes.byref(handle)))
+        return PolylineSet(handle)
+
+    def transfer_field(self, values, kind: FieldKind = FieldKind.SCALAR) -> np.ndarray:
+        """A per-source-vertex float64 field (n,) or (n, d) -> (target vertices, d); outside gets 0."""
+        k = FieldKind(kind)
+        if k == FieldKind.INTEGER_LABEL:
+            raise ValueError("integer labels go through transfer_labels (never blended)")
+        v = rows("values", values, np.float64)
+        if v.shape[0] != self.source.vertex_count:
+            raise ValueError(f"values has {v.shape[0]} rows, the source {self.source.vertex_count} vertices")
+        out = np.zeros((self.target.vertex_count, v.shape[1]))
+        check(_native.lib.mcon_map_transfer_field(self.handle, int(k), v.shape[1], ptr(v), v.size, ptr(out), out.size))
+        return out
+
+    def transfer_labels(self, labels, outside_label: int = -1) -> np.ndarray:
+        """Per-source-vertex int32 labels (n,) or (n, d) -> (target vertices, d), never blended."""
+        v = rows("labels", labels, np.int32)
+        if v.shape[0] != self.source.vertex_count:
+            raise ValueError(f"labels has {v.shape[0]} rows, the source {self.source.vertex_count} vertices")
+        out = np.zeros((self.target.vertex_count, v.shape[1]), np.int32)
+        check(_native.lib.mcon_map_transfer_labels(self.handle, v.shape[1], ptr(v), v.size, int(outside_label), ptr(out),
+                                                   out.size))
+        return out
+
+
+__all__ = ["Map", "MapInfo", "PolylineSet", "StopReason", "Direction"]
