@@ -266,14 +266,16 @@ inline std::vector<std::vector<std::uint32_t>> vertex_neighbours(const Geometry&
   return nb;
 }
 
-// Local maxima of d over two rings of neighbours with d >= min_value, largest first, at least
-// `separation` apart (3D, normalized units); at most `count`.
+// Interior local maxima of d over two rings of neighbours with d >= min_value, largest first, at
+// least `separation` apart (3D, normalized units); at most `count`. Boundary vertices are never
+// maxima: the cut puts them all at distance 1, so their noise would win over the real tips.
 inline std::vector<std::uint32_t> distance_maxima(const Geometry& g, const std::vector<double>& d, double min_value,
                                                   double separation, std::size_t count) {
   const auto nb = vertex_neighbours(g);
+  const auto boundary = boundary_vertices(g);
   std::vector<std::uint32_t> candidates;
   for (std::uint32_t v = 0; v < g.nv(); ++v) {
-    if (d[v] < min_value) continue;
+    if (d[v] < min_value || boundary[v]) continue;
     bool is_max = true;
     for (std::uint32_t a : nb[v]) {
       if (d[a] > d[v]) is_max = false;
