@@ -2,6 +2,7 @@
 // wrappers, exceptions from status codes, arrays and spans in, progress through a static
 // trampoline (the delegate never moves; the user's callback travels as a GCHandle).
 using System;
+using System.Collections.Generic;
 using System.Runtime.InteropServices;
 
 namespace Macrocon
@@ -15,6 +16,58 @@ namespace Macrocon
     }
 
     public enum Descriptor { Curv9 = 1, MeanCurvature = 2 }
+
+    /// <summary>mcon_field_kind: how a per-vertex field is stored and transferred.</summary>
+    public enum FieldKind { Scalar = 1, Vector3 = 2, TangentVector = 3, IntegerLabel = 4, Uv = 5 }
+    public enum PolylineKind { Guide = 1, Feature = 2 }
+    public enum RetrievalDescriptor { Curv9 = 1, Hks = 3, Wks = 4, Custom = 256 }
+    public enum MapStopReason { Converged = 1, Stalled = 2, IterationCap = 3, Cancelled = 4 }
+    public enum MapDirection { SourceToTarget = 1, TargetToSource = 2 }
+    public enum EntryString { Name = 1, ClassLabel = 2, Author = 3, Licence = 4, Tag = 5, FieldName = 6 }
+
+    /// <summary>mcon_surface_point: triangle `Face` of a patch and the weights of its corners.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct SurfacePoint
+    {
+        public uint Face; public double B0, B1, B2;
+        public SurfacePoint(uint face, double b0, double b1, double b2) { Face = face; B0 = b0; B1 = b1; B2 = b2; }
+    }
+
+    /// <summary>mcon_singularity: index in quarter turns (+1 = valence 3, -1 = valence 5).</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct Singularity
+    {
+        public SurfacePoint Location; public int IndexQuarters;
+        public Singularity(SurfacePoint location, int indexQuarters) { Location = location; IndexQuarters = indexQuarters; }
+    }
+
+    /// <summary>mcon_library_info (C layout).</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct LibraryInfo
+    {
+        public uint StructSize; public UIntPtr EntryCount; public RetrievalDescriptor Descriptor; public uint DescriptorDimension;
+        public uint VocabularySize; public uint Rings; public uint HistogramLength; public double SigmaBof; public ulong Seed;
+    }
+
+    /// <summary>mcon_library_entry_info (C layout).</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct EntryInfo
+    {
+        public uint StructSize; public ulong Id; public UIntPtr VertexCount; public UIntPtr TriangleCount; public UIntPtr TagCount;
+        public UIntPtr PolylineCount; public UIntPtr SingularityCount; public UIntPtr FieldCount; public SurfacePoint Center;
+        public double SourceScale; public double SourceOriginX, SourceOriginY, SourceOriginZ;
+    }
+
+    /// <summary>mcon_map_info (C layout).</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct MapInfo
+    {
+        public uint StructSize; public UIntPtr SourceVertexCount; public UIntPtr TargetVertexCount;
+        public UIntPtr SourceVerticesInside; public UIntPtr TargetVerticesInside; public double OverlapRatio; public double MatchingScore;
+        public double EnergyTotal, EnergyDescriptor, EnergyDistortion, EnergyArea, EnergyInjectivity;
+        public uint Iterations; public MapStopReason StopReason; public uint Reflected; public uint Levels; public uint FlippedTriangles;
+        public double AlignmentScore, AlignmentSeconds, OptimizationSeconds;
+    }
 
     /// <summary>A failed Macrocon call: the C status code and the library's message.</summary>
     public class MacroconException : Exception
@@ -36,6 +89,16 @@ namespace Macrocon
     public sealed class NotADiskException : MacroconException
     {
         public NotADiskException(string message) : base(Status.NotADisk, message) { }
+    }
+
+    public sealed class InvalidLibraryException : MacroconException
+    {
+        public InvalidLibraryException(string message) : base(Status.InvalidLibrary, message) { }
+    }
+
+    public sealed class NotFoundException : MacroconException
+    {
+        public NotFoundException(string message) : base(Status.NotFound, message) { }
     }
 
     internal static class Native
@@ -100,6 +163,123 @@ namespace Macrocon
         [DllImport(Lib)] internal static extern Status mcon_descriptor_get_dimension(Descriptor descriptor, out uint dimension);
         [DllImport(Lib)] internal static extern Status mcon_patch_compute_descriptors(PatchHandle patch, Descriptor descriptor, [Out] double[] values, UIntPtr capacity);
 
+        // ---- constraint libraries and retrieval (mcon_library_*) ----
+        [StructLayout(LayoutKind.Sequential)]
+        internal struct PolylineDesc { public uint kind; public uint closed; public IntPtr points; public UIntPtr point_count; }
+
+        [StructLayout(LayoutKind.Sequential)]
+        internal struct VertexField { public IntPtr name; public uint kind; public uint dimension; public IntPtr values; public IntPtr labels; public UIntPtr stride; }
+
+        [StructLayout(LayoutKind.Sequential)]
+        internal struct EntryDesc
+        {
+            public uint struct_size; public IntPtr patch; public ulong id; public IntPtr name; public IntPtr class_label;
+            public IntPtr tags; public UIntPtr tag_count; public IntPtr author; public IntPtr licence;
+            public IntPtr polylines; public UIntPtr polyline_count; public IntPtr singularities; public UIntPtr singularity_count;
+            public IntPtr fields; public UIntPtr field_count; public IntPtr descriptors; public uint descriptor_dimension;
+            public UIntPtr descriptor_stride;
+        }
+
+        [StructLayout(LayoutKind.Sequential)]
+        internal struct RetrievalOptions
+        {
+            public uint struct_size; public uint descriptor; public uint vocabulary_size; public uint rings; public double sigma_bof;
+            public ulong seed; public IntPtr progress; public IntPtr progress_user_data;
+        }
+
+        [DllImport(Lib)] internal static extern Status mcon_library_entry_desc_init(ref EntryDesc desc);
+        [DllImport(Lib)] internal static extern Status mcon_library_create(ContextHandle context, out LibraryHandle library);
+        [DllImport(Lib)] internal static extern Status mcon_library_open(ContextHandle context, byte[] path, out LibraryHandle library);
+        [DllImport(Lib)] internal static extern Status mcon_library_open_memory(ContextHandle context, IntPtr data, UIntPtr size, out LibraryHandle library);
+        [DllImport(Lib)] internal static extern Status mcon_library_release(IntPtr library);
+        [DllImport(Lib)] internal static extern Status mcon_library_save(LibraryHandle library, byte[] path);
+        [DllImport(Lib)] internal static extern Status mcon_library_save_memory(LibraryHandle library, IntPtr data, UIntPtr capacity, out UIntPtr size);
+        [DllImport(Lib)] internal static extern Status mcon_library_info_init(ref LibraryInfo info);
+        [DllImport(Lib)] internal static extern Status mcon_library_get_info(LibraryHandle library, ref LibraryInfo info);
+        [DllImport(Lib)] internal static extern Status mcon_library_get_count(LibraryHandle library, out UIntPtr count);
+        [DllImport(Lib)] internal static extern Status mcon_library_add_entry(LibraryHandle library, ref EntryDesc desc, out ulong id);
+        [DllImport(Lib)] internal static extern Status mcon_library_remove_entry(LibraryHandle library, ulong id);
+        [DllImport(Lib)] internal static extern Status mcon_library_find_entry(LibraryHandle library, ulong id, out UIntPtr index);
+        [DllImport(Lib)] internal static extern Status mcon_library_merge(LibraryHandle library, LibraryHandle other);
+        [DllImport(Lib)] internal static extern Status mcon_retrieval_options_init(ref RetrievalOptions options);
+        [DllImport(Lib)] internal static extern Status mcon_library_build_retrieval(LibraryHandle library, ref RetrievalOptions options);
+        [DllImport(Lib)] internal static extern Status mcon_library_query(LibraryHandle library, PatchHandle patch, UIntPtr n, [Out] ulong[] ids,
+            [Out] uint[] indices, [Out] double[] distances, UIntPtr capacity, out UIntPtr count);
+        [DllImport(Lib)] internal static extern Status mcon_library_query_descriptors(LibraryHandle library, PatchHandle patch, IntPtr descriptors,
+            uint dimension, UIntPtr stride, UIntPtr n, [Out] ulong[] ids, [Out] uint[] indices, [Out] double[] distances, UIntPtr capacity,
+            out UIntPtr count);
+        [DllImport(Lib)] internal static extern Status mcon_library_entry_info_init(ref EntryInfo info);
+        [DllImport(Lib)] internal static extern Status mcon_library_get_entry_info(LibraryHandle library, UIntPtr index, ref EntryInfo info);
+        [DllImport(Lib)] internal static extern Status mcon_library_get_entry_string(LibraryHandle library, UIntPtr index, EntryString which,
+            UIntPtr item, [Out] byte[] text, UIntPtr capacity, out UIntPtr size);
+        [DllImport(Lib)] internal static extern Status mcon_library_get_entry_positions(LibraryHandle library, UIntPtr index, [Out] double[] xyz, UIntPtr capacity);
+        [DllImport(Lib)] internal static extern Status mcon_library_get_entry_triangles(LibraryHandle library, UIntPtr index, [Out] uint[] indices, UIntPtr capacity);
+        [DllImport(Lib)] internal static extern Status mcon_library_get_entry_polyline(LibraryHandle library, UIntPtr index, UIntPtr polyline,
+            out uint kind, out uint closed, out UIntPtr pointCount, [Out] SurfacePoint[] points, UIntPtr capacity);
+        [DllImport(Lib)] internal static extern Status mcon_library_get_entry_singularities(LibraryHandle library, UIntPtr index,
+            [Out] Singularity[] singularities, UIntPtr capacity);
+        [DllImport(Lib)] internal static extern Status mcon_library_get_entry_field(LibraryHandle library, UIntPtr index, UIntPtr field,
+            out uint kind, out uint dimension, [Out] double[] values, [Out] int[] labels, UIntPtr capacity);
+        [DllImport(Lib)] internal static extern Status mcon_library_get_entry_retrieval(LibraryHandle library, UIntPtr index,
+            [Out] double[] descriptors, UIntPtr descriptorCapacity, [Out] float[] histogram, UIntPtr histogramCapacity);
+
+        // ---- re-embedding maps and transfer (mcon_map_*) ----
+        [StructLayout(LayoutKind.Sequential)]
+        internal unsafe struct PatchFrame
+        {
+            public uint struct_size; public uint center_triangle; public fixed double center_barycentric[3];
+            public fixed double origin[3]; public double scale;
+        }
+
+        [StructLayout(LayoutKind.Sequential)]
+        internal struct MapOptions
+        {
+            public uint struct_size; public ulong seed; public uint alignment_samples; public uint allow_reflection;
+            public uint max_iterations; public IntPtr progress; public IntPtr progress_user_data;
+        }
+
+        [StructLayout(LayoutKind.Sequential)]
+        internal struct CrossFieldOptions { public uint struct_size; public double alignment_weight; public uint align_to_boundary; public double boundary_weight; }
+
+        [DllImport(Lib)] internal static extern Status mcon_patch_frame_init(ref PatchFrame frame);
+        [DllImport(Lib)] internal static extern Status mcon_patch_create_from_arrays(ContextHandle context, ref MeshDesc mesh, ref PatchFrame frame, out PatchHandle patch);
+        [DllImport(Lib)] internal static extern Status mcon_map_options_init(ref MapOptions options);
+        [DllImport(Lib)] internal static extern Status mcon_map_compute(PatchHandle source, PatchHandle target, ref MapOptions options, out MapHandle map);
+        [DllImport(Lib)] internal static extern Status mcon_map_release(IntPtr map);
+        [DllImport(Lib)] internal static extern Status mcon_map_info_init(ref MapInfo info);
+        [DllImport(Lib)] internal static extern Status mcon_map_get_info(MapHandle map, ref MapInfo info);
+        [DllImport(Lib)] internal static extern Status mcon_map_get_correspondences(MapHandle map, MapDirection direction, [Out] int[] triangles,
+            [Out] double[] barycentric, UIntPtr capacity);
+        [DllImport(Lib)] internal static extern Status mcon_map_get_phi(MapHandle map, [Out] double[] xy, UIntPtr capacity);
+        [DllImport(Lib)] internal static extern Status mcon_map_get_outside_mask(MapHandle map, [Out] byte[] mask, UIntPtr capacity);
+        [DllImport(Lib)] internal static extern Status mcon_map_transfer_points(MapHandle map, IntPtr triangles, IntPtr barycentric, UIntPtr count,
+            [Out] uint[] outTriangles, [Out] double[] outBarycentric, [Out] double[] outXyz, UIntPtr capacity);
+        [DllImport(Lib)] internal static extern Status mcon_map_transfer_polylines(MapHandle map, [In] uint[] triangles, [In] double[] barycentric,
+            UIntPtr pointCount, [In] uint[] sizes, [In] byte[] closed, UIntPtr polylineCount, out PolylineSetHandle polylines);
+        [DllImport(Lib)] internal static extern Status mcon_polyline_set_release(IntPtr polylines);
+        [DllImport(Lib)] internal static extern Status mcon_polyline_set_get_counts(PolylineSetHandle polylines, out UIntPtr polylineCount, out UIntPtr pointCount);
+        [DllImport(Lib)] internal static extern Status mcon_polyline_set_get_polylines(PolylineSetHandle polylines, [Out] uint[] sizes, [Out] byte[] closed,
+            [Out] uint[] inputPolyline, UIntPtr capacity);
+        [DllImport(Lib)] internal static extern Status mcon_polyline_set_get_points(PolylineSetHandle polylines, [Out] uint[] triangles,
+            [Out] double[] barycentric, [Out] double[] xyz, UIntPtr capacity);
+        [DllImport(Lib)] internal static extern Status mcon_map_transfer_field(MapHandle map, FieldKind kind, uint dimension, IntPtr values,
+            UIntPtr valueCount, [Out] double[] outValues, UIntPtr capacity);
+        [DllImport(Lib)] internal static extern Status mcon_map_transfer_labels(MapHandle map, uint dimension, IntPtr labels, UIntPtr labelCount,
+            int outsideLabel, [Out] int[] outLabels, UIntPtr capacity);
+        [DllImport(Lib)] internal static extern Status mcon_cross_field_options_init(ref CrossFieldOptions options);
+        [DllImport(Lib)] internal static extern Status mcon_patch_compute_cross_field(PatchHandle patch, IntPtr guides, ref CrossFieldOptions options,
+            [Out] double[] directions, [Out] double[] confidence, UIntPtr capacity);
+        [DllImport(Lib)] internal static extern Status mcon_patch_write_rosy(PatchHandle patch, IntPtr directions, UIntPtr triangleCount, byte[] path);
+
+        /// <summary>A NUL-terminated UTF-8 copy of a string (paths and metadata).</summary>
+        internal static byte[] Utf8(string s)
+        {
+            if (s == null) return null;
+            var bytes = System.Text.Encoding.UTF8.GetBytes(s);
+            Array.Resize(ref bytes, bytes.Length + 1);
+            return bytes;
+        }
+
         internal static void Check(Status status)
         {
             if (status == Status.Ok) return;
@@ -109,6 +289,8 @@ namespace Macrocon
             {
                 case Status.Cancelled: throw new CancelledException(text);
                 case Status.NotADisk: throw new NotADiskException(text);
+                case Status.InvalidLibrary: throw new InvalidLibraryException(text);
+                case Status.NotFound: throw new NotFoundException(text);
                 case Status.NonFinite: case Status.IndexOutOfRange: case Status.RepeatedIndex: case Status.DegenerateTriangle:
                 case Status.NonManifoldEdge: case Status.NonManifoldVertex: case Status.IsolatedVertex: case Status.EmptyMesh:
                     throw new InvalidMeshException(status, text);
@@ -132,27 +314,125 @@ namespace Macrocon
             public Func<double, bool> Callback;
             public Exception Error;
         }
+
+        /// <summary>One call's progress callback: the static trampoline plus a GCHandle to the
+        /// managed callback, freed on Dispose. Finish rethrows the callback's own exception.</summary>
+        internal struct ProgressScope : IDisposable
+        {
+            private GCHandle gc;
+            private ProgressState state;
+            public IntPtr Function, UserData;
+
+            public ProgressScope(Func<double, bool> progress)
+            {
+                state = new ProgressState { Callback = progress };
+                gc = default;
+                Function = UserData = IntPtr.Zero;
+                if (progress == null) return;
+                gc = GCHandle.Alloc(state);
+                Function = TrampolinePtr;
+                UserData = GCHandle.ToIntPtr(gc);
+            }
+
+            public void Finish(Status s)
+            {
+                if (s == Status.Cancelled && state.Error != null) throw state.Error;
+                Check(s);
+            }
+
+            public void Dispose()
+            {
+                if (gc.IsAllocated) gc.Free();
+            }
+        }
+
+        // ---- the exit hook: release what the program left open, then mcon_shutdown ----
+        // mcon_shutdown refuses while a context lives, and without it TBB's workers outlive
+        // Mono's teardown (design-notes §5: a segfault at exit).
+        private static readonly object liveLock = new object();
+        private static readonly List<WeakReference<SafeHandle>> live = new List<WeakReference<SafeHandle>>();
+        private static bool hookInstalled;
+        internal static Status? ExitStatus;
+
+        internal static void Track(SafeHandle h)
+        {
+            lock (liveLock)
+            {
+                if (live.Count > 64 && live.Count % 64 == 0) live.RemoveAll(w => !w.TryGetTarget(out SafeHandle x) || x.IsClosed);
+                live.Add(new WeakReference<SafeHandle>(h));
+                if (hookInstalled) return;
+                hookInstalled = true;
+                AppDomain.CurrentDomain.ProcessExit += (sender, e) => OnExit();
+            }
+        }
+
+        internal static void CloseAll()
+        {
+            List<SafeHandle> open = new List<SafeHandle>();
+            lock (liveLock)
+            {
+                foreach (var w in live)
+                    if (w.TryGetTarget(out SafeHandle h) && !h.IsClosed) open.Add(h);
+                live.Clear();
+            }
+            // Dependents first (the C side keeps its own references, so order is only tidiness).
+            foreach (var h in open) if (!(h is ContextHandle)) h.Dispose();
+            foreach (var h in open) if (h is ContextHandle) h.Dispose();
+        }
+
+        private static void OnExit()
+        {
+            CloseAll();
+            Status s = mcon_shutdown();
+            ExitStatus = s;
+            if (s != Status.Ok)
+            {
+                mcon_get_last_error(IntPtr.Zero, out IntPtr msg);
+                Console.Error.WriteLine("macrocon: mcon_shutdown at exit failed: " + (msg == IntPtr.Zero ? "" : Marshal.PtrToStringAnsi(msg)));
+            }
+        }
     }
 
     public sealed class ContextHandle : SafeHandle
     {
-        public ContextHandle() : base(IntPtr.Zero, true) { }
+        public ContextHandle() : base(IntPtr.Zero, true) { Native.Track(this); }
         public override bool IsInvalid => handle == IntPtr.Zero;
         protected override bool ReleaseHandle() => Native.mcon_context_release(handle) == Status.Ok;
     }
 
     public sealed class MeshHandle : SafeHandle
     {
-        public MeshHandle() : base(IntPtr.Zero, true) { }
+        public MeshHandle() : base(IntPtr.Zero, true) { Native.Track(this); }
         public override bool IsInvalid => handle == IntPtr.Zero;
         protected override bool ReleaseHandle() => Native.mcon_mesh_release(handle) == Status.Ok;
     }
 
     public sealed class PatchHandle : SafeHandle
     {
-        public PatchHandle() : base(IntPtr.Zero, true) { }
+        public PatchHandle() : base(IntPtr.Zero, true) { Native.Track(this); }
         public override bool IsInvalid => handle == IntPtr.Zero;
         protected override bool ReleaseHandle() => Native.mcon_patch_release(handle) == Status.Ok;
+    }
+
+    public sealed class LibraryHandle : SafeHandle
+    {
+        public LibraryHandle() : base(IntPtr.Zero, true) { Native.Track(this); }
+        public override bool IsInvalid => handle == IntPtr.Zero;
+        protected override bool ReleaseHandle() => Native.mcon_library_release(handle) == Status.Ok;
+    }
+
+    public sealed class MapHandle : SafeHandle
+    {
+        public MapHandle() : base(IntPtr.Zero, true) { Native.Track(this); }
+        public override bool IsInvalid => handle == IntPtr.Zero;
+        protected override bool ReleaseHandle() => Native.mcon_map_release(handle) == Status.Ok;
+    }
+
+    public sealed class PolylineSetHandle : SafeHandle
+    {
+        public PolylineSetHandle() : base(IntPtr.Zero, true) { Native.Track(this); }
+        public override bool IsInvalid => handle == IntPtr.Zero;
+        protected override bool ReleaseHandle() => Native.mcon_polyline_set_release(handle) == Status.Ok;
     }
 
     public static class Library
@@ -178,6 +458,13 @@ namespace Macrocon
 
         /// <summary>Waits for the SDK's worker threads. Call once before exit, after disposing every object.</summary>
         public static void Shutdown() => Native.Check(Native.mcon_shutdown());
+
+        /// <summary>Disposes every Macrocon object still open in this process (they become unusable).
+        /// The exit hook (AppDomain.ProcessExit) does this, then calls mcon_shutdown.</summary>
+        public static void CloseAll() => Native.CloseAll();
+
+        /// <summary>The status of the exit hook's mcon_shutdown (null until it ran; for tests).</summary>
+        public static Status? ExitStatus => Native.ExitStatus;
 
         public static string StatusName(Status s)
         {
@@ -265,25 +552,83 @@ namespace Macrocon
             options.center_vertex = centerVertex;
             options.radius = radius;
             options.flags = fillHoles ? 1u : 0u;
-            var state = new Native.ProgressState { Callback = progress };
-            GCHandle gc = default;
-            if (progress != null)
+            using (var scope = new Native.ProgressScope(progress))
             {
-                gc = GCHandle.Alloc(state);
-                options.progress = Native.TrampolinePtr;
-                options.progress_user_data = GCHandle.ToIntPtr(gc);
+                options.progress = scope.Function;
+                options.progress_user_data = scope.UserData;
+                Status s = Native.mcon_patch_extract(mesh.Handle, ref options, out PatchHandle handle);
+                scope.Finish(s);
+                return new Patch(handle);
             }
+        }
+
+        /// <summary>A patch from an already normalized disk mesh (e.g. a library entry); nothing is cut.
+        /// host = origin + scale * p places it in its own host units.</summary>
+        public static unsafe Patch FromArrays(Context context, ReadOnlySpan<double> positions, ReadOnlySpan<uint> triangles,
+                                              uint centerTriangle, double[] centerBarycentric = null, double[] origin = null,
+                                              double scale = 1.0)
+        {
+            if (positions.Length % 3 != 0) throw new ArgumentException("positions must hold 3 values per vertex");
+            if (triangles.Length % 3 != 0) throw new ArgumentException("triangles must hold 3 indices per triangle");
+            if (centerBarycentric != null && centerBarycentric.Length != 3) throw new ArgumentException("centerBarycentric needs 3 values");
+            if (origin != null && origin.Length != 3) throw new ArgumentException("origin needs 3 values");
+            var desc = new Native.MeshDesc();
+            Native.Check(Native.mcon_mesh_desc_init(ref desc));
+            var frame = new Native.PatchFrame();
+            Native.Check(Native.mcon_patch_frame_init(ref frame));
+            frame.center_triangle = centerTriangle;
+            for (int k = 0; k < 3; ++k)
+            {
+                frame.center_barycentric[k] = centerBarycentric == null ? 1.0 / 3 : centerBarycentric[k];
+                frame.origin[k] = origin == null ? 0 : origin[k];
+            }
+            frame.scale = scale;
+            fixed (double* p = &MemoryMarshal.GetReference(positions))
+            fixed (uint* t = &MemoryMarshal.GetReference(triangles))
+            {
+                desc.positions = (IntPtr)p;
+                desc.position_type = 2;
+                desc.vertex_count = (UIntPtr)(positions.Length / 3);
+                desc.indices = (IntPtr)t;
+                desc.triangle_count = (UIntPtr)(triangles.Length / 3);
+                Native.Check(Native.mcon_patch_create_from_arrays(context.Handle, ref desc, ref frame, out PatchHandle handle));
+                return new Patch(handle);
+            }
+        }
+
+        /// <summary>A smooth per-face 4-RoSy cross field following `guides` (a PolylineSet on this patch,
+        /// or null): 3 doubles per triangle, and a confidence in [0, 1] per triangle.</summary>
+        public (double[] Directions, double[] Confidence) CrossField(PolylineSet guides = null, double? alignmentWeight = null,
+                                                                     bool alignToBoundary = false, double? boundaryWeight = null)
+        {
+            var o = new Native.CrossFieldOptions();
+            Native.Check(Native.mcon_cross_field_options_init(ref o));
+            if (alignmentWeight.HasValue) o.alignment_weight = alignmentWeight.Value;
+            o.align_to_boundary = alignToBoundary ? 1u : 0u;
+            if (boundaryWeight.HasValue) o.boundary_weight = boundaryWeight.Value;
+            var d = new double[3 * TriangleCount];
+            var c = new double[TriangleCount];
+            bool added = false;
             try
             {
-                Status s = Native.mcon_patch_extract(mesh.Handle, ref options, out PatchHandle handle);
-                if (s == Status.Cancelled && state.Error != null) throw state.Error;
-                Native.Check(s);
-                return new Patch(handle);
+                if (guides != null) guides.Handle.DangerousAddRef(ref added);
+                IntPtr g = guides == null ? IntPtr.Zero : guides.Handle.DangerousGetHandle();
+                Native.Check(Native.mcon_patch_compute_cross_field(Handle, g, ref o, d, c, (UIntPtr)TriangleCount));
             }
             finally
             {
-                if (gc.IsAllocated) gc.Free();
+                if (added) guides.Handle.DangerousRelease();
             }
+            return (d, c);
+        }
+
+        /// <summary>Writes a QuadWild .rosy file (a .gz path is compressed); 3 doubles per triangle.</summary>
+        public unsafe void WriteRosy(ReadOnlySpan<double> directions, string path)
+        {
+            if (directions.Length != 3 * TriangleCount) throw new ArgumentException($"directions must hold 3 * {TriangleCount} values");
+            if (path == null) throw new ArgumentNullException(nameof(path));
+            fixed (double* d = &MemoryMarshal.GetReference(directions))
+                Native.Check(Native.mcon_patch_write_rosy(Handle, (IntPtr)d, (UIntPtr)TriangleCount, Native.Utf8(path)));
         }
 
         public int VertexCount => (int)info.vertex_count;

@@ -403,9 +403,504 @@ class Patch {
 };
 
 // ---- Libraries and retrieval ----
+// One polyline of an entry (points on the entry's patch triangles).
+struct Polyline {
+  std::uint32_t kind = MCON_POLYLINE_GUIDE;  // mcon_polyline_kind
+  bool closed = false;
+  std::vector<mcon_surface_point> points;
+};
+
+// A named per-vertex field: `values` for real kinds, `labels` for MCON_FIELD_INTEGER_LABEL,
+// vertex_count * dimension of them (vertex-major).
+struct VertexField {
+  std::string name;
+  std::uint32_t kind = MCON_FIELD_SCALAR;  // mcon_field_kind
+  std::uint32_t dimension = 1;
+  std::vector<double> values;
+  std::vector<std::int32_t> labels;
+};
+
+// What an entry carries besides its patch; also what Library::entry reads back.
+struct EntryData {
+  std::uint64_t id = 0;  // 0 = assign
+  std::string name, class_label, author, licence;
+  std::vector<std::string> tags;
+  std::vector<Polyline> polylines;  // read back: guides first, then features
+  std::vector<mcon_singularity> singularities;
+  std::vector<VertexField> fields;
+  // Caller-supplied descriptors (custom libraries): vertex_count * descriptor_dimension values.
+  std::vector<double> descriptors;
+  std::uint32_t descriptor_dimension = 0;
+};
+
+struct QueryHit {
+  std::uint64_t id = 0;
+  std::uint32_t index = 0;
+  double distance = 0;
+};
+
+// A constraint library (mcon_library_*): copy = retain (the same library), move = steal.
+class Library {
+ public:
+  static Library create(const Context& context) {
+    mcon_library handle = nullptr;
+    check(mcon_library_create(detail::require(context.get(), "Context"), &handle));
+    return adopt(handle);
+  }
+  static Library open(const Context& context, const std::string& path) {
+    mcon_library handle = nullptr;
+    check(mcon_library_open(detail::require(context.get(), "Context"), path.c_str(), &handle));
+    return adopt(handle);
+  }
+  static Library open_memory(const Context& context, const void* data, std::size_t size) {
+    mcon_library handle = nullptr;
+    check(mcon_library_open_memory(detail::require(context.get(), "Context"), data, size, &handle));
+    return adopt(handle);
+  }
+  Library() noexcept = default;
+  static Library adopt(mcon_library handle) noexcept {
+    Library l;
+    l.ref_ = Ref(handle);
+    return l;
+  }
+
+  void save(const std::string& path) const { check(mcon_library_save(handle(), path.c_str())); }
+  std::vector<std::uint8_t> save_memory() const {
+    std::size_t size = 0;
+    check(mcon_library_save_memory(handle(), nullptr, 0, &size));
+    std::vector<std::uint8_t> bytes(size);
+    check(mcon_library_save_memory(handle(), bytes.data(), bytes.size(), &size));
+    return bytes;
+  }
+
+  mcon_library_info info() const {
+    mcon_library_info i;
+    check(mcon_library_info_init(&i));
+    check(mcon_library_get_info(handle(), &i));
+    return i;
+  }
+  std::size_t size() const {
+    std::size_t n = 0;
+    check(mcon_library_get_count(handle(), &n));
+    return n;
+  }
+
+  // Adds the patch with `data`'s metadata, constraints and fields; returns the entry's id.
+  std::uint64_t add(const Patch& patch, const EntryData& data) {
+    mcon_library_entry_desc d;
+    check(mcon_library_entry_desc_init(&d));
+    d.patch = detail::require(patch.get(), "Patch");
+    d.id = data.id;
+    d.name = data.name.c_str();
+    d.class_label = data.class_label.c_str();
+    d.author = data.author.c_str();
+    d.licence = data.licence.c_str();
+    std::vector<const char*> tags;
+    for (const std::string& t : data.tags) tags.push_back(t.c_str());
+    d.tags = tags.data();
+    d.tag_count = tags.size();
+    std::vector<mcon_polyline> lines;
+    for (const Polyline& p : data.polylines)
+      lines.push_back(mcon_polyline{p.kind, p.closed ? 1u : 0u, p.points.data(), p.points.size()});
+    d.polylines = lines.data();
+    d.polyline_count = lines.size();
+    d.singularities = data.singularities.data();
+    d.singularity_count = data.singularities.size();
+    std::vector<mcon_vertex_field> fields;
+    for (const VertexField& f : data.fields)
+      fields.push_back(mcon_vertex_field{f.name.c_str(), f.kind, f.dimension,
+                                         f.kind == MCON_FIELD_INTEGER_LABEL ? nullptr : f.values.data(),
+                                         f.kind == MCON_FIELD_INTEGER_LABEL ? f.labels.data() : nullptr, 0});
+    d.fields = fields.data();
+    d.field_count = fields.size();
+    if (!data.descriptors.empty()) {
+      d.descriptors = data.descriptors.data();
+      d.descriptor_dimension = data.descriptor_dimension;
+    }
+    std::uint64_t id = 0;
+    check(mcon_library_add_entry(handle(), &d, &id));
+    return id;
+  }
+  void remove(std::uint64_t id) { check(mcon_library_remove_entry(handle(), id)); }
+  std::size_t find(std::uint64_t id) const {
+    std::size_t index = 0;
+    check(mcon_library_find_entry(handle(), id, &index));
+    return index;
+  }
+  void merge(const Library& other) { check(mcon_library_merge(handle(), other.handle())); }
+
+  // mcon_retrieval_options_init's defaults (CURV9, k = 128, the measured best rings).
+  static mcon_retrieval_options default_retrieval_options() {
+    mcon_retrieval_options o;
+    check(mcon_retrieval_options_init(&o));
+    return o;
+  }
+  void build_retrieval() { build_retrieval(default_retrieval_options()); }
+  void build_retrieval(const mcon_retrieval_options& options) { check(mcon_library_build_retrieval(handle(), &options)); }
+
+  std::vector<QueryHit> query(const Patch& patch, std::size_t n) const {
+    return run_query(n, [&](std::uint64_t* ids, std::uint32_t* indices, double* distances, std::size_t cap,
+                            std::size_t* count) {
+      return mcon_library_query(handle(), detail::require(patch.get(), "Patch"), n, ids, indices, distances, cap,
+                                count);
+    });
+  }
+  // For a custom library: the patch's own descriptors, vertex_count * dimension values.
+  std::vector<QueryHit> query(const Patch& patch, const std::vector<double>& descriptors, std::uint32_t dimension,
+                              std::size_t n) const {
+    return run_query(n, [&](std::uint64_t* ids, std::uint32_t* indices, double* distances, std::size_t cap,
+                            std::size_t* count) {
+      return mcon_library_query_descriptors(handle(), detail::require(patch.get(), "Patch"), descriptors.data(),
+                                            dimension, 0, n, ids, indices, distances, cap, count);
+    });
+  }
+
+  mcon_library_entry_info entry_info(std::size_t index) const {
+    mcon_library_entry_info i;
+    check(mcon_library_entry_info_init(&i));
+    check(mcon_library_get_entry_info(handle(), index, &i));
+    return i;
+  }
+  std::vector<double> entry_positions(std::size_t index) const {
+    std::vector<double> out(3 * entry_info(index).vertex_count);
+    check(mcon_library_get_entry_positions(handle(), index, out.data(), out.size()));
+    return out;
+  }
+  std::vector<std::uint32_t> entry_triangles(std::size_t index) const {
+    std::vector<std::uint32_t> out(3 * entry_info(index).triangle_count);
+    check(mcon_library_get_entry_triangles(handle(), index, out.data(), out.size()));
+    return out;
+  }
+  std::vector<float> entry_histogram(std::size_t index) const {
+    std::vector<float> out(info().histogram_length);
+    check(mcon_library_get_entry_retrieval(handle(), index, nullptr, 0, out.data(), out.size()));
+    return out;
+  }
+  // Everything but the geometry, read back (descriptors included).
+  EntryData entry(std::size_t index) const {
+    const mcon_library_entry_info ei = entry_info(index);
+    EntryData e;
+    e.id = ei.id;
+    e.name = entry_string(index, MCON_ENTRY_NAME, 0);
+    e.class_label = entry_string(index, MCON_ENTRY_CLASS_LABEL, 0);
+    e.author = entry_string(index, MCON_ENTRY_AUTHOR, 0);
+    e.licence = entry_string(index, MCON_ENTRY_LICENCE, 0);
+    for (std::size_t t = 0; t < ei.tag_count; ++t) e.tags.push_back(entry_string(index, MCON_ENTRY_TAG, t));
+    for (std::size_t p = 0; p < ei.polyline_count; ++p) {
+      Polyline line;
+      std::uint32_t closed = 0;
+      std::size_t count = 0;
+      check(mcon_library_get_entry_polyline(handle(), index, p, &line.kind, &closed, &count, nullptr, 0));
+      line.closed = closed != 0;
+      line.points.resize(count);
+      check(mcon_library_get_entry_polyline(handle(), index, p, nullptr, nullptr, nullptr, line.points.data(), count));
+      e.polylines.push_back(std::move(line));
+    }
+    e.singularities.resize(ei.singularity_count);
+    check(mcon_library_get_entry_singularities(handle(), index, e.singularities.data(), e.singularities.size()));
+    for (std::size_t f = 0; f < ei.field_count; ++f) {
+      VertexField field;
+      field.name = entry_string(index, MCON_ENTRY_FIELD_NAME, f);
+      check(mcon_library_get_entry_field(handle(), index, f, &field.kind, &field.dimension, nullptr, nullptr, 0));
+      const std::size_t count = ei.vertex_count * field.dimension;
+      if (field.kind == MCON_FIELD_INTEGER_LABEL) {
+        field.labels.resize(count);
+        check(mcon_library_get_entry_field(handle(), index, f, nullptr, nullptr, nullptr, field.labels.data(), count));
+      } else {
+        field.values.resize(count);
+        check(mcon_library_get_entry_field(handle(), index, f, nullptr, nullptr, field.values.data(), nullptr, count));
+      }
+      e.fields.push_back(std::move(field));
+    }
+    e.descriptor_dimension = info().descriptor_dimension;
+    e.descriptors.resize(ei.vertex_count * e.descriptor_dimension);
+    check(mcon_library_get_entry_retrieval(handle(), index, e.descriptors.data(), e.descriptors.size(), nullptr, 0));
+    return e;
+  }
+  std::string entry_string(std::size_t index, mcon_entry_string which, std::size_t item) const {
+    std::size_t size = 0;
+    check(mcon_library_get_entry_string(handle(), index, which, item, nullptr, 0, &size));
+    std::string s(size, '\0');
+    check(mcon_library_get_entry_string(handle(), index, which, item, &s[0], s.size(), &size));
+    s.resize(size > 0 ? size - 1 : 0);
+    return s;
+  }
+
+  mcon_library get() const noexcept { return ref_.get(); }
+  mcon_library detach() noexcept { return ref_.detach(); }
+  explicit operator bool() const noexcept { return ref_.get() != nullptr; }
+
+ private:
+  using Ref = detail::Ref<mcon_library, mcon_library_retain, mcon_library_release>;
+  mcon_library handle() const { return detail::require(get(), "Library"); }
+  template <typename Call>
+  std::vector<QueryHit> run_query(std::size_t n, const Call& call) const {
+    const std::size_t cap = n < size() ? n : size();
+    std::vector<std::uint64_t> ids(cap);
+    std::vector<std::uint32_t> indices(cap);
+    std::vector<double> distances(cap);
+    std::size_t count = 0;
+    check(call(ids.data(), indices.data(), distances.data(), cap, &count));
+    std::vector<QueryHit> hits(count);
+    for (std::size_t i = 0; i < count; ++i) hits[i] = QueryHit{ids[i], indices[i], distances[i]};
+    return hits;
+  }
+
+  Ref ref_;
+};
+
 // @@library-api@@ (insertion point; keep this line)
 
 // ---- Re-embedding maps and constraint transfer ----
+
+// A patch made from a normalized disk mesh (e.g. a constraint library entry): flat arrays
+// positions = x0 y0 z0 ..., indices = a0 b0 c0 ...; the center is a point of the mesh; host
+// coordinates are origin + scale * p. Throws Error (NOT_A_DISK, validation errors, ...).
+inline Patch patch_from_arrays(const Context& context, const std::vector<double>& positions,
+                               const std::vector<std::uint32_t>& indices, std::uint32_t center_triangle,
+                               const std::array<double, 3>& center_barycentric = {{1.0 / 3, 1.0 / 3, 1.0 / 3}},
+                               const std::array<double, 3>& origin = {{0, 0, 0}}, double scale = 1.0) {
+  if (positions.size() % 3 != 0 || indices.size() % 3 != 0)
+    throw Error(MCON_ERROR_INVALID_ARGUMENT, "macrocon::patch_from_arrays: array sizes are not multiples of 3");
+  mcon_mesh_desc d;
+  check(mcon_mesh_desc_init(&d));
+  d.positions = positions.data();
+  d.position_type = MCON_SCALAR_FLOAT64;
+  d.vertex_count = positions.size() / 3;
+  d.indices = indices.data();
+  d.triangle_count = indices.size() / 3;
+  mcon_patch_frame f;
+  check(mcon_patch_frame_init(&f));
+  f.center_triangle = center_triangle;
+  for (std::size_t i = 0; i < 3; ++i) {
+    f.center_barycentric[i] = center_barycentric[i];
+    f.origin[i] = origin[i];
+  }
+  f.scale = scale;
+  mcon_patch handle = nullptr;
+  check(mcon_patch_create_from_arrays(detail::require(context.get(), "Context"), &d, &f, &handle));
+  return Patch::adopt(handle);
+}
+
+// Points on a patch: triangle, 3 barycentric weights and the 3D position (host units) each.
+struct SurfacePoints {
+  std::vector<std::uint32_t> triangles;  // MCON_INVALID_INDEX: no image (outside the overlap)
+  std::vector<double> barycentric;       // 3 per point
+  std::vector<double> xyz;               // 3 per point
+  std::size_t size() const { return triangles.size(); }
+};
+
+// Polylines re-traced on a target patch (Map::transfer_polylines).
+class PolylineSet {
+ public:
+  PolylineSet() noexcept = default;
+  static PolylineSet adopt(mcon_polyline_set handle) noexcept {
+    PolylineSet p;
+    p.ref_ = Ref(handle);
+    return p;
+  }
+  std::size_t polyline_count() const { return counts().first; }
+  std::size_t point_count() const { return counts().second; }
+  // Per polyline: point count, closed flag, index of the input polyline it came from.
+  std::vector<std::uint32_t> sizes() const { return polylines().sizes; }
+  std::vector<std::uint8_t> closed() const { return polylines().closed; }
+  std::vector<std::uint32_t> input_polylines() const { return polylines().input; }
+  // All points, polyline after polyline.
+  SurfacePoints points() const {
+    const std::size_t n = point_count();
+    SurfacePoints s;
+    s.triangles.resize(n);
+    s.barycentric.resize(3 * n);
+    s.xyz.resize(3 * n);
+    check(mcon_polyline_set_get_points(handle(), s.triangles.data(), s.barycentric.data(), s.xyz.data(), n));
+    return s;
+  }
+  mcon_polyline_set get() const noexcept { return ref_.get(); }
+  explicit operator bool() const noexcept { return ref_.get() != nullptr; }
+
+ private:
+  using Ref = detail::Ref<mcon_polyline_set, mcon_polyline_set_retain, mcon_polyline_set_release>;
+  struct Lists {
+    std::vector<std::uint32_t> sizes;
+    std::vector<std::uint8_t> closed;
+    std::vector<std::uint32_t> input;
+  };
+  std::pair<std::size_t, std::size_t> counts() const {
+    std::size_t p = 0, n = 0;
+    check(mcon_polyline_set_get_counts(handle(), &p, &n));
+    return {p, n};
+  }
+  Lists polylines() const {
+    const std::size_t n = polyline_count();
+    Lists l;
+    l.sizes.resize(n);
+    l.closed.resize(n);
+    l.input.resize(n);
+    check(mcon_polyline_set_get_polylines(handle(), l.sizes.data(), l.closed.data(), l.input.data(), n));
+    return l;
+  }
+  mcon_polyline_set handle() const { return detail::require(get(), "PolylineSet"); }
+  Ref ref_;
+};
+
+// Options of Map::compute; the C struct mcon_map_options works too.
+struct MapOptions {
+  std::uint64_t seed = 0;
+  std::uint32_t alignment_samples = 10000;
+  bool allow_reflection = true;
+  std::uint32_t max_iterations = 100;
+  // Fraction in [0, 1]; return false to cancel (Error with MCON_ERROR_CANCELLED). An exception it
+  // throws cancels the computation and is rethrown from Map::compute.
+  std::function<bool(double)> progress;
+};
+
+// The re-embedding map Phi of a source patch onto a target patch, and transfers through it.
+class Map {
+ public:
+  static Map compute(const Patch& source, const Patch& target, const MapOptions& options = {}) {
+    mcon_map_options c;
+    check(mcon_map_options_init(&c));
+    c.seed = options.seed;
+    c.alignment_samples = options.alignment_samples;
+    c.allow_reflection = options.allow_reflection ? 1u : 0u;
+    c.max_iterations = options.max_iterations;
+    Forward forward{&options.progress, nullptr};
+    if (options.progress) {
+      c.progress = &Forward::call;
+      c.progress_user_data = &forward;
+    }
+    mcon_map handle = nullptr;
+    const mcon_status status = mcon_map_compute(detail::require(source.get(), "Patch"),
+                                                detail::require(target.get(), "Patch"), &c, &handle);
+    if (forward.exception) std::rethrow_exception(forward.exception);
+    check(status);
+    return adopt(handle);
+  }
+  Map() noexcept = default;
+  static Map adopt(mcon_map handle) noexcept {
+    Map m;
+    m.ref_ = Ref(handle);
+    return m;
+  }
+
+  mcon_map_info info() const {
+    mcon_map_info i;
+    check(mcon_map_info_init(&i));
+    check(mcon_map_get_info(handle(), &i));
+    return i;
+  }
+  // Per vertex of the direction's domain: triangle of the other patch (-1 outside) and 3 weights.
+  std::pair<std::vector<std::int32_t>, std::vector<double>> correspondences(mcon_map_direction direction) const {
+    const mcon_map_info i = info();
+    const std::size_t n = direction == MCON_MAP_SOURCE_TO_TARGET ? i.source_vertex_count : i.target_vertex_count;
+    std::pair<std::vector<std::int32_t>, std::vector<double>> out;
+    out.first.resize(n);
+    out.second.resize(3 * n);
+    check(mcon_map_get_correspondences(handle(), direction, out.first.data(), out.second.data(), n));
+    return out;
+  }
+  // 2 doubles per source vertex.
+  std::vector<double> phi() const {
+    std::vector<double> out(2 * info().source_vertex_count);
+    check(mcon_map_get_phi(handle(), out.data(), out.size()));
+    return out;
+  }
+  // 1 per target vertex outside the overlap.
+  std::vector<std::uint8_t> outside_mask() const {
+    std::vector<std::uint8_t> out(info().target_vertex_count);
+    check(mcon_map_get_outside_mask(handle(), out.data(), out.size()));
+    return out;
+  }
+  SurfacePoints transfer_points(const std::vector<std::uint32_t>& triangles, const std::vector<double>& barycentric) const {
+    if (barycentric.size() != 3 * triangles.size())
+      throw Error(MCON_ERROR_INVALID_ARGUMENT, "macrocon::Map::transfer_points: need 3 weights per point");
+    const std::size_t n = triangles.size();
+    SurfacePoints s;
+    s.triangles.resize(n);
+    s.barycentric.resize(3 * n);
+    s.xyz.resize(3 * n);
+    check(mcon_map_transfer_points(handle(), triangles.data(), barycentric.data(), n, s.triangles.data(),
+                                   s.barycentric.data(), s.xyz.data(), n));
+    return s;
+  }
+  // Points grouped by `sizes` into polylines; `closed` empty = all open.
+  PolylineSet transfer_polylines(const std::vector<std::uint32_t>& triangles, const std::vector<double>& barycentric,
+                                 const std::vector<std::uint32_t>& sizes,
+                                 const std::vector<std::uint8_t>& closed = {}) const {
+    if (barycentric.size() != 3 * triangles.size() || (!closed.empty() && closed.size() != sizes.size()))
+      throw Error(MCON_ERROR_INVALID_ARGUMENT, "macrocon::Map::transfer_polylines: inconsistent array sizes");
+    mcon_polyline_set handle_out = nullptr;
+    check(mcon_map_transfer_polylines(handle(), triangles.data(), barycentric.data(), triangles.size(), sizes.data(),
+                                      closed.empty() ? nullptr : closed.data(), sizes.size(), &handle_out));
+    return PolylineSet::adopt(handle_out);
+  }
+  // source_vertex_count * dimension values -> target_vertex_count * dimension values.
+  std::vector<double> transfer_field(mcon_field_kind kind, std::uint32_t dimension,
+                                     const std::vector<double>& source_values) const {
+    std::vector<double> out(info().target_vertex_count * dimension);
+    check(mcon_map_transfer_field(handle(), kind, dimension, source_values.data(), source_values.size(), out.data(),
+                                  out.size()));
+    return out;
+  }
+  std::vector<std::int32_t> transfer_labels(std::uint32_t dimension, const std::vector<std::int32_t>& labels,
+                                            std::int32_t outside_label = -1) const {
+    std::vector<std::int32_t> out(info().target_vertex_count * dimension);
+    check(mcon_map_transfer_labels(handle(), dimension, labels.data(), labels.size(), outside_label, out.data(),
+                                   out.size()));
+    return out;
+  }
+
+  mcon_map get() const noexcept { return ref_.get(); }
+  explicit operator bool() const noexcept { return ref_.get() != nullptr; }
+
+ private:
+  using Ref = detail::Ref<mcon_map, mcon_map_retain, mcon_map_release>;
+  struct Forward {
+    const std::function<bool(double)>* function;
+    std::exception_ptr exception;
+    static std::int32_t call(void* user, double fraction) {
+      auto* self = static_cast<Forward*>(user);
+      try {
+        return (*self->function)(fraction) ? 1 : 0;
+      } catch (...) {
+        self->exception = std::current_exception();
+        return 0;
+      }
+    }
+  };
+  mcon_map handle() const { return detail::require(get(), "Map"); }
+  Ref ref_;
+};
+
+// A guide-aligned cross field: one unit direction (3 doubles) and a confidence per triangle.
+struct CrossField {
+  std::vector<double> directions;
+  std::vector<double> confidence;
+};
+
+// `guides` may be an empty PolylineSet (the smoothest field); they must lie on `patch`.
+inline CrossField compute_cross_field(const Patch& patch, const PolylineSet& guides, double alignment_weight = 10.0,
+                                      bool align_to_boundary = false, double boundary_weight = 1.0) {
+  mcon_cross_field_options o;
+  check(mcon_cross_field_options_init(&o));
+  o.alignment_weight = alignment_weight;
+  o.align_to_boundary = align_to_boundary ? 1u : 0u;
+  o.boundary_weight = boundary_weight;
+  const std::size_t n = patch.triangle_count();
+  CrossField f;
+  f.directions.resize(3 * n);
+  f.confidence.resize(n);
+  check(mcon_patch_compute_cross_field(detail::require(patch.get(), "Patch"), guides.get(), &o, f.directions.data(),
+                                       f.confidence.data(), n));
+  return f;
+}
+
+// QuadWild `.rosy` (a `.gz` path is compressed).
+inline void write_rosy(const Patch& patch, const std::vector<double>& directions, const std::string& path) {
+  check(mcon_patch_write_rosy(detail::require(patch.get(), "Patch"), directions.data(), directions.size() / 3,
+                              path.c_str()));
+}
+
 // @@map-api@@ (insertion point; keep this line)
 
 }  // namespace macrocon

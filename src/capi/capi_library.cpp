@@ -104,7 +104,6 @@ mcon_status mcon_library_release(mcon_library library) {
 mcon_status mcon_library_save(mcon_library library, const char* path) {
   return guard_object("mcon_library_save", library, "library", [&] {
     require_pointer(path, "path");
-    require(path[0] != '\0', MCON_ERROR_INVALID_ARGUMENT, "path is empty");
     save_library_atomic(library->library, path);
   });
 }

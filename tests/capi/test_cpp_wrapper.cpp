@@ -223,6 +223,103 @@ TEST(CppWrapper, ProgressCancelsAndRethrowsCallbackExceptions) {
   EXPECT_EQ(error_of([&] { macrocon::Patch().info(); }).status(), MCON_ERROR_NULL_POINTER);
 }
 
+static_assert(std::is_nothrow_move_constructible_v<macrocon::Library>);
+
+TEST(CppWrapper, LibraryAddBuildQuerySaveOpenMergeAndEntries) {
+  macrocon::Context ctx;
+  const Flat g = flat(mcon::test_meshes::make_bumpy_grid(31));
+  const macrocon::Mesh mesh = macrocon::Mesh::from_arrays(ctx, g.xyz, g.tris);
+  // Three different regions of the bumpy grid (vertex = row * 31 + column).
+  std::vector<macrocon::Patch> patches;
+  for (std::uint32_t v : {15u * 31 + 15, 8u * 31 + 8, 22u * 31 + 9})
+    patches.push_back(macrocon::Patch::extract(mesh, macrocon::PatchOptions::at_vertex(v, 0.3)));
+
+  macrocon::Library lib = macrocon::Library::create(ctx);
+  EXPECT_EQ(lib.size(), 0u);
+  std::vector<std::uint64_t> ids;
+  for (std::size_t i = 0; i < patches.size(); ++i) {
+    macrocon::EntryData data;
+    data.name = "region_" + std::to_string(i);
+    data.class_label = i == 0 ? "center" : "side";
+    data.tags = {"bumpy", "grid"};
+    const std::size_t n = patches[i].vertex_count();
+    macrocon::Polyline guide;
+    guide.points = {{0, {1, 0, 0}}, {1, {0, 1, 0}}};
+    data.polylines.push_back(guide);
+    data.singularities.push_back(mcon_singularity{{2, {0.25, 0.25, 0.5}}, -1});
+    macrocon::VertexField label;
+    label.name = "label";
+    label.kind = MCON_FIELD_INTEGER_LABEL;
+    label.labels.assign(n, static_cast<std::int32_t>(i));
+    macrocon::VertexField weight;
+    weight.name = "weight";
+    weight.values.assign(n, 0.5 * static_cast<double>(i));
+    data.fields = {label, weight};
+    ids.push_back(lib.add(patches[i], data));
+  }
+  EXPECT_EQ(lib.size(), 3u);
+  EXPECT_EQ(lib.find(ids[2]), 2u);
+
+  // No vocabulary yet: queries throw with the library's status and message.
+  const macrocon::Error no_vocabulary = error_of([&] { lib.query(patches[0], 1); });
+  EXPECT_EQ(no_vocabulary.status(), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(no_vocabulary.what()).find("vocabulary"), std::string::npos);
+
+  mcon_retrieval_options o = macrocon::Library::default_retrieval_options();
+  EXPECT_EQ(o.rings, 4u);
+  EXPECT_EQ(o.vocabulary_size, 128u);
+  o.vocabulary_size = 8;
+  lib.build_retrieval(o);
+  EXPECT_EQ(lib.info().vocabulary_size, 8u);
+  for (std::size_t i = 0; i < patches.size(); ++i) {
+    const auto hits = lib.query(patches[i], 10);
+    ASSERT_EQ(hits.size(), 3u);
+    EXPECT_EQ(hits[0].id, ids[i]);
+    EXPECT_EQ(hits[0].index, i);
+    EXPECT_EQ(hits[0].distance, 0.0);
+  }
+
+  // Entries read back.
+  const macrocon::EntryData e = lib.entry(1);
+  EXPECT_EQ(e.id, ids[1]);
+  EXPECT_EQ(e.name, "region_1");
+  EXPECT_EQ(e.class_label, "side");
+  EXPECT_EQ(e.tags, (std::vector<std::string>{"bumpy", "grid"}));
+  ASSERT_EQ(e.polylines.size(), 1u);
+  EXPECT_EQ(e.polylines[0].kind, static_cast<std::uint32_t>(MCON_POLYLINE_GUIDE));
+  EXPECT_EQ(e.polylines[0].points[1].barycentric[1], 1.0);
+  ASSERT_EQ(e.singularities.size(), 1u);
+  EXPECT_EQ(e.singularities[0].index_quarters, -1);
+  ASSERT_EQ(e.fields.size(), 2u);
+  EXPECT_EQ(e.fields[0].labels, std::vector<std::int32_t>(patches[1].vertex_count(), 1));
+  EXPECT_EQ(e.fields[1].values, std::vector<double>(patches[1].vertex_count(), 0.5));
+  EXPECT_EQ(e.descriptors.size(), 9 * patches[1].vertex_count());
+  EXPECT_EQ(lib.entry_positions(1).size(), 3 * patches[1].vertex_count());
+  EXPECT_EQ(lib.entry_triangles(1).size(), 3 * patches[1].triangle_count());
+  EXPECT_EQ(lib.entry_histogram(1).size(), 8u * 4u);
+
+  // Bytes round trip; merge of a copy; remove.
+  const std::vector<std::uint8_t> bytes = lib.save_memory();
+  macrocon::Library copy = macrocon::Library::open_memory(ctx, bytes.data(), bytes.size());
+  EXPECT_EQ(copy.save_memory(), bytes);
+  lib.merge(copy);
+  EXPECT_EQ(lib.size(), 6u);
+  EXPECT_EQ(lib.query(patches[2], 2)[1].distance, 0.0);
+  lib.remove(ids[0]);
+  EXPECT_EQ(lib.size(), 5u);
+  EXPECT_EQ(error_of([&] { lib.find(ids[0]); }).status(), MCON_ERROR_NOT_FOUND);
+  EXPECT_EQ(error_of([&] { macrocon::Library::open(ctx, "/nonexistent/dir/lib.mclb"); }).status(), MCON_ERROR_IO);
+
+  // Copy = retain (the same library), move = steal.
+  macrocon::Library same = lib;
+  same.remove(ids[1]);
+  EXPECT_EQ(lib.size(), 4u);
+  macrocon::Library moved = std::move(same);
+  EXPECT_FALSE(same);
+  EXPECT_EQ(error_of([&] { same.size(); }).status(), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(moved.size(), 4u);
+}
+
 TEST(CppWrapper, ShutdownRefusesWhileAContextLivesThenSucceeds) {
   {
     macrocon::Context ctx;

@@ -111,16 +111,21 @@ def test_closed_handles_are_rejected(context):
 
 
 def test_process_exits_cleanly_after_parallel_work():
+    """Objects left open at exit: the exit hook releases them and mcon_shutdown succeeds."""
     script = textwrap.dedent(
         """
-        import numpy as np, macrocon, sys
+        import atexit, sys
         sys.path.insert(0, %r)
+        # Registered before macrocon is imported, so it runs after macrocon's exit hook (atexit is LIFO).
+        atexit.register(lambda: print("exit_status", sys.modules["macrocon"].core.exit_status))
+        import numpy as np, macrocon
         from conftest import grid
         p, t = grid(81)
-        with macrocon.Context() as ctx, macrocon.Mesh(ctx, p, t) as mesh:
-            for r in (0.2, 0.3, 0.4):
-                with macrocon.Patch.extract(mesh, radius=r, center_vertex=40 * 81 + 40) as patch:
-                    patch.descriptors("curv9")
+        ctx = macrocon.Context()
+        mesh = macrocon.Mesh(ctx, p, t)
+        kept = [macrocon.Patch.extract(mesh, radius=r, center_vertex=40 * 81 + 40) for r in (0.2, 0.3, 0.4)]
+        for patch in kept:
+            patch.descriptors("curv9")
         print("done")
         """
         % str(__import__("pathlib").Path(__file__).parent)
@@ -128,4 +133,23 @@ def test_process_exits_cleanly_after_parallel_work():
     for _ in range(3):
         proc = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=300)
         assert proc.returncode == 0, proc.stderr
-        assert proc.stdout.strip() == "done"
+        assert proc.stdout.split() == ["done", "exit_status", "0"], proc.stdout + proc.stderr
+
+
+def test_shutdown_refuses_while_a_context_lives_and_close_all_fixes_it():
+    script = textwrap.dedent(
+        """
+        import macrocon
+        ctx = macrocon.Context()
+        try:
+            macrocon.shutdown()
+        except macrocon.InvalidArgumentError as e:
+            print("refused", "still alive" in e.message)
+        macrocon.close_all()
+        macrocon.shutdown()
+        print("ok", ctx._handle is None)
+        """
+    )
+    proc = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stdout.split() == ["refused", "True", "ok", "True"]

@@ -1,0 +1,243 @@
+"""Re-embedding maps, transfer and cross fields through the Python binding."""
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import macrocon
+from conftest import center
+
+FAST = dict(alignment_samples=400, max_iterations=30)
+
+
+@pytest.fixture
+def target(host):
+    mesh, _, _ = host
+    with macrocon.Patch.extract(mesh, radius=0.25, center_vertex=center(41, 20, 21)) as patch:
+        yield patch
+
+
+@pytest.fixture
+def source(context, target):
+    """The target's own normalized mesh as a from-arrays patch: the map should be near identity."""
+    info = target.info
+    with macrocon.Patch.from_arrays(context, target.positions, target.triangles, info.center_patch_triangle,
+                                    tuple(info.center_barycentric), origin=tuple(info.center),
+                                    scale=info.radius) as patch:
+        yield patch
+
+
+@pytest.fixture
+def phi(source, target):
+    with macrocon.Map.compute(source, target, seed=3, **FAST) as m:
+        yield m
+
+
+def test_patch_from_arrays(context, target, source):
+    assert source.vertex_count == target.vertex_count and source.triangle_count == target.triangle_count
+    assert np.allclose(source.positions, target.positions)
+    assert source.info.boundary_loops == 1 and source.info.param_flipped_triangles == 0
+    v0, v1, t = source.host_vertices
+    assert np.array_equal(v0, np.arange(source.vertex_count)) and np.array_equal(v0, v1) and np.all(t == 0)
+    assert np.array_equal(source.host_triangles, np.arange(source.triangle_count))
+
+
+def test_patch_from_arrays_errors(context, target):
+    pos, tri = target.positions, target.triangles
+    with pytest.raises(macrocon.InvalidArgumentError):  # MCON_INVALID_INDEX center
+        macrocon.Patch.from_arrays(context, pos, tri, 0xFFFFFFFF)
+    with pytest.raises(macrocon.InvalidArgumentError):
+        macrocon.Patch.from_arrays(context, pos, tri, 0, scale=-1.0)
+    # A closed surface (an octahedron) is no disk.
+    octa = np.array([[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]], np.float64)
+    faces = np.array([[0, 2, 4], [2, 1, 4], [1, 3, 4], [3, 0, 4], [2, 0, 5], [1, 2, 5], [3, 1, 5], [0, 3, 5]],
+                     np.uint32)
+    with pytest.raises(macrocon.NotADiskError) as err:
+        macrocon.Patch.from_arrays(context, octa, faces, 0)
+    assert err.value.status == 20
+    with pytest.raises(TypeError):
+        macrocon.Patch.from_arrays(context, pos, tri.astype(np.int32), 0)
+
+
+def test_map_info_and_correspondences(phi, source, target):
+    info = phi.info
+    assert isinstance(info, macrocon.MapInfo)
+    assert info.source_vertex_count == source.vertex_count and info.target_vertex_count == target.vertex_count
+    assert info.flipped_triangles == 0 and info.stop_reason in (macrocon.StopReason.CONVERGED,
+                                                                 macrocon.StopReason.STALLED,
+                                                                 macrocon.StopReason.ITERATION_CAP)
+    assert 0 <= info.matching_score <= 1 and 0 < info.overlap_ratio <= 1 + 1e-9
+    assert not info.reflected  # the surface has no mirror symmetry
+    assert info.source_vertices_inside > 0.8 * source.vertex_count
+    for direction, domain, other, inside in (
+        (macrocon.Direction.SOURCE_TO_TARGET, source, target, info.source_vertices_inside),
+        (macrocon.Direction.TARGET_TO_SOURCE, target, source, info.target_vertices_inside),
+    ):
+        tri, bary = phi.correspondences(direction)
+        assert tri.shape == (domain.vertex_count,) and bary.shape == (domain.vertex_count, 3)
+        ok = tri >= 0
+        assert ok.sum() == inside
+        assert np.all(tri[ok] < other.triangle_count)
+        assert np.allclose(bary[ok].sum(1), 1, atol=1e-9) and np.all(bary[ok] >= -1e-9)
+        assert np.all(bary[~ok] == 0)
+    mask = phi.outside_mask
+    assert mask.dtype == bool and mask.shape == (target.vertex_count,)
+    assert (~mask).sum() == info.target_vertices_inside
+    assert phi.phi.shape == (source.vertex_count, 2)
+    # Near identity: phi stays close to the target's own parametrization of the same vertices.
+    assert np.median(np.linalg.norm(phi.phi - target.uv, axis=1)) < 0.1
+
+
+def test_transfer_points_fields_and_labels(phi, source, target):
+    # Source vertex k as a point of one of its triangles.
+    tri = source.triangles
+    faces = np.arange(0, source.triangle_count, 7, dtype=np.uint32)
+    bary = np.tile([[0.2, 0.3, 0.5]], (faces.size, 1))
+    ot, ob, xyz = phi.transfer_points(faces, bary)
+    inside = ot != 0xFFFFFFFF
+    assert inside.mean() > 0.8
+    assert np.allclose(ob[inside].sum(1), 1, atol=1e-9)
+    expected = (bary[:, :, None] * source.positions[tri[faces]]).sum(1)
+    host = np.array(target.info.center) + target.info.radius * expected  # target host units
+    assert np.median(np.linalg.norm(xyz[inside] - host[inside], axis=1)) < 0.1 * target.info.radius
+
+    pos = source.positions
+    moved = phi.transfer_field(pos, macrocon.FieldKind.VECTOR3)
+    assert moved.shape == (target.vertex_count, 3)
+    outside = phi.outside_mask
+    assert np.all(moved[outside] == 0)
+    assert np.median(np.linalg.norm(moved[~outside] - target.positions[~outside], axis=1)) < 0.1
+    scalar = phi.transfer_field(pos[:, 0].copy())
+    assert scalar.shape == (target.vertex_count, 1)
+    assert np.allclose(scalar[:, 0], moved[:, 0], atol=1e-9)  # interpolation is per channel
+    uv = phi.transfer_field(source.uv, macrocon.FieldKind.UV)
+    assert uv.shape == (target.vertex_count, 2)
+    tangent = np.zeros_like(pos)
+    tangent[:, 0] = 1.0
+    pushed = phi.transfer_field(tangent, macrocon.FieldKind.TANGENT_VECTOR)
+    assert pushed.shape == (target.vertex_count, 3) and np.all(np.isfinite(pushed))
+
+    labels = (np.arange(source.vertex_count) % 5).astype(np.int32)
+    out = phi.transfer_labels(labels, outside_label=-7)
+    assert out.shape == (target.vertex_count, 1) and out.dtype == np.int32
+    assert np.all(out[outside, 0] == -7)
+    assert set(np.unique(out[~outside, 0])) <= set(range(5))  # never blended
+
+    with pytest.raises(TypeError):
+        phi.transfer_field(pos.astype(np.float32))
+    with pytest.raises(ValueError, match="rows"):
+        phi.transfer_field(pos[:-1].copy())
+    with pytest.raises(ValueError):
+        phi.transfer_field(labels, macrocon.FieldKind.INTEGER_LABEL)
+    with pytest.raises(TypeError):
+        phi.transfer_labels(labels.astype(np.int64))
+    with pytest.raises(macrocon.InvalidArgumentError):  # a VECTOR3 has 3 channels
+        phi.transfer_field(source.uv, macrocon.FieldKind.VECTOR3)
+    with pytest.raises(macrocon.InvalidArgumentError):  # weights that do not sum to 1
+        phi.transfer_points(faces[:1], np.array([[0.5, 0.5, 0.5]]))
+
+
+def test_transfer_polylines_and_cross_field(phi, source, target, tmp_path):
+    # A guide along a row of source triangles through the middle of the patch.
+    uv = source.uv
+    tri = source.triangles
+    centroid = uv[tri].mean(1)
+    row = np.where(np.abs(centroid[:, 1]) < 0.05)[0]
+    row = row[np.argsort(centroid[row, 0])].astype(np.uint32)
+    guide = macrocon.Polyline(row, np.full((row.size, 3), 1 / 3))
+    with phi.transfer_polylines([guide]) as lines:
+        n, p = lines.counts
+        assert n >= 1 and p >= row.size // 2
+        sizes, closed, origin = lines.polyline_arrays()
+        assert sizes.sum() == p and np.all(sizes >= 2) and not closed.any() and np.all(origin == 0)
+        t, b, xyz = lines.point_arrays()
+        assert np.all(t < target.triangle_count) and np.allclose(b.sum(1), 1, atol=1e-9)
+        assert np.all(np.isfinite(xyz))
+        assert sum(len(x.faces) for x in lines.polylines()) == p
+
+        d, conf = target.cross_field(lines, alignment_weight=10.0)
+        assert d.shape == (target.triangle_count, 3) and conf.shape == (target.triangle_count,)
+        assert np.allclose(np.linalg.norm(d, axis=1), 1, atol=1e-6)
+        assert np.all((conf >= 0) & (conf <= 1))
+        with pytest.raises(macrocon.InvalidArgumentError):  # these guides live on the target
+            source.cross_field(lines)
+    smooth, _ = target.cross_field(None)
+    assert np.allclose(np.linalg.norm(smooth, axis=1), 1, atol=1e-6)
+    path = tmp_path / "field.rosy"
+    target.write_rosy(d, path)
+    head = path.read_text().split()
+    assert str(target.triangle_count) in head[:3]
+    target.write_rosy(d, tmp_path / "field.rosy.gz")
+    assert (tmp_path / "field.rosy.gz").read_bytes()[:2] == b"\x1f\x8b"
+    with pytest.raises(macrocon.IOError_):
+        target.write_rosy(d, tmp_path / "no such dir" / "f.rosy")
+    with pytest.raises(ValueError):
+        target.write_rosy(d[:-1].copy(), path)
+    with pytest.raises(TypeError):
+        target.cross_field(guides="not a set")
+
+
+def test_map_progress_cancel_and_errors(source, target):
+    calls = []
+    with pytest.raises(macrocon.CancelledError):
+        macrocon.Map.compute(source, target, progress=lambda f: calls.append(f) or False, **FAST)
+    assert len(calls) == 1
+
+    def boom(_):
+        raise KeyError("from progress")
+
+    with pytest.raises(KeyError):
+        macrocon.Map.compute(source, target, progress=boom, **FAST)
+    with pytest.raises(macrocon.InvalidArgumentError):
+        macrocon.Map.compute(source, target, alignment_samples=0)
+    with pytest.raises(TypeError):
+        macrocon.Map.compute(None, target)
+    m = macrocon.Map.compute(source, target, **FAST)
+    m.close()
+    with pytest.raises(ValueError, match="closed"):
+        m.info
+
+
+def test_maps_are_deterministic(source, target):
+    with macrocon.Map.compute(source, target, seed=11, **FAST) as a, \
+            macrocon.Map.compute(source, target, seed=11, **FAST) as b:
+        assert np.array_equal(a.phi, b.phi)
+        assert a.info.energy_total == b.info.energy_total
+
+
+CLEAN_EXIT = """
+import atexit, sys
+sys.path.insert(0, {tests!r})
+# Registered before macrocon is imported, so it runs after macrocon's exit hook (atexit is LIFO).
+atexit.register(lambda: print("exit_status", sys.modules["macrocon"].core.exit_status, flush=True))
+import numpy as np, macrocon
+from conftest import bumpy
+p, t = bumpy(61)
+ctx = macrocon.Context()
+mesh = macrocon.Mesh(ctx, p, t)
+patches = [macrocon.Patch.extract(mesh, radius=0.2, center_vertex=j * 61 + i) for i, j in ((20, 20), (40, 30), (25, 40))]
+lib = macrocon.Library(ctx)
+for q in patches:
+    lib.add_entry(q, name="x")
+lib.build_retrieval(vocabulary_size=16)        # parallel k-means and histograms
+{map_work}
+print("done", len(lib.query(patches[0], 2)), flush=True)
+# Everything is left open on purpose: the exit hook releases it, then calls mcon_shutdown.
+"""
+
+MAP_WORK = "m = macrocon.Map.compute(patches[0], patches[1], alignment_samples=2000, max_iterations=30)"
+
+
+@pytest.mark.parametrize("with_map", [False, True], ids=["library", "library+map"])
+def test_process_exits_cleanly_after_parallel_library_and_map_work(with_map):
+    script = CLEAN_EXIT.format(tests=str(Path(__file__).parent), map_work=MAP_WORK if with_map else "")
+    for _ in range(3):  # the crash this guards against was intermittent
+        proc = subprocess.run([sys.executable, "-c", textwrap.dedent(script)], capture_output=True, text=True,
+                              timeout=600)
+        assert proc.returncode == 0, proc.stderr
+        lines = proc.stdout.split("\n")
+        assert "done 2" in lines
+        assert "exit_status 0" in lines, proc.stdout + proc.stderr
