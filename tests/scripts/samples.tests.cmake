@@ -10,15 +10,16 @@ set(MACROCON_SAMPLE_BODY ${PROJECT_SOURCE_DIR}/samples/data/makehuman-body.obj.g
 set(MACROCON_SAMPLE_OUT ${PROJECT_BINARY_DIR}/samples-out)
 set(MACROCON_SAMPLE_REGION 8021 0.55)  # the left eye, radius 0.55 (the library's eye_l has 0.6)
 file(MAKE_DIRECTORY ${MACROCON_SAMPLE_OUT})
-find_program(MACROCON_SAMPLE_PYTHON python3)
+# Debian's interpreter (numpy comes from python3-numpy), as for the binding tests.
+set(MACROCON_PYTHON /usr/bin/python3 CACHE FILEPATH "Python with numpy and pytest for the binding tests")
 
 # Runs a sample, then the output checker on the PLY it wrote.
 function(macrocon_sample_test name ply)
   add_test(NAME samples.${name} COMMAND ${ARGN})
   set_tests_properties(samples.${name} PROPERTIES TIMEOUT 900 FIXTURES_SETUP sample_${name})
-  if(MACROCON_SAMPLE_PYTHON)
+  if(MACROCON_PYTHON)
     add_test(NAME samples.${name}_output
-      COMMAND ${MACROCON_SAMPLE_PYTHON} ${PROJECT_SOURCE_DIR}/samples/check_transfer_output.py ${ply})
+      COMMAND ${MACROCON_PYTHON} ${PROJECT_SOURCE_DIR}/samples/check_transfer_output.py ${ply})
     set_tests_properties(samples.${name}_output PROPERTIES FIXTURES_REQUIRED sample_${name})
   endif()
 endfunction()
@@ -31,3 +32,33 @@ add_dependencies(sample_transfer_fields macrocon_starter_library)
 macrocon_sample_test(c_transfer_fields ${MACROCON_SAMPLE_OUT}/c_transfer_fields.ply
   $<TARGET_FILE:sample_transfer_fields> ${MACROCON_STARTER_LIBRARY} ${MACROCON_SAMPLE_BODY}
   ${MACROCON_SAMPLE_REGION} ${MACROCON_SAMPLE_OUT}/c_transfer_fields.ply)
+
+# The bindings load libmacrocon into an uninstrumented interpreter / Mono, which an ASan library
+# cannot be: not in the sanitizer build (as the binding tests).
+if(NOT MACROCON_SANITIZE)
+  macrocon_sample_test(python_transfer ${MACROCON_SAMPLE_OUT}/python_transfer.ply
+    ${MACROCON_PYTHON} ${PROJECT_SOURCE_DIR}/samples/python/transfer_fields.py ${MACROCON_STARTER_LIBRARY}
+    ${MACROCON_SAMPLE_BODY} ${MACROCON_SAMPLE_REGION} ${MACROCON_SAMPLE_OUT}/python_transfer.ply
+    --guides ${MACROCON_SAMPLE_OUT}/python_transfer_guides.obj --rosy ${MACROCON_SAMPLE_OUT}/python_transfer.rosy)
+  set_tests_properties(samples.python_transfer PROPERTIES
+    ENVIRONMENT "MACROCON_LIBRARY=$<TARGET_FILE:macrocon>;PYTHONPATH=${PROJECT_SOURCE_DIR}/bindings/python")
+
+  find_program(MACROCON_SAMPLE_MCS mcs)
+  find_program(MACROCON_SAMPLE_MONO mono)
+  if(MACROCON_SAMPLE_MCS AND MACROCON_SAMPLE_MONO)
+    # The sample compiles with the binding's sources (one assembly), as a plugin might vendor them.
+    file(GLOB MACROCON_CSHARP_BINDING_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/bindings/csharp/*.cs)
+    set(cs_sample ${PROJECT_BINARY_DIR}/samples-csharp/TransferFields.exe)
+    add_custom_command(OUTPUT ${cs_sample}
+      COMMAND ${CMAKE_COMMAND} -E make_directory ${PROJECT_BINARY_DIR}/samples-csharp
+      COMMAND ${MACROCON_SAMPLE_MCS} -langversion:7.2 -unsafe -warnaserror -out:${cs_sample}
+              ${MACROCON_CSHARP_BINDING_SOURCES} ${PROJECT_SOURCE_DIR}/samples/csharp/TransferFields.cs
+      DEPENDS ${MACROCON_CSHARP_BINDING_SOURCES} ${PROJECT_SOURCE_DIR}/samples/csharp/TransferFields.cs
+      COMMENT "Building the C# sample with mcs")
+    add_custom_target(macrocon_csharp_sample ALL DEPENDS ${cs_sample})
+    macrocon_sample_test(csharp_transfer ${MACROCON_SAMPLE_OUT}/csharp_transfer.ply
+      ${MACROCON_SAMPLE_MONO} ${cs_sample} ${MACROCON_STARTER_LIBRARY} ${MACROCON_SAMPLE_BODY}
+      ${MACROCON_SAMPLE_REGION} ${MACROCON_SAMPLE_OUT}/csharp_transfer.ply)
+    set_tests_properties(samples.csharp_transfer PROPERTIES ENVIRONMENT "LD_LIBRARY_PATH=$<TARGET_FILE_DIR:macrocon>")
+  endif()
+endif()
