@@ -61,4 +61,23 @@ if(NOT MACROCON_SANITIZE)
       ${MACROCON_SAMPLE_REGION} ${MACROCON_SAMPLE_OUT}/csharp_transfer.ply)
     set_tests_properties(samples.csharp_transfer PROPERTIES ENVIRONMENT "LD_LIBRARY_PATH=$<TARGET_FILE_DIR:macrocon>")
   endif()
+
+  # Blender (Debian's blender 3.4: Python 3.11 + numpy) headless: registered only if blender is
+  # installed at configure time, so the suite has no skipped test either way.
+  find_program(MACROCON_BLENDER blender)
+  if(MACROCON_BLENDER)
+    set(blend ${MACROCON_SAMPLE_OUT}/blender_sample.blend)
+    set(blend_json ${MACROCON_SAMPLE_OUT}/blender_sample.json)
+    add_test(NAME samples.blender_headless
+      COMMAND ${MACROCON_BLENDER} -b --factory-startup --python-exit-code 1
+              --python ${PROJECT_SOURCE_DIR}/samples/blender/macrocon_blender.py --
+              --library ${MACROCON_STARTER_LIBRARY} --mesh ${MACROCON_SAMPLE_BODY}
+              --vertex 8021 --radius 0.55 --out ${blend} --json ${blend_json})
+    set_tests_properties(samples.blender_headless PROPERTIES TIMEOUT 900 FIXTURES_SETUP sample_blender
+      ENVIRONMENT "MACROCON_LIBRARY=$<TARGET_FILE:macrocon>;MACROCON_PYTHON_PATH=${PROJECT_SOURCE_DIR}/bindings/python")
+    add_test(NAME samples.blender_headless_output
+      COMMAND ${MACROCON_BLENDER} -b ${blend} --factory-startup --python-exit-code 1
+              --python ${PROJECT_SOURCE_DIR}/samples/blender/check_blend.py -- ${blend_json})
+    set_tests_properties(samples.blender_headless_output PROPERTIES TIMEOUT 300 FIXTURES_REQUIRED sample_blender)
+  endif()
 endif()
