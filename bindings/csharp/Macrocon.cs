@@ -5,6 +5,9 @@ using System;
 using System.Collections.Generic;
 using System.Runtime.InteropServices;
 
+// The test runner checks the C layout of the internal structs against macrocon.h.
+[assembly: System.Runtime.CompilerServices.InternalsVisibleTo("MacroconTests")]
+
 namespace Macrocon
 {
     public enum Status

@@ -512,8 +512,10 @@ typedef struct mcon_patch_frame {
 
 MCON_API mcon_status mcon_patch_frame_init(mcon_patch_frame* frame);
 /* Validates and copies the mesh (errors as mcon_mesh_create), requires one disk (else
- * MCON_ERROR_NOT_A_DISK) and computes its unit-disk parametrization. The patch's host is the mesh
- * itself: host vertices are the identity (t = 0), host triangles the identity. */
+ * MCON_ERROR_NOT_A_DISK naming the reason: several pieces, a closed surface, holes or a handle)
+ * and computes its unit-disk parametrization. The patch's host is the mesh itself: host vertices
+ * are the identity (t = 0), host triangles the identity. Center and scale: INVALID_ARGUMENT
+ * (NON_FINITE for NaN). */
 MCON_API mcon_status mcon_patch_create_from_arrays(mcon_context context, const mcon_mesh_desc* mesh,
                                                    const mcon_patch_frame* frame, mcon_patch* out_patch);
 
@@ -547,8 +549,11 @@ MCON_API mcon_status mcon_map_options_init(mcon_map_options* options);
 /* The re-embedding map Phi from `source` onto `target` (both patches of any tessellation; the
  * source is typically a library entry made with mcon_patch_create_from_arrays). Locally
  * injective by construction; partial: source points whose image leaves the target have no
- * correspondence. The map keeps a reference on both patches. Errors: NULL_POINTER,
- * INVALID_ARGUMENT (bad handles or options), STRUCT_SIZE, CANCELLED, NUMERICAL. */
+ * correspondence. The map keeps a reference on both patches and runs in the source's context.
+ * `options` may be NULL for the defaults. Before returning, phi's triangles are counted again:
+ * any inverted one is MCON_ERROR_NUMERICAL. A cancelled call (CANCELLED) allocates nothing and
+ * leaves *out_map NULL. Errors: NULL_POINTER, INVALID_ARGUMENT (bad handles or options),
+ * STRUCT_SIZE, CANCELLED, NUMERICAL. */
 MCON_API mcon_status mcon_map_compute(mcon_patch source, mcon_patch target, const mcon_map_options* options,
                                       mcon_map* out_map);
 MCON_API mcon_status mcon_map_retain(mcon_map map);
@@ -614,8 +619,10 @@ typedef struct mcon_polyline_set_t* mcon_polyline_set;
  * segment lies inside one target triangle (polylines are split at target edges), parts outside
  * the overlap are dropped (so one input polyline may give several or none). Input: point_count
  * points (triangles + 3 barycentric each), grouped in polyline_count polylines of
- * polyline_sizes[i] >= 2 consecutive points; polyline_closed (may be NULL = all open) marks
- * polylines whose last point joins the first. */
+ * polyline_sizes[i] >= 2 consecutive points (>= 3 if closed); polyline_closed (may be NULL = all
+ * open) marks polylines whose last point joins the first. Between two consecutive points the trace
+ * follows the straight segment in the target disk's plane (phi-space). The set keeps a reference on
+ * the target patch. */
 MCON_API mcon_status mcon_map_transfer_polylines(mcon_map map, const uint32_t* triangles, const double* barycentric,
                                                  size_t point_count, const uint32_t* polyline_sizes,
                                                  const uint8_t* polyline_closed, size_t polyline_count,
@@ -630,13 +637,17 @@ MCON_API mcon_status mcon_polyline_set_get_polylines(mcon_polyline_set polylines
                                                      uint8_t* out_closed, uint32_t* out_input_polyline,
                                                      size_t capacity);
 /* All points, polyline after polyline: target triangle, 3 barycentric weights, 3D position in the
- * target's host units. Any output may be NULL; capacity in points. */
+ * target's host units. Point i's triangle contains the segment from point i to point i + 1 (a
+ * point where the trace crosses an edge is given in the triangle it enters; the last point of an
+ * open polyline in its own triangle). Any output may be NULL; capacity in points. */
 MCON_API mcon_status mcon_polyline_set_get_points(mcon_polyline_set polylines, uint32_t* out_triangles,
                                                   double* out_barycentric, double* out_xyz, size_t capacity);
 
 /* Field kinds: mcon_field_kind (declared with the library API). Integer labels go through
- * mcon_map_transfer_labels; tangent vectors are pushed forward by the map's Jacobian and projected
- * onto the target's tangent plane; the other kinds are interpolated. */
+ * mcon_map_transfer_labels; tangent vectors are pushed forward by the map's Jacobian
+ * J_g^-1 J_phi J_f and projected onto the target vertex's tangent plane, keeping the source
+ * vector's (interpolated) length; the other kinds are interpolated. Dimensions: SCALAR >= 1,
+ * VECTOR3 and TANGENT_VECTOR 3, UV 2 (else INVALID_ARGUMENT); NaN is NON_FINITE. */
 
 /* A per-vertex field of the source (source_vertex_count * dimension doubles, vertex-major)
  * -> target vertices (target_vertex_count * dimension doubles). Vertices outside the overlap get
@@ -660,6 +671,7 @@ typedef struct mcon_cross_field_options {
 } mcon_cross_field_options;
 
 MCON_API mcon_status mcon_cross_field_options_init(mcon_cross_field_options* options);
+/* (`options` may be NULL for the defaults.) */
 /* A smooth per-face 4-RoSy cross field on `patch` that follows the polylines (e.g. the guides of
  * mcon_map_transfer_polylines onto this patch; NULL or an empty set gives the smoothest field).
  * Per triangle one unit direction of the cross (3 doubles, normalized patch coordinates) and,

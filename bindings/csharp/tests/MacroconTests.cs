@@ -2,11 +2,13 @@
 // non-zero on any failure.
 using System;
 using System.Collections.Generic;
+using System.Runtime.InteropServices;
 using Macrocon;
 
 static class Tests
 {
     static int passed, failed;
+    const uint Native_InvalidIndex = 0xFFFFFFFFu;
 
     static void Check(bool condition, string what)
     {
@@ -40,90 +42,564 @@ static class Tests
         throw new Exception("expected " + typeof(T).Name);
     }
 
+    // An asymmetric height field over the grid (curvature for descriptors, no mirror symmetry).
+    static (double[] P, uint[] T) Bumpy(int n)
+    {
+        var r1 = Grid(n); var p = r1.Item1; var t = r1.Item2;
+        for (int v = 0; v < n * n; ++v)
+        {
+            double x = p[3 * v], y = p[3 * v + 1];
+            p[3 * v + 2] = 0.15 * Math.Sin(5 * x + 1) * Math.Cos(3 * y) + 0.1 * x * x * y + 0.05 * Math.Sin(9 * x * y);
+        }
+        return (p, t);
+    }
+
+    static readonly (int I, int J)[] Centers = { (12, 12), (20, 20), (28, 14), (14, 27), (26, 26) };
+
+    static SurfacePoint Third(uint face) => new SurfacePoint(face, 1.0 / 3, 1.0 / 3, 1.0 / 3);
+
+    static EntryDesc Example(Patch patch, int k)
+    {
+        int n = patch.VertexCount, m = patch.TriangleCount;
+        var pos = patch.Positions();
+        var weights = new double[2 * n]; var colour = new double[3 * n]; var labels = new int[n];
+        for (int v = 0; v < n; ++v)
+        {
+            weights[2 * v] = pos[3 * v] * pos[3 * v]; weights[2 * v + 1] = 1 - pos[3 * v + 1];
+            for (int c = 0; c < 3; ++c) colour[3 * v + c] = Math.Abs(pos[3 * v + c]);
+            labels[v] = v % 3;
+        }
+        return new EntryDesc
+        {
+            Name = "entry " + k, ClassLabel = "bump", Author = "mono", Licence = "CC0-1.0", Tags = new[] { "test", "k" + k },
+            Polylines = new[]
+            {
+                new Polyline { Points = new[] { Third(0), Third((uint)m / 2), Third((uint)m - 1) } },
+                new Polyline { Kind = PolylineKind.Feature, Closed = true,
+                               Points = new[] { Third(1), Third(2), Third(3), Third(4) } },
+            },
+            Singularities = new[] { new Singularity(new SurfacePoint(5, 0.6, 0.2, 0.2), 1), new Singularity(Third((uint)m / 3), -1) },
+            Fields = new[]
+            {
+                new Field { Name = "weights", Kind = FieldKind.Scalar, Dimension = 2, Values = weights },
+                new Field { Name = "colour", Kind = FieldKind.Vector3, Dimension = 3, Values = colour },
+                new Field { Name = "part", Kind = FieldKind.IntegerLabel, Dimension = 1, Labels = labels },
+                new Field { Name = "uv", Kind = FieldKind.Uv, Dimension = 2, Values = patch.Uv() },
+            },
+        };
+    }
+
+    static Patch[] Patches(Mesh m)
+    {
+        var ps = new Patch[Centers.Length];
+        for (int k = 0; k < ps.Length; ++k) ps[k] = Patch.Extract(m, (uint)(Centers[k].J * 41 + Centers[k].I), 0.22);
+        return ps;
+    }
+
+    static ConstraintLibrary Filled(Context ctx, Patch[] ps)
+    {
+        var lib = new ConstraintLibrary(ctx);
+        for (int k = 0; k < ps.Length; ++k) lib.AddEntry(ps[k], Example(ps[k], k));
+        return lib;
+    }
+
+    static void Near(double a, double b, double tol, string what)
+    {
+        if (!(Math.Abs(a - b) <= tol)) throw new Exception($"check failed: {what}: {a} vs {b}");
+    }
+
+    // version and ABI
+    static void Test0()
+    {
+        Library.CheckAbi();
+        Check(Library.Version.Major == Library.AbiMajor, "major");
+        Check(Library.StatusName(Status.NotADisk) == "MCON_ERROR_NOT_A_DISK", "status name");
+    }
+
+    // mesh from doubles and floats
+    static void Test1()
+    {
+        var r2 = Grid(5); var p = r2.Item1; var t = r2.Item2;
+        using (var ctx = new Context(2))
+        using (var m = new Mesh(ctx, p, t)) Check(m.Counts.Vertices == 25 && m.Counts.Triangles == 32, "counts");
+        var pf = Array.ConvertAll(p, x => (float)x);
+        using (var ctx = new Context())
+        using (var m = new Mesh(ctx, new ReadOnlySpan<float>(pf), t)) Check(m.Counts.Vertices == 25, "float counts");
+    }
+
+    // invalid mesh throws with status and message
+    static void Test2()
+    {
+        var r3 = Grid(5); var p = r3.Item1; var t = r3.Item2;
+        p[3 * 7 + 1] = double.NaN;
+        using (var ctx = new Context())
+        {
+            var e = Expect<InvalidMeshException>(() => new Mesh(ctx, p, t));
+            Check(e.Status == Status.NonFinite, "status");
+            Check(e.Message.Contains("vertex 7"), "message names the vertex: " + e.Message);
+            var r4 = Grid(5); var p2 = r4.Item1; var t2 = r4.Item2;
+            t2[5] = 999;
+            Check(Expect<InvalidMeshException>(() => new Mesh(ctx, p2, t2)).Status == Status.IndexOutOfRange, "range");
+            Expect<ArgumentException>(() => new Mesh(ctx, new double[4], t2));
+        }
+    }
+
+    // patch extraction
+    static void Test3()
+    {
+        var r5 = Grid(41); var p = r5.Item1; var t = r5.Item2;
+        using (var ctx = new Context())
+        using (var m = new Mesh(ctx, p, t))
+        using (var patch = Patch.Extract(m, 20 * 41 + 20, 0.3))
+        {
+            Check(patch.BoundaryLoops == 1 && patch.EulerCharacteristic == 1, "disk");
+            Check(patch.ParamFlippedTriangles == 0, "no flips");
+            Check(Math.Abs(patch.MaxGeodesicDistance - 1) < 0.1, "normalized");
+            var pos = patch.Positions(); var uv = patch.Uv(); var tri = patch.Triangles();
+            Check(pos.Length == 3 * patch.VertexCount && uv.Length == 2 * patch.VertexCount, "sizes");
+            foreach (var idx in tri) Check(idx < patch.VertexCount, "index range");
+            var r6 = patch.HostVertices(); var v0 = r6.Item1; var v1 = r6.Item2; var s = r6.Item3;
+            var c = patch.Center;
+            for (int v = 0; v < patch.VertexCount; ++v)
+                for (int k = 0; k < 3; ++k)
+                {
+                    double host = (1 - s[v]) * p[3 * v0[v] + k] + s[v] * p[3 * v1[v] + k];
+                    Check(Math.Abs((host - c[k]) / patch.Radius - pos[3 * v + k]) < 1e-9, "host link");
+                }
+            var d = patch.Descriptors(Descriptor.Curv9);
+            Check(d.Length == 9 * patch.VertexCount, "descriptor size");
+            foreach (var x in d) Check(Math.Abs(x) < 1e-6, "flat plane has zero curvature");
+        }
+    }
+
+    // progress cancels and callback exceptions propagate
+    static void Test4()
+    {
+        var r7 = Grid(31); var p = r7.Item1; var t = r7.Item2;
+        using (var ctx = new Context())
+        using (var m = new Mesh(ctx, p, t))
+        {
+            int calls = 0;
+            Expect<CancelledException>(() => Patch.Extract(m, 15 * 31 + 15, 0.3, true, f => ++calls < 2));
+            Check(calls == 2, "two calls");
+            var e = Expect<InvalidOperationException>(() =>
+                Patch.Extract(m, 15 * 31 + 15, 0.3, true, f => throw new InvalidOperationException("boom")));
+            Check(e.Message == "boom", "the callback's exception");
+            Check(Expect<MacroconException>(() => Patch.Extract(m, 15 * 31 + 15, -1)).Status == Status.InvalidArgument, "radius");
+        }
+    }
+
+    // library: entries round trip through every getter
+    static void Test5()
+    {
+        var r8 = Bumpy(41); var p = r8.Item1; var t = r8.Item2;
+        using (var ctx = new Context(2))
+        using (var m = new Mesh(ctx, p, t))
+        {
+            var ps = Patches(m);
+            using (var lib = Filled(ctx, ps))
+            {
+                Check(lib.Count == 5 && (int)lib.Info.EntryCount == 5, "count");
+                Check(lib.Info.Descriptor == RetrievalDescriptor.Curv9 && lib.Info.VocabularySize == 0, "info");
+                var patch = ps[1];
+                var info = lib.GetEntryInfo(1);
+                Check(info.Id != 0 && (int)info.VertexCount == patch.VertexCount && (int)info.TriangleCount == patch.TriangleCount, "entry info");
+                Check(lib.GetEntryString(1, EntryString.Name) == "entry 1" && lib.GetEntryString(1, EntryString.ClassLabel) == "bump", "strings");
+                Check(lib.GetEntryString(1, EntryString.Author) == "mono" && lib.GetEntryString(1, EntryString.Licence) == "CC0-1.0", "author");
+                var tags = lib.GetEntryTags(1);
+                Check(tags.Length == 2 && tags[0] == "test" && tags[1] == "k1", "tags");
+                var pos = patch.Positions(); var got = lib.GetEntryPositions(1);
+                for (int i = 0; i < pos.Length; ++i) Near(got[i], pos[i], 1e-5, "positions");
+                var tri = patch.Triangles(); var gt = lib.GetEntryTriangles(1);
+                for (int i = 0; i < tri.Length; ++i) Check(gt[i] == tri[i], "triangles");
+                var lines = lib.GetEntryPolylines(1);
+                Check(lines.Length == 2 && lines[0].Kind == PolylineKind.Guide && !lines[0].Closed, "guide");
+                Check(lines[1].Kind == PolylineKind.Feature && lines[1].Closed && lines[1].Points.Length == 4, "feature");
+                Check(lines[0].Points[1].Face == (uint)patch.TriangleCount / 2, "guide point face");
+                Near(lines[0].Points[1].B2, 1.0 / 3, 1e-6, "guide weights");
+                var sing = lib.GetEntrySingularities(1);
+                Check(sing.Length == 2 && sing[0].IndexQuarters == 1 && sing[1].IndexQuarters == -1 && sing[0].Location.Face == 5, "singularities");
+                Near(sing[0].Location.B0, 0.6, 1e-6, "singularity weights");
+                var fields = lib.GetEntryFields(1);
+                var want = Example(patch, 1).Fields;
+                Check(fields.Length == want.Count, "field count");
+                for (int f = 0; f < fields.Length; ++f)
+                {
+                    Check(fields[f].Name == want[f].Name && fields[f].Kind == want[f].Kind && fields[f].Dimension == want[f].Dimension, "field " + f);
+                    if (want[f].Kind == FieldKind.IntegerLabel)
+                        for (int i = 0; i < want[f].Labels.Length; ++i) Check(fields[f].Labels[i] == want[f].Labels[i], "labels");
+                    else
+                        for (int i = 0; i < want[f].Values.Length; ++i) Near(fields[f].Values[i], want[f].Values[i], 1e-6, "values");
+                }
+                var r9 = lib.GetEntryRetrieval(1); var d = r9.Item1; var h = r9.Item2;
+                Check(d.Length == 9 * patch.VertexCount && h.Length == 0, "retrieval data before build");
+            }
+            foreach (var q in ps) q.Dispose();
+        }
+    }
+
+    // library: save, open, bytes, remove, find, merge
+    static void Test6()
+    {
+        var r10 = Bumpy(41); var p = r10.Item1; var t = r10.Item2;
+        string dir = System.IO.Path.Combine(System.IO.Path.GetTempPath(), "macrocon-cs-" + System.Diagnostics.Process.GetCurrentProcess().Id);
+        System.IO.Directory.CreateDirectory(dir);
+        using (var ctx = new Context())
+        using (var m = new Mesh(ctx, p, t))
+        {
+            var ps = Patches(m);
+            using (var lib = Filled(ctx, ps))
+            {
+                var bytes = lib.SaveMemory();
+                string path = System.IO.Path.Combine(dir, "lib.mclb");
+                lib.Save(path);
+                var onDisk = System.IO.File.ReadAllBytes(path);
+                Check(onDisk.Length == bytes.Length, "same size");
+                for (int i = 0; i < bytes.Length; ++i) Check(onDisk[i] == bytes[i], "same bytes");
+                using (var a = ConstraintLibrary.Open(ctx, path))
+                using (var b = ConstraintLibrary.OpenMemory(ctx, bytes))
+                {
+                    Check(a.Count == 5 && b.Count == 5, "reopened");
+                    var again = b.SaveMemory();
+                    Check(again.Length == bytes.Length, "byte-identical size");
+                    for (int i = 0; i < bytes.Length; ++i) Check(again[i] == bytes[i], "byte-identical");
+                    Check(a.GetEntryString(4, EntryString.Name) == "entry 4", "names survive");
+                }
+                ulong id2 = lib.GetEntryInfo(2).Id, id3 = lib.GetEntryInfo(3).Id;
+                Check(lib.Find(id2) == 2, "find");
+                lib.Remove(id2);
+                Check(lib.Count == 4 && lib.Find(id3) == 2, "later entries shift down");
+                Check(Expect<NotFoundException>(() => lib.Find(id2)).Status == Status.NotFound, "not found");
+                Expect<NotFoundException>(() => lib.Remove(id2));
+                using (var other = new ConstraintLibrary(ctx))
+                {
+                    other.Merge(lib);
+                    other.Merge(lib);
+                    Check(other.Count == 8, "merged");
+                    var ids = new HashSet<ulong>();
+                    for (int i = 0; i < 8; ++i) ids.Add(other.GetEntryInfo(i).Id);
+                    Check(ids.Count == 8, "renumbered ids");
+                }
+                Check(Expect<MacroconException>(() => ConstraintLibrary.Open(ctx, System.IO.Path.Combine(dir, "missing.mclb"))).Status == Status.IO, "io");
+            }
+            foreach (var q in ps) q.Dispose();
+        }
+        System.IO.Directory.Delete(dir, true);
+    }
+
+    // library: retrieval finds each entry itself; cancel leaves it unchanged
+    static void Test7()
+    {
+        var r11 = Bumpy(41); var p = r11.Item1; var t = r11.Item2;
+        using (var ctx = new Context())
+        using (var m = new Mesh(ctx, p, t))
+        {
+            var ps = Patches(m);
+            using (var lib = Filled(ctx, ps))
+            {
+                Check(Expect<MacroconException>(() => lib.Query(ps[0], 3)).Status == Status.InvalidArgument, "no vocabulary");
+                var before = lib.SaveMemory();
+                int calls = 0;
+                Expect<CancelledException>(() => lib.BuildRetrieval(new RetrievalSettings { VocabularySize = 16 }, f => ++calls < 1));
+                Check(calls == 1 && lib.Info.VocabularySize == 0 && lib.SaveMemory().Length == before.Length, "unchanged after cancel");
+                var e = Expect<InvalidOperationException>(() =>
+                    lib.BuildRetrieval(new RetrievalSettings { VocabularySize = 16 }, f => throw new InvalidOperationException("from C#")));
+                Check(e.Message == "from C#", "the callback's exception");
+                double last = -1;
+                lib.BuildRetrieval(new RetrievalSettings { VocabularySize = 16, Seed = 7 }, f => { last = f; return true; });
+                var info = lib.Info;
+                Check(info.VocabularySize > 0 && info.VocabularySize <= 16 && info.HistogramLength == info.VocabularySize * info.Rings, "vocabulary");
+                Check(last >= 0 && last <= 1, "progress fractions");
+                for (int k = 0; k < ps.Length; ++k)
+                {
+                    var r = lib.Query(ps[k], 3);
+                    Check(r.Count == 3 && r.Indices[0] == k && r.Ids[0] == lib.GetEntryInfo(k).Id, "self first " + k);
+                    Check(r.Distances[0] <= r.Distances[1] && r.Distances[1] <= r.Distances[2] && r.Distances[0] < 1e-6, "sorted");
+                }
+                Check(lib.Query(ps[0], 100).Count == 5, "min(n, count)");
+                Expect<ArgumentOutOfRangeException>(() => lib.Query(ps[0], 0));
+                var h = lib.GetEntryRetrieval(0).Histogram;
+                float sum = 0; foreach (var x in h) sum += x;
+                Check(h.Length == info.HistogramLength && sum > 0, "histogram");
+            }
+            using (var custom = new ConstraintLibrary(ctx))
+            {
+                foreach (var q in ps)
+                {
+                    var mc = q.Descriptors(Descriptor.MeanCurvature);
+                    var two = new double[2 * mc.Length];
+                    for (int i = 0; i < mc.Length; ++i) { two[2 * i] = mc[i]; two[2 * i + 1] = mc[i] * mc[i]; }
+                    custom.AddEntry(q, new EntryDesc { Name = "custom", Descriptors = two, DescriptorDimension = 2 });
+                }
+                custom.BuildRetrieval(new RetrievalSettings { Descriptor = RetrievalDescriptor.Custom, VocabularySize = 8 });
+                Check(custom.Info.Descriptor == RetrievalDescriptor.Custom && custom.Info.DescriptorDimension == 2, "custom info");
+                var mc2 = ps[2].Descriptors(Descriptor.MeanCurvature);
+                var d2 = new double[2 * mc2.Length];
+                for (int i = 0; i < mc2.Length; ++i) { d2[2 * i] = mc2[i]; d2[2 * i + 1] = mc2[i] * mc2[i]; }
+                Check(custom.QueryDescriptors(ps[2], d2, 2, 2).Indices[0] == 2, "custom query");
+                Check(Expect<MacroconException>(() => custom.QueryDescriptors(ps[2], mc2, 1, 2)).Status == Status.InvalidArgument, "dimension");
+            }
+            foreach (var q in ps) q.Dispose();
+        }
+    }
+
+    // library: bad input, forged bytes, disposed handles
+    static void Test8()
+    {
+        var r12 = Bumpy(41); var p = r12.Item1; var t = r12.Item2;
+        using (var ctx = new Context())
+        using (var m = new Mesh(ctx, p, t))
+        using (var patch = Patch.Extract(m, 20 * 41 + 20, 0.22))
+        {
+            var lib = new ConstraintLibrary(ctx);
+            var far = new EntryDesc { Polylines = new[] { new Polyline { Points = new[] { Third(0), Third((uint)patch.TriangleCount + 10) } } } };
+            var e = Expect<MacroconException>(() => lib.AddEntry(patch, far));
+            Check(e.Status == Status.InvalidArgument && e.Message.Length > 20, "bad face: " + e.Message);
+            var nan = new double[patch.VertexCount]; nan[3] = double.NaN;
+            Check(Expect<MacroconException>(() => lib.AddEntry(patch, new EntryDesc { Fields = new[] { new Field { Name = "x", Values = nan } } })).Status
+                  == Status.NonFinite, "nan field");
+            Expect<ArgumentException>(() => lib.AddEntry(patch, new EntryDesc { Fields = new[] { new Field { Name = "x", Values = new double[3] } } }));
+            Expect<ArgumentException>(() => lib.AddEntry(patch, new EntryDesc { Fields = new[] { new Field { Name = "x", Kind = FieldKind.IntegerLabel, Values = nan } } }));
+            Check(Expect<MacroconException>(() => lib.AddEntry(patch, new EntryDesc { Singularities = new[] { new Singularity(Third(0), 0) } })).Status
+                  == Status.InvalidArgument, "zero index");
+            Expect<ArgumentNullException>(() => lib.AddEntry(null));
+            Check(lib.Count == 0, "unchanged after errors");
+            Check(Expect<MacroconException>(() => lib.GetEntryInfo(3)).Status == Status.InvalidArgument, "index range");
+            lib.AddEntry(patch, new EntryDesc { Name = "ok" });
+            var bytes = lib.SaveMemory();
+            Expect<InvalidLibraryException>(() => ConstraintLibrary.OpenMemory(ctx, System.Text.Encoding.ASCII.GetBytes("not a library, just bytes")));
+            foreach (int cut in new[] { 8, bytes.Length / 2, bytes.Length - 1 })
+                Expect<InvalidLibraryException>(() => ConstraintLibrary.OpenMemory(ctx, new ReadOnlySpan<byte>(bytes, 0, cut)));
+            var rng = new Random(5);
+            int rejected = 0;
+            for (int r = 0; r < 40; ++r)
+            {
+                var forged = (byte[])bytes.Clone();
+                for (int k = 0; k < 4; ++k) forged[rng.Next(forged.Length)] ^= 0xFF;
+                try { using (var x = ConstraintLibrary.OpenMemory(ctx, forged)) Check(x.Count >= 0, "opened"); }
+                catch (InvalidLibraryException) { ++rejected; }
+                catch (MacroconException u) when (u.Status == Status.Unsupported) { ++rejected; }
+            }
+            Check(rejected > 0, "some forgeries rejected");
+            lib.Dispose();
+            lib.Dispose();
+            Expect<ObjectDisposedException>(() => { var c = lib.Count; });
+            Expect<ArgumentNullException>(() => new ConstraintLibrary(null));
+        }
+    }
+
+    // map: from arrays, compute, correspondences, transfer, cross field
+    static void Test9()
+    {
+        var r13 = Bumpy(41); var p = r13.Item1; var t = r13.Item2;
+        string dir = System.IO.Path.Combine(System.IO.Path.GetTempPath(), "macrocon-cs-map-" + System.Diagnostics.Process.GetCurrentProcess().Id);
+        System.IO.Directory.CreateDirectory(dir);
+        using (var ctx = new Context())
+        using (var m = new Mesh(ctx, p, t))
+        using (var target = Patch.Extract(m, 21 * 41 + 20, 0.25))
+        using (var source = Patch.FromArrays(ctx, target.Positions(), target.Triangles(), 0, null, target.Center, target.Radius))
+        {
+            Check(source.VertexCount == target.VertexCount && source.BoundaryLoops == 1, "from arrays");
+            var r14 = source.HostVertices(); var hv0 = r14.Item1; var hv1 = r14.Item2; var ht = r14.Item3;
+            for (int v = 0; v < source.VertexCount; ++v) Check(hv0[v] == v && hv1[v] == v && ht[v] == 0, "identity host");
+            Expect<NotADiskException>(() => Patch.FromArrays(ctx,
+                new double[] { 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1 },
+                new uint[] { 0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5 }, 0));
+            Check(Expect<MacroconException>(() => Patch.FromArrays(ctx, target.Positions(), target.Triangles(), Native_InvalidIndex)).Status
+                  == Status.InvalidArgument, "invalid center");
+            var settings = new MapSettings { Seed = 3, AlignmentSamples = 400, MaxIterations = 30 };
+            int calls = 0;
+            Expect<CancelledException>(() => Map.Compute(source, target, settings, f => ++calls < 1));
+            Check(calls == 1, "one progress call before cancel");
+            Check(Expect<MacroconException>(() => Map.Compute(source, target, new MapSettings { AlignmentSamples = 0 })).Status
+                  == Status.InvalidArgument, "bad options");
+            using (var map = Map.Compute(source, target, settings))
+            {
+                var info = map.Info;
+                Check((int)info.SourceVertexCount == source.VertexCount && (int)info.TargetVertexCount == target.VertexCount, "counts");
+                Check(info.FlippedTriangles == 0 && info.Reflected == 0 && info.MatchingScore >= 0 && info.MatchingScore <= 1, "info");
+                Check((int)info.SourceVerticesInside > 0.8 * source.VertexCount, "overlap");
+                var r15 = map.Correspondences(MapDirection.SourceToTarget); var ct = r15.Item1; var cb = r15.Item2;
+                int inside = 0;
+                for (int v = 0; v < ct.Length; ++v)
+                    if (ct[v] >= 0) { ++inside; Near(cb[3 * v] + cb[3 * v + 1] + cb[3 * v + 2], 1, 1e-9, "weights sum"); }
+                Check(inside == (int)info.SourceVerticesInside, "inside count");
+                var r16 = map.Correspondences(MapDirection.TargetToSource); var rt = r16.Item1;
+                Check(rt.Length == target.VertexCount, "reverse size");
+                var mask = map.OutsideMask();
+                int outside = 0; foreach (var o in mask) if (o) ++outside;
+                Check(outside == target.VertexCount - (int)info.TargetVerticesInside, "outside mask");
+                Check(map.Phi().Length == 2 * source.VertexCount, "phi");
+                var spos = source.Positions();
+                var moved = map.TransferField(FieldKind.Vector3, 3, spos);
+                var tpos = target.Positions();
+                var errs = new List<double>();
+                for (int v = 0; v < target.VertexCount; ++v)
+                {
+                    if (mask[v]) { Check(moved[3 * v] == 0 && moved[3 * v + 1] == 0 && moved[3 * v + 2] == 0, "outside is 0"); continue; }
+                    double dx = moved[3 * v] - tpos[3 * v], dy = moved[3 * v + 1] - tpos[3 * v + 1], dz = moved[3 * v + 2] - tpos[3 * v + 2];
+                    errs.Add(Math.Sqrt(dx * dx + dy * dy + dz * dz));
+                }
+                errs.Sort();
+                Check(errs[errs.Count / 2] < 0.1, "near identity: median " + errs[errs.Count / 2]);
+                var labels = new int[source.VertexCount];
+                for (int v = 0; v < labels.Length; ++v) labels[v] = v % 5;
+                var tl = map.TransferLabels(1, labels, -7);
+                for (int v = 0; v < tl.Length; ++v) Check(mask[v] ? tl[v] == -7 : tl[v] >= 0 && tl[v] < 5, "labels never blended");
+                Expect<ArgumentException>(() => map.TransferField(FieldKind.Scalar, 1, new double[3]));
+                Expect<ArgumentException>(() => map.TransferField(FieldKind.IntegerLabel, 1, spos));
+                Check(Expect<MacroconException>(() => map.TransferField(FieldKind.Vector3, 2, source.Uv())).Status == Status.InvalidArgument, "vector3 needs 3");
+                var r17 = map.TransferPoints(new uint[] { 0, 7, 14 }, new double[] { 0.2, 0.3, 0.5, 0.2, 0.3, 0.5, 0.2, 0.3, 0.5 }); var pt = r17.Item1; var pb = r17.Item2; var px = r17.Item3;
+                Check(pt.Length == 3 && pb.Length == 9 && px.Length == 9, "points");
+                Expect<ArgumentException>(() => map.TransferPoints(new uint[] { 0 }, new double[] { 1 }));
+                // A guide along the source triangles whose uv centroid lies near v = 0.
+                var uv = source.Uv(); var tri = source.Triangles();
+                var rowU = new List<double>(); var rowF = new List<uint>();
+                for (int f = 0; f < source.TriangleCount; ++f)
+                {
+                    double cu = 0, cv = 0;
+                    for (int c = 0; c < 3; ++c) { cu += uv[2 * tri[3 * f + c]] / 3; cv += uv[2 * tri[3 * f + c] + 1] / 3; }
+                    if (Math.Abs(cv) < 0.05) { rowU.Add(cu); rowF.Add((uint)f); }
+                }
+                var keys = rowU.ToArray(); var faces = rowF.ToArray();
+                Array.Sort(keys, faces);
+                var guidePoints = new SurfacePoint[faces.Length];
+                for (int i = 0; i < faces.Length; ++i) guidePoints[i] = Third(faces[i]);
+                var guide = new Polyline { Points = guidePoints };
+                using (var lines = map.TransferPolylines(new[] { guide }))
+                {
+                    var r18 = lines.Counts; var np = r18.Item1; var npts = r18.Item2;
+                    Check(np >= 1 && npts >= faces.Length / 2, "re-traced");
+                    var r19 = lines.Polylines(); var sizes = r19.Item1; var closed = r19.Item2; var input = r19.Item3;
+                    long total = 0; foreach (var s in sizes) total += s;
+                    Check(total == npts && !closed[0] && input[0] == 0, "polyline arrays");
+                    var r20 = lines.Points(); var lt = r20.Item1; var lb = r20.Item2; var lx = r20.Item3;
+                    foreach (var f in lt) Check(f < target.TriangleCount, "on the target");
+                    for (int i = 0; i < lt.Length; ++i) Near(lb[3 * i] + lb[3 * i + 1] + lb[3 * i + 2], 1, 1e-9, "point weights");
+                    foreach (var x in lx) Check(!double.IsNaN(x) && !double.IsInfinity(x), "finite 3D points");
+                    var r21 = target.CrossField(lines, 10.0); var dirs = r21.Item1; var conf = r21.Item2;
+                    Check(dirs.Length == 3 * target.TriangleCount && conf.Length == target.TriangleCount, "cross field size");
+                    for (int f = 0; f < target.TriangleCount; ++f)
+                    {
+                        Near(Math.Sqrt(dirs[3 * f] * dirs[3 * f] + dirs[3 * f + 1] * dirs[3 * f + 1] + dirs[3 * f + 2] * dirs[3 * f + 2]), 1, 1e-6, "unit");
+                        Check(conf[f] >= 0 && conf[f] <= 1, "confidence");
+                    }
+                    Check(Expect<MacroconException>(() => source.CrossField(lines)).Status == Status.InvalidArgument, "guides of another patch");
+                    string rosy = System.IO.Path.Combine(dir, "f.rosy");
+                    target.WriteRosy(dirs, rosy);
+                    Check(System.IO.File.ReadAllText(rosy).Contains(target.TriangleCount.ToString()), "rosy header");
+                    Check(Expect<MacroconException>(() => target.WriteRosy(dirs, System.IO.Path.Combine(dir, "no", "f.rosy"))).Status == Status.IO, "io");
+                    Expect<ArgumentException>(() => target.WriteRosy(new double[3], rosy));
+                }
+                var smooth = target.CrossField();
+                Check(smooth.Directions.Length == 3 * target.TriangleCount, "smoothest field");
+            }
+            var disposed = Map.Compute(source, target, settings);
+            disposed.Dispose();
+            Expect<ObjectDisposedException>(() => { var i = disposed.Info; });
+            Expect<ArgumentNullException>(() => Map.Compute(null, target));
+        }
+        System.IO.Directory.Delete(dir, true);
+    }
+
+    // heavy parallel work then shutdown
+    static void Test10()
+    {
+        var r22 = Grid(81); var p = r22.Item1; var t = r22.Item2;
+        using (var ctx = new Context())
+        using (var m = new Mesh(ctx, p, t))
+            for (int i = 0; i < 3; ++i)
+                using (var patch = Patch.Extract(m, 40 * 81 + 40, 0.2 + 0.1 * i)) patch.Descriptors(Descriptor.Curv9);
+    }
+
+    // Every struct handed to the C ABI against macrocon.h: its size and the offset of each field whose
+    // snake_case name exists in C, measured by a C probe compiled with `cc` (MACROCON_INCLUDE_DIR).
+    static void TestLayout()
+    {
+        string include = Environment.GetEnvironmentVariable("MACROCON_INCLUDE_DIR");
+        Check(!string.IsNullOrEmpty(include) && System.IO.File.Exists(System.IO.Path.Combine(include, "macrocon", "macrocon.h")),
+              "MACROCON_INCLUDE_DIR must name the include directory");
+        var types = new Dictionary<string, Type>
+        {
+            { "mcon_context_options", typeof(Native.ContextOptions) }, { "mcon_mesh_desc", typeof(Native.MeshDesc) },
+            { "mcon_patch_options", typeof(Native.PatchOptions) }, { "mcon_patch_info", typeof(Native.PatchInfo) },
+            { "mcon_polyline", typeof(Native.PolylineDesc) }, { "mcon_vertex_field", typeof(Native.VertexField) },
+            { "mcon_library_entry_desc", typeof(Native.EntryDesc) }, { "mcon_retrieval_options", typeof(Native.RetrievalOptions) },
+            { "mcon_patch_frame", typeof(Native.PatchFrame) }, { "mcon_map_options", typeof(Native.MapOptions) },
+            { "mcon_cross_field_options", typeof(Native.CrossFieldOptions) }, { "mcon_surface_point", typeof(SurfacePoint) },
+            { "mcon_singularity", typeof(Singularity) }, { "mcon_library_info", typeof(LibraryInfo) },
+            { "mcon_library_entry_info", typeof(EntryInfo) }, { "mcon_map_info", typeof(MapInfo) },
+        };
+        var probe = new System.Text.StringBuilder("#include <stddef.h>\n#include <stdio.h>\n#include \"macrocon/macrocon.h\"\nint main(void) {\n");
+        var expected = new List<string>();
+        foreach (var kv in types)
+        {
+            probe.Append($"  printf(\"{kv.Key} %zu\\n\", sizeof({kv.Key}));\n");
+            expected.Add(kv.Key + " " + Marshal.SizeOf(kv.Value));
+            foreach (var f in kv.Value.GetFields(System.Reflection.BindingFlags.Instance | System.Reflection.BindingFlags.Public))
+            {
+                string snake = System.Text.RegularExpressions.Regex.Replace(f.Name, "(?<=[a-z0-9])([A-Z])", "_$1").ToLowerInvariant();
+                string[] notInC = { "b0", "b1", "b2", "source_origin_x", "source_origin_y", "source_origin_z" };
+                if (Array.IndexOf(notInC, snake) >= 0) continue;
+                probe.Append($"  printf(\"{kv.Key}.{snake} %zu\\n\", offsetof({kv.Key}, {snake}));\n");
+                expected.Add(kv.Key + "." + snake + " " + (long)Marshal.OffsetOf(kv.Value, f.Name));
+            }
+        }
+        probe.Append("  return 0;\n}\n");
+        string dir = System.IO.Path.Combine(System.IO.Path.GetTempPath(), "macrocon-cs-layout-" + System.Diagnostics.Process.GetCurrentProcess().Id);
+        System.IO.Directory.CreateDirectory(dir);
+        try
+        {
+            System.IO.File.WriteAllText(System.IO.Path.Combine(dir, "layout.c"), probe.ToString());
+            Check(Shell("cc", $"-std=c99 -I \"{include}\" layout.c -o layout", dir) != null, "compiling the probe");
+            var measured = Shell(System.IO.Path.Combine(dir, "layout"), "", dir).TrimEnd('\n').Split('\n');
+            Check(measured.Length == expected.Count && expected.Count > 100, "probe lines: " + measured.Length + " vs " + expected.Count);
+            for (int i = 0; i < measured.Length; ++i) Check(measured[i] == expected[i], "C says " + measured[i] + ", C# " + expected[i]);
+        }
+        finally
+        {
+            System.IO.Directory.Delete(dir, true);
+        }
+    }
+
+    static string Shell(string exe, string args, string dir)
+    {
+        var psi = new System.Diagnostics.ProcessStartInfo(exe, args) { WorkingDirectory = dir, UseShellExecute = false, RedirectStandardOutput = true };
+        using (var p = System.Diagnostics.Process.Start(psi))
+        {
+            string output = p.StandardOutput.ReadToEnd();
+            p.WaitForExit();
+            return p.ExitCode == 0 ? output : null;
+        }
+    }
+
+    // No tuple deconstruction (`var (a, b) = ...`) anywhere here: mcs 6.8 silently drops a lambda that
+    // contains one (which hid most of this runner's tests before) or crashes when a lambda captures
+    // a deconstructed variable. The runner also checks how many tests ran.
+    const int ExpectedTests = 12;
+
     static int Main()
     {
-        Run("version and ABI", () =>
-        {
-            Library.CheckAbi();
-            Check(Library.Version.Major == Library.AbiMajor, "major");
-            Check(Library.StatusName(Status.NotADisk) == "MCON_ERROR_NOT_A_DISK", "status name");
-        });
-        Run("mesh from doubles and floats", () =>
-        {
-            var (p, t) = Grid(5);
-            using (var ctx = new Context(2))
-            using (var m = new Mesh(ctx, p, t)) Check(m.Counts.Vertices == 25 && m.Counts.Triangles == 32, "counts");
-            var pf = Array.ConvertAll(p, x => (float)x);
-            using (var ctx = new Context())
-            using (var m = new Mesh(ctx, new ReadOnlySpan<float>(pf), t)) Check(m.Counts.Vertices == 25, "float counts");
-        });
-        Run("invalid mesh throws with status and message", () =>
-        {
-            var (p, t) = Grid(5);
-            p[3 * 7 + 1] = double.NaN;
-            using (var ctx = new Context())
-            {
-                var e = Expect<InvalidMeshException>(() => new Mesh(ctx, p, t));
-                Check(e.Status == Status.NonFinite, "status");
-                Check(e.Message.Contains("vertex 7"), "message names the vertex: " + e.Message);
-                var (p2, t2) = Grid(5);
-                t2[5] = 999;
-                Check(Expect<InvalidMeshException>(() => new Mesh(ctx, p2, t2)).Status == Status.IndexOutOfRange, "range");
-                Expect<ArgumentException>(() => new Mesh(ctx, new double[4], t2));
-            }
-        });
-        Run("patch extraction", () =>
-        {
-            var (p, t) = Grid(41);
-            using (var ctx = new Context())
-            using (var m = new Mesh(ctx, p, t))
-            using (var patch = Patch.Extract(m, 20 * 41 + 20, 0.3))
-            {
-                Check(patch.BoundaryLoops == 1 && patch.EulerCharacteristic == 1, "disk");
-                Check(patch.ParamFlippedTriangles == 0, "no flips");
-                Check(Math.Abs(patch.MaxGeodesicDistance - 1) < 0.1, "normalized");
-                var pos = patch.Positions(); var uv = patch.Uv(); var tri = patch.Triangles();
-                Check(pos.Length == 3 * patch.VertexCount && uv.Length == 2 * patch.VertexCount, "sizes");
-                foreach (var idx in tri) Check(idx < patch.VertexCount, "index range");
-                var (v0, v1, s) = patch.HostVertices();
-                var c = patch.Center;
-                for (int v = 0; v < patch.VertexCount; ++v)
-                    for (int k = 0; k < 3; ++k)
-                    {
-                        double host = (1 - s[v]) * p[3 * v0[v] + k] + s[v] * p[3 * v1[v] + k];
-                        Check(Math.Abs((host - c[k]) / patch.Radius - pos[3 * v + k]) < 1e-9, "host link");
-                    }
-                var d = patch.Descriptors(Descriptor.Curv9);
-                Check(d.Length == 9 * patch.VertexCount, "descriptor size");
-                foreach (var x in d) Check(Math.Abs(x) < 1e-6, "flat plane has zero curvature");
-            }
-        });
-        Run("progress cancels and callback exceptions propagate", () =>
-        {
-            var (p, t) = Grid(31);
-            using (var ctx = new Context())
-            using (var m = new Mesh(ctx, p, t))
-            {
-                int calls = 0;
-                Expect<CancelledException>(() => Patch.Extract(m, 15 * 31 + 15, 0.3, true, f => ++calls < 2));
-                Check(calls == 2, "two calls");
-                var e = Expect<InvalidOperationException>(() =>
-                    Patch.Extract(m, 15 * 31 + 15, 0.3, true, f => throw new InvalidOperationException("boom")));
-                Check(e.Message == "boom", "the callback's exception");
-                Check(Expect<MacroconException>(() => Patch.Extract(m, 15 * 31 + 15, -1)).Status == Status.InvalidArgument, "radius");
-            }
-        });
-        Run("heavy parallel work then shutdown", () =>
-        {
-            var (p, t) = Grid(81);
-            using (var ctx = new Context())
-            using (var m = new Mesh(ctx, p, t))
-                for (int i = 0; i < 3; ++i)
-                    using (var patch = Patch.Extract(m, 40 * 81 + 40, 0.2 + 0.1 * i)) patch.Descriptors(Descriptor.Curv9);
-        });
+        Run("version and ABI", Test0);
+        Run("mesh from doubles and floats", Test1);
+        Run("invalid mesh throws with status and message", Test2);
+        Run("patch extraction", Test3);
+        Run("progress cancels and callback exceptions propagate", Test4);
+        Run("library: entries round trip through every getter", Test5);
+        Run("library: save, open, bytes, remove, find, merge", Test6);
+        Run("library: retrieval finds each entry itself; cancel leaves it unchanged", Test7);
+        Run("library: bad input, forged bytes, disposed handles", Test8);
+        Run("map: from arrays, compute, correspondences, transfer, cross field", Test9);
+        Run("struct layouts match macrocon.h", TestLayout);
+        Run("heavy parallel work then shutdown", Test10);
         GC.Collect();
         GC.WaitForPendingFinalizers();
         Library.Shutdown();
+        if (passed + failed != ExpectedTests)
+        {
+            failed++;
+            Console.WriteLine($"FAIL runner: {passed + failed - 1} tests ran, {ExpectedTests} expected");
+        }
         Console.WriteLine($"{passed} passed, {failed} failed");
         return failed == 0 ? 0 : 1;
     }

@@ -241,3 +241,35 @@ def test_process_exits_cleanly_after_parallel_library_and_map_work(with_map):
         lines = proc.stdout.split("\n")
         assert "done 2" in lines
         assert "exit_status 0" in lines, proc.stdout + proc.stderr
+
+
+def test_the_readme_flow_end_to_end(context, host, tmp_path):
+    """Query a library, re-embed the best entry onto the region, transfer its fields and guides."""
+    from test_library import example_constraints
+
+    mesh, _, _ = host
+    with macrocon.Library(context) as lib:
+        for i, j in ((12, 12), (20, 20), (28, 14)):
+            with macrocon.Patch.extract(mesh, radius=0.22, center_vertex=center(41, i, j)) as q:
+                lines, sing, fields = example_constraints(q)
+                lib.add_entry(q, name=f"{i},{j}", polylines=lines, singularities=sing, fields=fields)
+        lib.build_retrieval(vocabulary_size=16)
+        path = tmp_path / "starter.mclb"
+        lib.save(path)
+    with macrocon.Library.open(context, path) as lib, \
+            macrocon.Patch.extract(mesh, radius=0.22, center_vertex=center(41, 20, 20)) as region:
+        best = lib.query(region, n=3)
+        entry = lib[int(best.indices[0])]
+        assert entry.name == "20,20"
+        info = entry.info
+        with macrocon.Patch.from_arrays(context, entry.positions, entry.triangles, info.center_face,
+                                        info.center_barycentric) as source, \
+                macrocon.Map.compute(source, region, progress=lambda f: True, **FAST) as phi:
+            uv = phi.transfer_field(entry.fields["uv"].values, macrocon.FieldKind.UV)
+            assert uv.shape == (region.vertex_count, 2)
+            part = phi.transfer_labels(entry.fields["part"].values)
+            assert part.shape == (region.vertex_count, 1)
+            with phi.transfer_polylines(entry.polylines) as guides:
+                directions, _ = region.cross_field(guides)
+            region.write_rosy(directions, tmp_path / "region.rosy")
+            assert (tmp_path / "region.rosy").stat().st_size > 0

@@ -1,0 +1,44 @@
+"""The ctypes structs of _native.py against the C header: every size and field offset, measured by
+compiling a small C program against include/macrocon/macrocon.h (needs a C compiler, as CI has)."""
+import ctypes
+import re
+import shutil
+import subprocess
+from pathlib import Path
+
+import pytest
+
+from macrocon import _native
+
+HEADER_DIR = Path(__file__).resolve().parents[3] / "include"
+
+
+def c_name(cls) -> str:
+    return "mcon_" + re.sub(r"(?<!^)(?=[A-Z])", "_", cls.__name__).lower()
+
+
+STRUCTS = [v for v in vars(_native).values()
+           if isinstance(v, type) and issubclass(v, ctypes.Structure) and v is not ctypes.Structure]
+
+
+def test_every_ctypes_struct_matches_the_header(tmp_path):
+    cc = shutil.which("cc") or shutil.which("gcc")
+    assert cc, "a C compiler is needed to measure the header's layout"
+    assert (HEADER_DIR / "macrocon" / "macrocon.h").exists()
+    assert len(STRUCTS) >= 16
+    lines = ["#include <stddef.h>", "#include <stdio.h>", "#include \"macrocon/macrocon.h\"", "int main(void) {"]
+    expected = []
+    for cls in STRUCTS:
+        name = c_name(cls)
+        lines.append(f'  printf("{name} %zu\\n", sizeof({name}));')
+        expected.append(f"{name} {ctypes.sizeof(cls)}")
+        for field, _ in cls._fields_:
+            lines.append(f'  printf("{name}.{field} %zu\\n", offsetof({name}, {field}));')
+            expected.append(f"{name}.{field} {getattr(cls, field).offset}")
+    lines += ["  return 0;", "}"]
+    src = tmp_path / "layout.c"
+    src.write_text("\n".join(lines) + "\n")
+    exe = tmp_path / "layout"
+    subprocess.run([cc, "-std=c99", "-I", str(HEADER_DIR), str(src), "-o", str(exe)], check=True)
+    measured = subprocess.run([str(exe)], check=True, capture_output=True, text=True).stdout.split("\n")[:-1]
+    assert measured == expected

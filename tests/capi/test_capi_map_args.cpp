@@ -1,0 +1,431 @@
+// Negative tests for every function of the map section of macrocon.h: NULL and wrong-type
+// handles, NULL outputs, struct_size, capacities, bad triangles and barycentric weights, wrong
+// dimensions for a kind, non-disk arrays, NaN. The patches are small synthetic bumpy disks made
+// with mcon_patch_create_from_arrays, so the map is quick.
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "map_test_util.h"
+
+using namespace map_test;
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+mcon::TriMesh bumpy_disk(int rings, double phase) {
+  mcon::TriMesh m = mcon::test_meshes::make_disk(rings);
+  for (auto& p : m.positions)
+    p.z() = 0.25 * std::exp(-((p.x() - 0.2) * (p.x() - 0.2) + p.y() * p.y()) / 0.1) +
+            0.1 * std::sin(3 * p.x() + phase) * std::cos(2 * p.y());
+  return m;
+}
+
+mcon_patch_frame center_frame() {
+  mcon_patch_frame f;
+  EXPECT_EQ(mcon_patch_frame_init(&f), MCON_OK);
+  f.center_triangle = 0;  // make_disk: triangle 0 touches the center vertex 0
+  f.center_barycentric[0] = 1;
+  f.center_barycentric[1] = f.center_barycentric[2] = 0;
+  return f;
+}
+
+// The status of mcon_patch_create_from_arrays (out_patch must be NULL on failure).
+mcon_status create_status(mcon_context ctx, const Arrays& a, const mcon_patch_frame& f) {
+  const mcon_mesh_desc d = desc_of(a);
+  mcon_patch p = reinterpret_cast<mcon_patch>(&p);
+  const mcon_status s = mcon_patch_create_from_arrays(ctx, &d, &f, &p);
+  if (s == MCON_OK) {
+    mcon_patch_release(p);
+  } else {
+    EXPECT_EQ(p, nullptr);
+  }
+  return s;
+}
+
+class CapiMapArgs : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    ctx_ = make_context().release();
+    const mcon_patch_frame f = center_frame();
+    for (int i = 0; i < 2; ++i) {
+      const Arrays a = arrays_of(bumpy_disk(i == 0 ? 7 : 9, 0.3 * i));
+      const mcon_mesh_desc d = desc_of(a);
+      ASSERT_EQ(mcon_patch_create_from_arrays(ctx_, &d, &f, i == 0 ? &source_ : &target_), MCON_OK) << last_message();
+    }
+    mcon_map_options o = fast_options();
+    ASSERT_EQ(mcon_map_compute(source_, target_, &o, &map_), MCON_OK) << last_message();
+    mcon_patch_info info;
+    mcon_patch_info_init(&info);
+    mcon_patch_get_info(source_, &info);
+    ns_ = info.vertex_count;
+    nts_ = info.triangle_count;
+    mcon_patch_get_info(target_, &info);
+    nt_ = info.vertex_count;
+    ntt_ = info.triangle_count;
+    // From the center to a point halfway out.
+    const uint32_t tri[2] = {0, static_cast<uint32_t>(nts_ / 3)};
+    const double bary[6] = {1, 0, 0, 1.0 / 3, 1.0 / 3, 1.0 / 3};
+    const uint32_t size = 2;
+    ASSERT_EQ(mcon_map_transfer_polylines(map_, tri, bary, 2, &size, nullptr, 1, &set_), MCON_OK) << last_message();
+  }
+  static void TearDownTestSuite() {
+    mcon_polyline_set_release(set_);
+    mcon_map_release(map_);
+    mcon_patch_release(source_);
+    mcon_patch_release(target_);
+    mcon_context_release(ctx_);
+  }
+  static mcon_context ctx_;
+  static mcon_patch source_, target_;
+  static mcon_map map_;
+  static mcon_polyline_set set_;
+  static size_t ns_, nt_, nts_, ntt_;
+};
+mcon_context CapiMapArgs::ctx_ = nullptr;
+mcon_patch CapiMapArgs::source_ = nullptr;
+mcon_patch CapiMapArgs::target_ = nullptr;
+mcon_map CapiMapArgs::map_ = nullptr;
+mcon_polyline_set CapiMapArgs::set_ = nullptr;
+size_t CapiMapArgs::ns_ = 0, CapiMapArgs::nt_ = 0, CapiMapArgs::nts_ = 0, CapiMapArgs::ntt_ = 0;
+
+bool mentions(const std::string& text) { return last_message().find(text) != std::string::npos; }
+
+}  // namespace
+
+TEST_F(CapiMapArgs, InitFunctions) {
+  EXPECT_EQ(mcon_patch_frame_init(nullptr), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_map_options_init(nullptr), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_map_info_init(nullptr), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_cross_field_options_init(nullptr), MCON_ERROR_NULL_POINTER);
+  mcon_map_options o;
+  std::memset(&o, 0x55, sizeof o);
+  ASSERT_EQ(mcon_map_options_init(&o), MCON_OK);
+  EXPECT_EQ(o.struct_size, sizeof o);
+  EXPECT_EQ(o.seed, 0u);
+  EXPECT_EQ(o.alignment_samples, 10000u);
+  EXPECT_EQ(o.allow_reflection, 1u);
+  EXPECT_EQ(o.max_iterations, 100u);
+  EXPECT_EQ(o.progress, nullptr);
+  mcon_patch_frame f;
+  std::memset(&f, 0x55, sizeof f);
+  ASSERT_EQ(mcon_patch_frame_init(&f), MCON_OK);
+  EXPECT_EQ(f.center_triangle, MCON_INVALID_INDEX);
+  EXPECT_EQ(f.origin[0], 0.0);
+  EXPECT_EQ(f.scale, 1.0);
+  mcon_cross_field_options c;
+  ASSERT_EQ(mcon_cross_field_options_init(&c), MCON_OK);
+  EXPECT_EQ(c.align_to_boundary, 0u);
+  EXPECT_EQ(c.boundary_weight, 1.0);
+}
+
+TEST_F(CapiMapArgs, CreateFromArraysRejectsBadArguments) {
+  const Arrays a = arrays_of(bumpy_disk(4, 0));
+  const mcon_mesh_desc d = desc_of(a);
+  mcon_patch_frame f = center_frame();
+  mcon_patch p = reinterpret_cast<mcon_patch>(&f);
+  EXPECT_EQ(mcon_patch_create_from_arrays(ctx_, &d, &f, nullptr), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_patch_create_from_arrays(nullptr, &d, &f, &p), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(p, nullptr);
+  Garbage g;
+  EXPECT_EQ(mcon_patch_create_from_arrays(reinterpret_cast<mcon_context>(&g), &d, &f, &p), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(mcon_patch_create_from_arrays(ctx_, nullptr, &f, &p), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_patch_create_from_arrays(ctx_, &d, nullptr, &p), MCON_ERROR_NULL_POINTER);
+  mcon_patch_frame small = f;
+  small.struct_size = sizeof(mcon_patch_frame) - 1;
+  EXPECT_EQ(mcon_patch_create_from_arrays(ctx_, &d, &small, &p), MCON_ERROR_STRUCT_SIZE);
+  mcon_mesh_desc small_desc = d;
+  small_desc.struct_size = 4;
+  EXPECT_EQ(mcon_patch_create_from_arrays(ctx_, &small_desc, &f, &p), MCON_ERROR_STRUCT_SIZE);
+  EXPECT_EQ(p, nullptr);
+
+  auto with = [&](auto change) {
+    mcon_patch_frame x = center_frame();
+    change(x);
+    return create_status(ctx_, a, x);
+  };
+  EXPECT_EQ(with([](mcon_patch_frame&) {}), MCON_OK);
+  EXPECT_EQ(with([](mcon_patch_frame& x) { x.center_triangle = MCON_INVALID_INDEX; }), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_TRUE(mentions("center_triangle")) << last_message();
+  EXPECT_EQ(with([&](mcon_patch_frame& x) { x.center_triangle = static_cast<uint32_t>(a.triangle_count()); }),
+            MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(with([](mcon_patch_frame& x) { x.center_barycentric[0] = -0.5; x.center_barycentric[1] = 1.5; }),
+            MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(with([](mcon_patch_frame& x) { x.center_barycentric[1] = 0.5; }), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(with([](mcon_patch_frame& x) { x.center_barycentric[2] = kNaN; }), MCON_ERROR_NON_FINITE);
+  EXPECT_EQ(with([](mcon_patch_frame& x) { x.scale = 0; }), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(with([](mcon_patch_frame& x) { x.scale = -2; }), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(with([](mcon_patch_frame& x) { x.scale = kNaN; }), MCON_ERROR_NON_FINITE);
+  EXPECT_EQ(with([](mcon_patch_frame& x) { x.origin[1] = kNaN; }), MCON_ERROR_NON_FINITE);
+
+  // Mesh validation errors as mcon_mesh_create.
+  Arrays nan = a;
+  nan.positions[4] = kNaN;
+  EXPECT_EQ(create_status(ctx_, nan, f), MCON_ERROR_NON_FINITE);
+  Arrays bad_index = a;
+  bad_index.indices[5] = 100000;
+  EXPECT_EQ(create_status(ctx_, bad_index, f), MCON_ERROR_INDEX_OUT_OF_RANGE);
+  mcon_mesh_desc no_type = d;
+  no_type.position_type = 0;
+  EXPECT_EQ(mcon_patch_create_from_arrays(ctx_, &no_type, &f, &p), MCON_ERROR_INVALID_ARGUMENT);
+
+  // Not disks.
+  EXPECT_EQ(create_status(ctx_, arrays_of(mcon::test_meshes::make_icosphere(1)), f), MCON_ERROR_NOT_A_DISK);
+  EXPECT_TRUE(mentions("closed")) << last_message();
+  EXPECT_EQ(create_status(ctx_, arrays_of(mcon::test_meshes::make_cylinder(1, 2, 12, 3)), f), MCON_ERROR_NOT_A_DISK);
+  EXPECT_TRUE(mentions("boundary loops")) << last_message();
+  Arrays two = a;
+  const Arrays b = arrays_of(bumpy_disk(3, 1));
+  const uint32_t offset = static_cast<uint32_t>(two.vertex_count());
+  for (size_t i = 0; i < b.positions.size(); ++i) two.positions.push_back(b.positions[i] + (i % 3 == 0 ? 5.0 : 0.0));
+  for (uint32_t i : b.indices) two.indices.push_back(i + offset);
+  EXPECT_EQ(create_status(ctx_, two, f), MCON_ERROR_NOT_A_DISK);
+  EXPECT_TRUE(mentions("pieces")) << last_message();
+}
+
+TEST_F(CapiMapArgs, ComputeRejectsBadArguments) {
+  mcon_map_options o = fast_options();
+  mcon_map m = reinterpret_cast<mcon_map>(&o);
+  EXPECT_EQ(mcon_map_compute(source_, target_, &o, nullptr), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_map_compute(nullptr, target_, &o, &m), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(m, nullptr);
+  EXPECT_EQ(mcon_map_compute(source_, nullptr, &o, &m), MCON_ERROR_NULL_POINTER);
+  Garbage g;
+  EXPECT_EQ(mcon_map_compute(reinterpret_cast<mcon_patch>(&g), target_, &o, &m), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(mcon_map_compute(source_, reinterpret_cast<mcon_patch>(map_), &o, &m), MCON_ERROR_INVALID_ARGUMENT);
+  for (uint32_t size : {0u, static_cast<uint32_t>(sizeof(mcon_map_options) - 1)}) {
+    mcon_map_options x = o;
+    x.struct_size = size;
+    EXPECT_EQ(mcon_map_compute(source_, target_, &x, &m), MCON_ERROR_STRUCT_SIZE);
+  }
+  mcon_map_options x = o;
+  x.alignment_samples = 0;
+  EXPECT_EQ(mcon_map_compute(source_, target_, &x, &m), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_TRUE(mentions("alignment_samples")) << last_message();
+  x = o;
+  x.max_iterations = 0;
+  EXPECT_EQ(mcon_map_compute(source_, target_, &x, &m), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_TRUE(mentions("max_iterations")) << last_message();
+  EXPECT_EQ(m, nullptr);
+}
+
+TEST_F(CapiMapArgs, RetainReleaseAndInfo) {
+  EXPECT_EQ(mcon_map_retain(nullptr), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_map_release(nullptr), MCON_OK);
+  EXPECT_EQ(mcon_polyline_set_retain(nullptr), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_polyline_set_release(nullptr), MCON_OK);
+  EXPECT_EQ(mcon_map_retain(reinterpret_cast<mcon_map>(set_)), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(mcon_polyline_set_release(reinterpret_cast<mcon_polyline_set>(map_)), MCON_ERROR_INVALID_ARGUMENT);
+  ASSERT_EQ(mcon_map_retain(map_), MCON_OK);
+  ASSERT_EQ(mcon_map_release(map_), MCON_OK);
+  ASSERT_EQ(mcon_polyline_set_retain(set_), MCON_OK);
+  ASSERT_EQ(mcon_polyline_set_release(set_), MCON_OK);
+
+  mcon_map_info info;
+  ASSERT_EQ(mcon_map_info_init(&info), MCON_OK);
+  EXPECT_EQ(mcon_map_get_info(nullptr, &info), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_map_get_info(map_, nullptr), MCON_ERROR_NULL_POINTER);
+  Garbage g;
+  EXPECT_EQ(mcon_map_get_info(reinterpret_cast<mcon_map>(&g), &info), MCON_ERROR_INVALID_ARGUMENT);
+  info.struct_size = 8;
+  EXPECT_EQ(mcon_map_get_info(map_, &info), MCON_ERROR_STRUCT_SIZE);
+  ASSERT_EQ(mcon_map_info_init(&info), MCON_OK);
+  ASSERT_EQ(mcon_map_get_info(map_, &info), MCON_OK);
+  EXPECT_EQ(info.source_vertex_count, ns_);
+  EXPECT_EQ(info.target_vertex_count, nt_);
+  EXPECT_EQ(info.flipped_triangles, 0u);
+}
+
+TEST_F(CapiMapArgs, QueriesRejectBadArguments) {
+  std::vector<int32_t> tri(nt_ + ns_);
+  std::vector<double> bary(3 * (nt_ + ns_)), phi(2 * ns_);
+  std::vector<uint8_t> mask(nt_);
+  EXPECT_EQ(mcon_map_get_correspondences(nullptr, MCON_MAP_SOURCE_TO_TARGET, tri.data(), bary.data(), ns_),
+            MCON_ERROR_NULL_POINTER);
+  for (int bad : {0, 3, -1}) {
+    mcon_map_direction d;
+    std::memcpy(&d, &bad, sizeof d);
+    EXPECT_EQ(mcon_map_get_correspondences(map_, d, tri.data(), bary.data(), ns_), MCON_ERROR_INVALID_ARGUMENT) << bad;
+  }
+  EXPECT_EQ(mcon_map_get_correspondences(map_, MCON_MAP_SOURCE_TO_TARGET, tri.data(), bary.data(), ns_ - 1),
+            MCON_ERROR_BUFFER_TOO_SMALL);
+  EXPECT_EQ(mcon_map_get_correspondences(map_, MCON_MAP_TARGET_TO_SOURCE, tri.data(), nullptr, nt_ - 1),
+            MCON_ERROR_BUFFER_TOO_SMALL);
+  EXPECT_EQ(mcon_map_get_correspondences(map_, MCON_MAP_TARGET_TO_SOURCE, nullptr, nullptr, 0), MCON_OK);
+  EXPECT_EQ(mcon_map_get_phi(nullptr, phi.data(), phi.size()), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_map_get_phi(map_, nullptr, phi.size()), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_map_get_phi(map_, phi.data(), phi.size() - 1), MCON_ERROR_BUFFER_TOO_SMALL);
+  EXPECT_EQ(mcon_map_get_outside_mask(nullptr, mask.data(), nt_), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_map_get_outside_mask(map_, nullptr, nt_), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_map_get_outside_mask(map_, mask.data(), nt_ - 1), MCON_ERROR_BUFFER_TOO_SMALL);
+}
+
+TEST_F(CapiMapArgs, TransferPointsRejectsBadPoints) {
+  uint32_t tri[2] = {0, 1};
+  double bary[6] = {1, 0, 0, 0.2, 0.3, 0.5};
+  uint32_t ot[2];
+  double ob[6], ox[6];
+  EXPECT_EQ(mcon_map_transfer_points(nullptr, tri, bary, 2, ot, ob, ox, 2), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_map_transfer_points(map_, nullptr, bary, 2, ot, ob, ox, 2), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_map_transfer_points(map_, tri, nullptr, 2, ot, ob, ox, 2), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_map_transfer_points(map_, tri, bary, 2, ot, ob, ox, 1), MCON_ERROR_BUFFER_TOO_SMALL);
+  EXPECT_EQ(mcon_map_transfer_points(map_, nullptr, nullptr, 0, ot, ob, ox, 0), MCON_OK);
+  tri[1] = static_cast<uint32_t>(nts_);
+  EXPECT_EQ(mcon_map_transfer_points(map_, tri, bary, 2, ot, ob, ox, 2), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_TRUE(mentions("out of range")) << last_message();
+  tri[1] = 1;
+  bary[3] = -0.2;
+  bary[5] = 0.9;
+  EXPECT_EQ(mcon_map_transfer_points(map_, tri, bary, 2, ot, ob, ox, 2), MCON_ERROR_INVALID_ARGUMENT);
+  bary[3] = 0.5;  // sums to 1.7
+  EXPECT_EQ(mcon_map_transfer_points(map_, tri, bary, 2, ot, ob, ox, 2), MCON_ERROR_INVALID_ARGUMENT);
+  bary[3] = kNaN;
+  EXPECT_EQ(mcon_map_transfer_points(map_, tri, bary, 2, ot, ob, ox, 2), MCON_ERROR_NON_FINITE);
+}
+
+TEST_F(CapiMapArgs, TransferPolylinesRejectsBadPolylines) {
+  const uint32_t tri[4] = {0, 1, 2, 3};
+  double bary[12] = {1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0};
+  mcon_polyline_set s = reinterpret_cast<mcon_polyline_set>(&s);
+  uint32_t sizes[2] = {2, 2};
+  uint8_t closed[2] = {0, 0};
+  EXPECT_EQ(mcon_map_transfer_polylines(map_, tri, bary, 4, sizes, closed, 2, nullptr), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_map_transfer_polylines(nullptr, tri, bary, 4, sizes, closed, 2, &s), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_map_transfer_polylines(map_, tri, bary, 4, nullptr, closed, 2, &s), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(s, nullptr);
+  EXPECT_EQ(mcon_map_transfer_polylines(map_, nullptr, bary, 4, sizes, closed, 2, &s), MCON_ERROR_NULL_POINTER);
+  uint32_t one[2] = {1, 3};
+  EXPECT_EQ(mcon_map_transfer_polylines(map_, tri, bary, 4, one, closed, 2, &s), MCON_ERROR_INVALID_ARGUMENT);
+  closed[0] = 1;
+  EXPECT_EQ(mcon_map_transfer_polylines(map_, tri, bary, 4, sizes, closed, 2, &s), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_TRUE(mentions("closed")) << last_message();
+  closed[0] = 0;
+  uint32_t too_many[2] = {2, 3};
+  EXPECT_EQ(mcon_map_transfer_polylines(map_, tri, bary, 4, too_many, closed, 2, &s), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(mcon_map_transfer_polylines(map_, tri, bary, 4, sizes, closed, 1, &s), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_TRUE(mentions("point_count")) << last_message();
+  bary[4] = 0.5;
+  EXPECT_EQ(mcon_map_transfer_polylines(map_, tri, bary, 4, sizes, closed, 2, &s), MCON_ERROR_INVALID_ARGUMENT);
+  bary[4] = kNaN;
+  EXPECT_EQ(mcon_map_transfer_polylines(map_, tri, bary, 4, sizes, closed, 2, &s), MCON_ERROR_NON_FINITE);
+  bary[4] = 0;
+  const uint32_t bad_tri[4] = {0, 1, static_cast<uint32_t>(nts_) + 7, 3};
+  EXPECT_EQ(mcon_map_transfer_polylines(map_, bad_tri, bary, 4, sizes, closed, 2, &s), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(s, nullptr);
+  // Zero polylines is a valid, empty set.
+  ASSERT_EQ(mcon_map_transfer_polylines(map_, nullptr, nullptr, 0, nullptr, nullptr, 0, &s), MCON_OK);
+  size_t np = 9, n = 9;
+  EXPECT_EQ(mcon_polyline_set_get_counts(s, &np, &n), MCON_OK);
+  EXPECT_EQ(np, 0u);
+  EXPECT_EQ(n, 0u);
+  mcon_polyline_set_release(s);
+}
+
+TEST_F(CapiMapArgs, PolylineSetGettersRejectBadArguments) {
+  size_t np = 0, n = 0;
+  EXPECT_EQ(mcon_polyline_set_get_counts(nullptr, &np, &n), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_polyline_set_get_counts(set_, nullptr, &n), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_polyline_set_get_counts(set_, &np, nullptr), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_polyline_set_get_counts(reinterpret_cast<mcon_polyline_set>(map_), &np, &n), MCON_ERROR_INVALID_ARGUMENT);
+  ASSERT_EQ(mcon_polyline_set_get_counts(set_, &np, &n), MCON_OK);
+  ASSERT_GE(np, 1u);
+  std::vector<uint32_t> sizes(np), input(np), tri(n);
+  std::vector<uint8_t> closed(np);
+  std::vector<double> bary(3 * n), xyz(3 * n);
+  EXPECT_EQ(mcon_polyline_set_get_polylines(nullptr, sizes.data(), closed.data(), input.data(), np),
+            MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_polyline_set_get_polylines(set_, sizes.data(), closed.data(), input.data(), np - 1),
+            MCON_ERROR_BUFFER_TOO_SMALL);
+  EXPECT_EQ(mcon_polyline_set_get_polylines(set_, nullptr, nullptr, input.data(), np), MCON_OK);
+  EXPECT_EQ(input[0], 0u);
+  EXPECT_EQ(mcon_polyline_set_get_points(nullptr, tri.data(), bary.data(), xyz.data(), n), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_polyline_set_get_points(set_, tri.data(), bary.data(), xyz.data(), n - 1), MCON_ERROR_BUFFER_TOO_SMALL);
+  EXPECT_EQ(mcon_polyline_set_get_points(set_, nullptr, nullptr, xyz.data(), n), MCON_OK);
+}
+
+TEST_F(CapiMapArgs, TransferFieldRejectsBadKindsDimensionsAndValues) {
+  std::vector<double> in(3 * ns_, 0.5), out(3 * nt_);
+  auto call = [&](int kind, uint32_t dim, size_t count, size_t cap) {
+    mcon_field_kind k;
+    std::memcpy(&k, &kind, sizeof k);
+    return mcon_map_transfer_field(map_, k, dim, in.data(), count, out.data(), cap);
+  };
+  EXPECT_EQ(call(MCON_FIELD_SCALAR, 3, 3 * ns_, 3 * nt_), MCON_OK);
+  EXPECT_EQ(mcon_map_transfer_field(nullptr, MCON_FIELD_SCALAR, 1, in.data(), ns_, out.data(), nt_),
+            MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_map_transfer_field(map_, MCON_FIELD_SCALAR, 1, nullptr, ns_, out.data(), nt_), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_map_transfer_field(map_, MCON_FIELD_SCALAR, 1, in.data(), ns_, nullptr, nt_), MCON_ERROR_NULL_POINTER);
+  for (int bad : {0, 6, 99, -3}) EXPECT_EQ(call(bad, 1, ns_, nt_), MCON_ERROR_INVALID_ARGUMENT) << bad;
+  EXPECT_EQ(call(MCON_FIELD_INTEGER_LABEL, 1, ns_, nt_), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_TRUE(mentions("mcon_map_transfer_labels")) << last_message();
+  EXPECT_EQ(call(MCON_FIELD_SCALAR, 0, 0, nt_), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(call(MCON_FIELD_VECTOR3, 2, 2 * ns_, 3 * nt_), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(call(MCON_FIELD_TANGENT_VECTOR, 2, 2 * ns_, 3 * nt_), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(call(MCON_FIELD_UV, 3, 3 * ns_, 3 * nt_), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(call(MCON_FIELD_UV, 2, 2 * ns_ - 1, 3 * nt_), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_TRUE(mentions("value_count")) << last_message();
+  EXPECT_EQ(call(MCON_FIELD_VECTOR3, 3, 3 * ns_, 3 * nt_ - 1), MCON_ERROR_BUFFER_TOO_SMALL);
+  in[7] = kNaN;
+  EXPECT_EQ(call(MCON_FIELD_TANGENT_VECTOR, 3, 3 * ns_, 3 * nt_), MCON_ERROR_NON_FINITE);
+  EXPECT_EQ(call(MCON_FIELD_SCALAR, 1, ns_, nt_), MCON_ERROR_NON_FINITE);
+}
+
+TEST_F(CapiMapArgs, TransferLabelsRejectsBadArguments) {
+  std::vector<int32_t> in(2 * ns_, 4), out(2 * nt_);
+  EXPECT_EQ(mcon_map_transfer_labels(map_, 2, in.data(), in.size(), -1, out.data(), out.size()), MCON_OK);
+  EXPECT_EQ(mcon_map_transfer_labels(nullptr, 2, in.data(), in.size(), -1, out.data(), out.size()),
+            MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_map_transfer_labels(map_, 0, in.data(), 0, -1, out.data(), out.size()), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(mcon_map_transfer_labels(map_, 2, nullptr, in.size(), -1, out.data(), out.size()), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_map_transfer_labels(map_, 2, in.data(), in.size(), -1, nullptr, out.size()), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_map_transfer_labels(map_, 2, in.data(), in.size() - 1, -1, out.data(), out.size()),
+            MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(mcon_map_transfer_labels(map_, 2, in.data(), in.size(), -1, out.data(), out.size() - 1),
+            MCON_ERROR_BUFFER_TOO_SMALL);
+}
+
+TEST_F(CapiMapArgs, CrossFieldAndRosyRejectBadArguments) {
+  std::vector<double> dir(3 * ntt_), conf(ntt_);
+  mcon_cross_field_options o;
+  ASSERT_EQ(mcon_cross_field_options_init(&o), MCON_OK);
+  EXPECT_EQ(mcon_patch_compute_cross_field(target_, set_, &o, dir.data(), conf.data(), ntt_), MCON_OK) << last_message();
+  EXPECT_EQ(mcon_patch_compute_cross_field(nullptr, set_, &o, dir.data(), conf.data(), ntt_), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_patch_compute_cross_field(target_, set_, &o, nullptr, conf.data(), ntt_), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_patch_compute_cross_field(target_, set_, &o, dir.data(), conf.data(), ntt_ - 1),
+            MCON_ERROR_BUFFER_TOO_SMALL);
+  // The guides lie on the target, not on the source.
+  EXPECT_EQ(mcon_patch_compute_cross_field(source_, set_, &o, dir.data(), conf.data(), ntt_ + nts_),
+            MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_TRUE(mentions("another patch")) << last_message();
+  Garbage g;
+  EXPECT_EQ(mcon_patch_compute_cross_field(target_, reinterpret_cast<mcon_polyline_set>(&g), &o, dir.data(),
+                                           conf.data(), ntt_),
+            MCON_ERROR_INVALID_ARGUMENT);
+  mcon_cross_field_options x = o;
+  x.struct_size = 3;
+  EXPECT_EQ(mcon_patch_compute_cross_field(target_, set_, &x, dir.data(), conf.data(), ntt_), MCON_ERROR_STRUCT_SIZE);
+  for (double w : {0.0, -1.0}) {
+    x = o;
+    x.alignment_weight = w;
+    EXPECT_EQ(mcon_patch_compute_cross_field(target_, set_, &x, dir.data(), conf.data(), ntt_),
+              MCON_ERROR_INVALID_ARGUMENT);
+    x = o;
+    x.boundary_weight = w;
+    EXPECT_EQ(mcon_patch_compute_cross_field(target_, set_, &x, dir.data(), conf.data(), ntt_),
+              MCON_ERROR_INVALID_ARGUMENT);
+  }
+  x = o;
+  x.alignment_weight = kNaN;
+  EXPECT_EQ(mcon_patch_compute_cross_field(target_, set_, &x, dir.data(), conf.data(), ntt_), MCON_ERROR_NON_FINITE);
+
+  const std::string path = std::string(MACROCON_BINARY_DIR) + "/capi_map_args.rosy";
+  EXPECT_EQ(mcon_patch_write_rosy(nullptr, dir.data(), ntt_, path.c_str()), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_patch_write_rosy(target_, nullptr, ntt_, path.c_str()), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_patch_write_rosy(target_, dir.data(), ntt_, nullptr), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_patch_write_rosy(target_, dir.data(), ntt_, ""), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(mcon_patch_write_rosy(target_, dir.data(), ntt_ - 1, path.c_str()), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(mcon_patch_write_rosy(target_, dir.data(), ntt_, "/nonexistent-dir/x/field.rosy"), MCON_ERROR_IO);
+  dir[4] = kNaN;
+  EXPECT_EQ(mcon_patch_write_rosy(target_, dir.data(), ntt_, path.c_str()), MCON_ERROR_NON_FINITE);
+}

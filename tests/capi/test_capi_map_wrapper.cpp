@@ -1,0 +1,111 @@
+// The C++ wrapper of the map section (macrocon.hpp): Map, PolylineSet, patch_from_arrays,
+// compute_cross_field, write_rosy; errors become macrocon::Error with the C status.
+#include <cstdio>
+#include <stdexcept>
+
+#include "io/mesh_io.h"
+#include "macrocon/macrocon.hpp"
+#include "map_test_util.h"
+
+namespace {
+
+macrocon::Patch nose(const macrocon::Mesh& body, double radius) {
+  return macrocon::Patch::extract(body, macrocon::PatchOptions::at_vertex(
+                                            static_cast<uint32_t>(map_test::body().file_to_mesh[297]), radius));
+}
+
+macrocon::MapOptions fast() {
+  macrocon::MapOptions o;
+  o.alignment_samples = 200;
+  o.max_iterations = 30;
+  o.seed = 3;
+  return o;
+}
+
+}  // namespace
+
+TEST(CppMap, ComputeTransferAndCrossField) {
+  const macrocon::Context ctx;
+  const auto& a = map_test::body().arrays;
+  const macrocon::Mesh body = macrocon::Mesh::from_arrays(ctx, a.positions, a.indices);
+  const macrocon::Patch source = nose(body, 0.45), target = nose(body, 0.55);
+  const macrocon::Map map = macrocon::Map::compute(source, target, fast());
+  const mcon_map_info info = map.info();
+  EXPECT_EQ(info.flipped_triangles, 0u);
+  EXPECT_EQ(info.source_vertex_count, source.vertex_count());
+  EXPECT_EQ(map.phi().size(), 2 * source.vertex_count());
+  const auto mask = map.outside_mask();
+  const auto corr = map.correspondences(MCON_MAP_TARGET_TO_SOURCE);
+  ASSERT_EQ(corr.first.size(), target.vertex_count());
+  for (size_t w = 0; w < mask.size(); ++w) EXPECT_EQ(mask[w], corr.first[w] < 0 ? 1 : 0);
+
+  const std::vector<double> ones(source.vertex_count(), 1.0);
+  const std::vector<double> f = map.transfer_field(MCON_FIELD_SCALAR, 1, ones);
+  for (size_t w = 0; w < f.size(); ++w) EXPECT_NEAR(f[w], mask[w] ? 0.0 : 1.0, 1e-12);
+  const std::vector<int32_t> labels(source.vertex_count(), 5);
+  const std::vector<int32_t> l = map.transfer_labels(1, labels, -2);
+  for (size_t w = 0; w < l.size(); ++w) EXPECT_EQ(l[w], mask[w] ? -2 : 5);
+
+  const mcon_patch_info si = source.info();
+  const macrocon::SurfacePoints p =
+      map.transfer_points({si.center_patch_triangle},
+                          {si.center_barycentric[0], si.center_barycentric[1], si.center_barycentric[2]});
+  ASSERT_EQ(p.size(), 1u);
+  EXPECT_NE(p.triangles[0], MCON_INVALID_INDEX);
+
+  // A polyline from the center outwards along a few source triangles' centroids.
+  const std::vector<uint32_t> tri = {si.center_patch_triangle, 10, 20};
+  const std::vector<double> bary = {si.center_barycentric[0], si.center_barycentric[1], si.center_barycentric[2],
+                                    1.0 / 3, 1.0 / 3, 1.0 / 3, 1.0 / 3, 1.0 / 3, 1.0 / 3};
+  const macrocon::PolylineSet set = map.transfer_polylines(tri, bary, {3});
+  ASSERT_GE(set.polyline_count(), 1u);
+  EXPECT_EQ(set.input_polylines()[0], 0u);
+  EXPECT_EQ(set.points().size(), set.point_count());
+  const macrocon::CrossField field = macrocon::compute_cross_field(target, set);
+  EXPECT_EQ(field.directions.size(), 3 * target.triangle_count());
+  const std::string path = std::string(MACROCON_BINARY_DIR) + "/cpp_map_wrapper.rosy";
+  macrocon::write_rosy(target, field.directions, path);
+  EXPECT_EQ(mcon::io::read_rosy(path).size(), target.triangle_count());
+  std::remove(path.c_str());
+
+  // Guides of another patch are refused with the C status.
+  try {
+    macrocon::compute_cross_field(source, set);
+    FAIL() << "expected an Error";
+  } catch (const macrocon::Error& e) {
+    EXPECT_EQ(e.status(), MCON_ERROR_INVALID_ARGUMENT);
+  }
+}
+
+TEST(CppMap, ProgressExceptionsAndCancellation) {
+  const macrocon::Context ctx;
+  const auto& a = map_test::body().arrays;
+  const macrocon::Mesh body = macrocon::Mesh::from_arrays(ctx, a.positions, a.indices);
+  const macrocon::Patch source = nose(body, 0.45), target = nose(body, 0.55);
+  macrocon::MapOptions o = fast();
+  o.progress = [](double) -> bool { throw std::logic_error("from the callback"); };
+  EXPECT_THROW(macrocon::Map::compute(source, target, o), std::logic_error);
+  o.progress = [](double) { return false; };
+  try {
+    macrocon::Map::compute(source, target, o);
+    FAIL() << "expected an Error";
+  } catch (const macrocon::Error& e) {
+    EXPECT_EQ(e.status(), MCON_ERROR_CANCELLED);
+  }
+  // Not a disk: a closed sphere.
+  const map_test::Arrays sphere = capi_test::arrays_of(mcon::test_meshes::make_icosphere(1));
+  try {
+    macrocon::patch_from_arrays(ctx, sphere.positions, sphere.indices, 0);
+    FAIL() << "expected an Error";
+  } catch (const macrocon::Error& e) {
+    EXPECT_EQ(e.status(), MCON_ERROR_NOT_A_DISK);
+  }
+  // A patch from its own arrays works and maps.
+  const mcon_patch_info si = source.info();
+  const macrocon::Patch entry = macrocon::patch_from_arrays(
+      ctx, source.positions(), source.triangles(), si.center_patch_triangle,
+      {si.center_barycentric[0], si.center_barycentric[1], si.center_barycentric[2]},
+      {si.center[0], si.center[1], si.center[2]}, si.radius);
+  EXPECT_EQ(entry.info().boundary_loops, 1u);
+  EXPECT_EQ(macrocon::Map::compute(entry, target, fast()).info().flipped_triangles, 0u);
+}

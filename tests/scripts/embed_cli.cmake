@@ -1,0 +1,75 @@
+# Runs `macrocon embed` twice (cut source, and source from a patch file) and checks the outputs.
+file(REMOVE_RECURSE ${OUT})
+file(MAKE_DIRECTORY ${OUT})
+
+function(check_run dir)
+  foreach(f target.ply guides.obj source_guides.obj target.rosy summary.json)
+    if(NOT EXISTS ${dir}/${f})
+      message(FATAL_ERROR "${dir}: ${f} was not written")
+    endif()
+  endforeach()
+  file(READ ${dir}/summary.json summary)
+  string(JSON flips GET "${summary}" flips)
+  string(JSON overlap GET "${summary}" overlap)
+  string(JSON guides_out GET "${summary}" guides_out)
+  string(JSON stop GET "${summary}" stop_reason)
+  string(JSON nt GET "${summary}" target_vertices)
+  message(STATUS "${dir}: flips ${flips}, overlap ${overlap}, guides out ${guides_out}, stop ${stop}")
+  if(NOT flips EQUAL 0)
+    message(FATAL_ERROR "${dir}: the map has ${flips} flipped triangles")
+  endif()
+  if(overlap LESS 0.5 OR guides_out LESS 1)
+    message(FATAL_ERROR "${dir}: overlap ${overlap} / ${guides_out} guides out: the map did not land")
+  endif()
+  # The .rosy has one direction per target triangle; the OBJ has `l` lines.
+  file(STRINGS ${dir}/target.rosy rosy LIMIT_COUNT 2)
+  list(GET rosy 1 symmetry)
+  if(NOT symmetry EQUAL 4)
+    message(FATAL_ERROR "${dir}: target.rosy is not a 4-RoSy file")
+  endif()
+  file(STRINGS ${dir}/guides.obj lines REGEX "^l ")
+  list(LENGTH lines nl)
+  if(NOT nl EQUAL guides_out)
+    message(FATAL_ERROR "${dir}: guides.obj has ${nl} lines, the summary says ${guides_out}")
+  endif()
+  file(READ ${dir}/target.ply header LIMIT 2000)
+  foreach(attr source_uv_x source_mean_curvature source_ring outside)
+    if(NOT header MATCHES "property float ${attr}")
+      message(FATAL_ERROR "${dir}: target.ply lacks the attribute ${attr}")
+    endif()
+  endforeach()
+endfunction()
+
+execute_process(
+  COMMAND ${CLI} embed --source ${MESH} --target ${MESH} --center-vertex 297 --radius 0.55
+          --source-center-vertex 297 --source-radius 0.45 --samples 500 --seed 1 --out ${OUT}/cut --json
+  OUTPUT_VARIABLE out ERROR_VARIABLE err RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "macrocon embed failed (${rc}): ${err}")
+endif()
+string(JSON stdout_flips GET "${out}" flips)
+if(NOT stdout_flips EQUAL 0)
+  message(FATAL_ERROR "--json printed flips ${stdout_flips}")
+endif()
+check_run(${OUT}/cut)
+
+execute_process(COMMAND ${CLI} patch --mesh ${MESH} --center-vertex 297 --radius 0.45 --out ${OUT}/nose.ply
+                RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_QUIET)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "macrocon patch failed (${rc}): ${err}")
+endif()
+execute_process(
+  COMMAND ${CLI} embed --source ${OUT}/nose.ply --target ${MESH} --center-vertex 297 --radius 0.55 --samples 500
+          --out ${OUT}/entry
+  RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_QUIET)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "macrocon embed with a patch file failed (${rc}): ${err}")
+endif()
+check_run(${OUT}/entry)
+
+# Bad input fails with a message, not a crash.
+execute_process(COMMAND ${CLI} embed --source ${MESH} --target ${MESH} --center-vertex 99999999 --radius 0.5
+                --out ${OUT}/bad RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_QUIET)
+if(rc EQUAL 0 OR NOT err MATCHES "not a vertex")
+  message(FATAL_ERROR "a bad --center-vertex was accepted (${rc}): ${err}")
+endif()

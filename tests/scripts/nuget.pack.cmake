@@ -1,0 +1,65 @@
+# Packs the C# binding as a .nupkg without nuget.exe (none can be downloaded here): a .nupkg is an
+# OPC zip with the .nuspec at its root. Reads the <file src= target=> entries of NUSPEC, copies
+# DLL (Macrocon.dll) and LIB (the native library, real file behind the symlinks) to those targets,
+# adds the OPC parts ([Content_Types].xml, _rels/.rels) and zips it to OUT.
+#   cmake -DNUSPEC=... -DDLL=... -DLIB=... -DVERSION=0.1.0 -DOUT=.../Macrocon.0.1.0.nupkg -P nuget.pack.cmake
+foreach(v NUSPEC DLL LIB VERSION OUT)
+  if(NOT DEFINED ${v})
+    message(FATAL_ERROR "nuget.pack.cmake: -D${v}= is required")
+  endif()
+endforeach()
+get_filename_component(out_dir ${OUT} DIRECTORY)
+set(stage ${out_dir}/nupkg-stage)
+file(REMOVE_RECURSE ${stage})
+file(MAKE_DIRECTORY ${stage})
+file(READ ${NUSPEC} spec)
+string(REPLACE "$version$" "${VERSION}" spec "${spec}")
+file(WRITE ${stage}/Macrocon.nuspec "${spec}")
+get_filename_component(lib_real ${LIB} REALPATH)
+set(sources "Macrocon.dll=${DLL}" "libmacrocon.so=${lib_real}")
+string(REGEX MATCHALL "<file src=\"[^\"]+\" target=\"[^\"]+\"" entries "${spec}")
+set(members Macrocon.nuspec)
+foreach(e ${entries})
+  string(REGEX REPLACE "<file src=\"([^\"]+)\" target=\"([^\"]+)\"" "\\1;\\2" pair "${e}")
+  list(GET pair 0 src)
+  list(GET pair 1 target)
+  set(from "")
+  foreach(s ${sources})
+    string(REPLACE "=" ";" kv "${s}")
+    list(GET kv 0 k)
+    list(GET kv 1 path)
+    if(k STREQUAL src)
+      set(from ${path})
+    endif()
+  endforeach()
+  if(NOT from)
+    message(FATAL_ERROR "nuget.pack.cmake: no input for <file src=\"${src}\">")
+  endif()
+  get_filename_component(target_dir ${stage}/${target} DIRECTORY)
+  file(MAKE_DIRECTORY ${target_dir})
+  file(COPY_FILE ${from} ${stage}/${target})
+  list(APPEND members ${target})
+endforeach()
+file(WRITE "${stage}/[Content_Types].xml"
+  "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n"
+  "<Types xmlns=\"http://schemas.openxmlformats.org/package/2006/content-types\">"
+  "<Default Extension=\"rels\" ContentType=\"application/vnd.openxmlformats-package.relationships+xml\" />"
+  "<Default Extension=\"nuspec\" ContentType=\"application/octet\" />"
+  "<Default Extension=\"dll\" ContentType=\"application/octet\" />"
+  "<Default Extension=\"so\" ContentType=\"application/octet\" />"
+  "</Types>\n")
+file(MAKE_DIRECTORY ${stage}/_rels)
+file(WRITE ${stage}/_rels/.rels
+  "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n"
+  "<Relationships xmlns=\"http://schemas.openxmlformats.org/package/2006/relationships\">"
+  "<Relationship Type=\"http://schemas.microsoft.com/packaging/2010/07/manifest\" Target=\"/Macrocon.nuspec\" Id=\"R0\" />"
+  "</Relationships>\n")
+list(APPEND members "[Content_Types].xml" _rels/.rels)
+file(REMOVE ${OUT})
+# Fixed timestamps: the same inputs give the same package bytes.
+execute_process(COMMAND ${CMAKE_COMMAND} -E tar cf ${OUT} --format=zip "--mtime=2026-01-01 00:00:00 UTC" -- ${members}
+  WORKING_DIRECTORY ${stage} RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "nuget.pack.cmake: zipping ${OUT} failed")
+endif()
+message(STATUS "packed ${OUT}: ${members}")

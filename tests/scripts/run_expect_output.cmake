@@ -1,0 +1,17 @@
+# Runs EXE [ARGS] RUNS times; every run must exit with status 0 and print a line containing
+# EXPECT (e.g. what an exit hook reports after main returned).
+if(NOT RUNS)
+  set(RUNS 1)
+endif()
+separate_arguments(args UNIX_COMMAND "${ARGS}")
+foreach(i RANGE 1 ${RUNS})
+  execute_process(COMMAND ${EXE} ${args} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc STREQUAL "0")
+    message(FATAL_ERROR "run ${i} of ${RUNS}: ${EXE} ${ARGS} exited with '${rc}'\n${out}\n${err}")
+  endif()
+  string(FIND "${out}" "${EXPECT}" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "run ${i} of ${RUNS}: output lacks '${EXPECT}'\n${out}\n${err}")
+  endif()
+endforeach()
+message(STATUS "${RUNS} clean runs of ${EXE} ${ARGS}: ${out}")

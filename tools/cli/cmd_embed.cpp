@@ -1,0 +1,365 @@
+// `macrocon embed`: re-embed a source patch onto a target region and transfer its constraints
+// (thesis ch. 4): the target patch with the transferred per-vertex fields (PLY), the guide
+// polylines re-traced on the target (OBJ `l` lines), the target's guide-aligned cross field
+// (QuadWild `.rosy`) and a JSON summary of the map.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "args.h"
+#include "common/json.h"
+#include "cross_field.h"
+#include "curvature_descriptors.h"
+#include "field_transfer.h"
+#include "geodesic_disk_patch.h"
+#include "heat_geodesics.h"
+#include "io/mesh_io.h"
+#include "map_view.h"
+#include "patch_from_arrays.h"
+#include "patch_map.h"
+#include "polyline_transfer.h"
+
+namespace mcon::cli {
+namespace {
+
+const char* kUsage =
+    "usage: macrocon embed --source FILE --target FILE --center-vertex N --radius R\n"
+    "                      [--source-center-vertex M --source-radius Q] [--face-range A:B]\n"
+    "                      [--source-face-range A:B] [--seed S] [--samples K] [--iterations I]\n"
+    "                      [--out DIR] [--json]\n"
+    "Maps a source patch onto the geodesic disk of radius R around vertex N of the target mesh and\n"
+    "transfers the source's constraints. With --source-center-vertex the source patch is cut the same\n"
+    "way from the source mesh (radius Q, default R); without it the source file must already be one\n"
+    "normalized disk patch (a library entry), centered at its vertex nearest to its area centroid.\n"
+    "Source constraints: its uv, mean curvature, geodesic distance from the center and a ring label\n"
+    "(distance in steps of 0.25) per vertex, and guide loops at geodesic distance 0.3 and 0.6.\n"
+    "--out DIR (default embed-out) receives target.ply (target patch in target mesh units with the\n"
+    "transferred fields and 'outside' = 1 where no source point maps), guides.obj (re-traced guides),\n"
+    "source_guides.obj, target.rosy (cross field following the guides) and summary.json; --json\n"
+    "also prints the summary. Vertex numbers and face ranges refer to the files.\n";
+
+void parse_range(const std::string& key, const std::string& s, long& begin, long& end) {
+  const auto colon = s.find(':');
+  require(colon != std::string::npos, MCON_ERROR_INVALID_ARGUMENT, "--" + key + " expects BEGIN:END, got '" + s + "'");
+  begin = static_cast<long>(ArgParser::parse_number(key, s.substr(0, colon)));
+  end = static_cast<long>(ArgParser::parse_number(key, s.substr(colon + 1)));
+  require(begin >= 0 && end > begin, MCON_ERROR_INVALID_ARGUMENT, "--" + key + " needs 0 <= BEGIN < END");
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+io::LoadedMesh load(const ArgParser& p, const std::string& file_key, const std::string& range_key) {
+  io::MeshFileOptions options;
+  if (p.has(range_key)) parse_range(range_key, p.get(range_key), options.face_begin, options.face_end);
+  return io::read_mesh(p.required(file_key), options);
+}
+
+Patch cut(const io::LoadedMesh& mesh, long file_vertex, double radius, const std::string& what) {
+  require(file_vertex >= 0 && file_vertex < static_cast<long>(mesh.file_to_mesh.size()) &&
+              mesh.file_to_mesh[static_cast<std::size_t>(file_vertex)] >= 0,
+          MCON_ERROR_INVALID_ARGUMENT, what + " " + std::to_string(file_vertex) + " is not a vertex of the surface");
+  require(std::isfinite(radius) && radius > 0, MCON_ERROR_INVALID_ARGUMENT, "radii must be > 0");
+  PatchOptions options;
+  options.center.vertex = mesh.file_to_mesh[static_cast<std::size_t>(file_vertex)];
+  options.radius = radius;
+  return extract_geodesic_disk(mesh.mesh, options);
+}
+
+// An already-cut, normalized patch: centered at the vertex nearest to its area-weighted centroid
+// (the center of a geodesic disk is near its centroid unless the disk is very curved; the vertex,
+// not the centroid itself, so the center is a point of the surface).
+Patch as_entry(const TriMesh& mesh) {
+  Vec3 centroid = Vec3::Zero();
+  double area = 0;
+  for (int t = 0; t < mesh.num_triangles(); ++t) {
+    const Tri& tri = mesh.triangles[t];
+    const double a = triangle_area(mesh, t);
+    centroid += a * (mesh.positions[tri[0]] + mesh.positions[tri[1]] + mesh.positions[tri[2]]) / 3.0;
+    area += a;
+  }
+  centroid /= area;
+  int best = 0;
+  for (int v = 1; v < mesh.num_vertices(); ++v)
+    if ((mesh.positions[v] - centroid).squaredNorm() < (mesh.positions[best] - centroid).squaredNorm()) best = v;
+  PatchFrame frame;
+  for (int t = 0; t < mesh.num_triangles() && frame.center_triangle < 0; ++t)
+    for (int k = 0; k < 3; ++k)
+      if (mesh.triangles[t][k] == best) {
+        frame.center_triangle = t;
+        frame.center_barycentric = Vec3::Zero();
+        frame.center_barycentric[k] = 1.0;
+      }
+  return patch_from_mesh(mesh, frame);
+}
+
+// Iso-lines {d = value} of a per-vertex field as polylines of surface points (marching
+// triangles: a vertex counts as above when d >= value, so every crossed triangle has exactly two
+// crossed edges and the pieces chain into closed loops, or open chains ending on the boundary).
+std::vector<PolylineInput> iso_lines(const TriMesh& mesh, const Eigen::VectorXd& d, double value) {
+  using Edge = std::pair<int, int>;
+  auto key = [](int a, int b) { return a < b ? Edge{a, b} : Edge{b, a}; };
+  std::map<Edge, std::vector<int>> edge_triangles;  // crossed edge -> triangles that cross it
+  for (int t = 0; t < mesh.num_triangles(); ++t) {
+    const Tri& tri = mesh.triangles[t];
+    for (int k = 0; k < 3; ++k) {
+      const int a = tri[k], b = tri[(k + 1) % 3];
+      if ((d[a] >= value) != (d[b] >= value)) edge_triangles[key(a, b)].push_back(t);
+    }
+  }
+  auto point_on = [&](const Edge& e, int t) {
+    const double s = (value - d[e.first]) / (d[e.second] - d[e.first]);
+    SurfacePointOnMesh p;
+    p.triangle = t;
+    p.barycentric = Vec3::Zero();
+    for (int k = 0; k < 3; ++k) {
+      if (mesh.triangles[t][k] == e.first) p.barycentric[k] = 1 - s;
+      if (mesh.triangles[t][k] == e.second) p.barycentric[k] = s;
+    }
+    return p;
+  };
+  auto other_edge = [&](int t, const Edge& e) {
+    const Tri& tri = mesh.triangles[t];
+    for (int k = 0; k < 3; ++k) {
+      const Edge f = key(tri[k], tri[(k + 1) % 3]);
+      if (f != e && edge_triangles.count(f)) return f;
+    }
+    return e;
+  };
+  std::map<Edge, bool> used;
+  std::vector<PolylineInput> out;
+  // Open chains start at boundary edges (one triangle), then closed loops anywhere.
+  for (int pass = 0; pass < 2; ++pass)
+    for (const auto& [edge, tris] : edge_triangles) {
+      if (used[edge] || (pass == 0 && tris.size() != 1)) continue;
+      PolylineInput line;
+      Edge e = edge;
+      int t = tris[0];
+      used[e] = true;
+      line.points.push_back(point_on(e, t));
+      while (true) {
+        const Edge f = other_edge(t, e);
+        if (f == e) break;
+        line.points.push_back(point_on(f, t));
+        if (used[f]) {  // back at the start: a closed loop
+          line.points.pop_back();
+          line.closed = true;
+          break;
+        }
+        used[f] = true;
+        const auto& ft = edge_triangles[f];
+        if (ft.size() < 2) break;  // reached the boundary
+        t = ft[0] == t ? ft[1] : ft[0];
+        e = f;
+      }
+      if (line.points.size() >= (line.closed ? 3u : 2u)) out.push_back(std::move(line));
+    }
+  return out;
+}
+
+Vec3 on_mesh(const TriMesh& m, const SurfacePointOnMesh& p) {
+  const Tri& t = m.triangles[p.triangle];
+  return p.barycentric[0] * m.positions[t[0]] + p.barycentric[1] * m.positions[t[1]] +
+         p.barycentric[2] * m.positions[t[2]];
+}
+
+void write_polylines_obj(const std::string& path, const std::vector<std::vector<Vec3>>& lines,
+                         const std::vector<bool>& closed) {
+  std::ostringstream s;
+  s.precision(9);
+  s << "# macrocon embed: polylines as OBJ lines\n";
+  for (const auto& line : lines)
+    for (const Vec3& x : line) s << "v " << x.x() << ' ' << x.y() << ' ' << x.z() << '\n';
+  std::size_t first = 1;
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    s << 'l';
+    for (std::size_t k = 0; k < lines[i].size(); ++k) s << ' ' << first + k;
+    if (closed[i]) s << ' ' << first;
+    s << '\n';
+    first += lines[i].size();
+  }
+  io::write_file_maybe_gz(path, s.str());
+}
+
+int run_embed(const Args& args) {
+  if (!args.empty() && (args[0] == "--help" || args[0] == "-h")) {
+    std::fputs(kUsage, stdout);
+    return 0;
+  }
+  const ArgParser p(args,
+                    {"source", "target", "center-vertex", "radius", "source-center-vertex", "source-radius",
+                     "face-range", "source-face-range", "seed", "samples", "iterations", "out"},
+                    {"json"});
+  const auto t_start = std::chrono::steady_clock::now();
+  require(p.has("center-vertex"), MCON_ERROR_INVALID_ARGUMENT, "missing required option --center-vertex");
+  require(p.has("radius"), MCON_ERROR_INVALID_ARGUMENT, "missing required option --radius");
+  const std::string out_dir = p.get("out", "embed-out");
+  const long samples = p.integer("samples", 10000), iterations = p.integer("iterations", 100);
+  require(samples >= 1, MCON_ERROR_INVALID_ARGUMENT, "--samples must be >= 1");
+  require(iterations >= 1, MCON_ERROR_INVALID_ARGUMENT, "--iterations must be >= 1");
+  const long seed = p.integer("seed", 0);
+  require(seed >= 0, MCON_ERROR_INVALID_ARGUMENT, "--seed must be >= 0");
+
+  // 1. Patches.
+  const io::LoadedMesh target_mesh = load(p, "target", "face-range");
+  const Patch target = cut(target_mesh, p.integer("center-vertex", -1), p.number("radius", 0), "--center-vertex");
+  const io::LoadedMesh source_mesh = load(p, "source", "source-face-range");
+  const bool cut_source = p.has("source-center-vertex");
+  require(cut_source || !p.has("source-radius"), MCON_ERROR_INVALID_ARGUMENT,
+          "--source-radius needs --source-center-vertex");
+  const Patch source = cut_source ? cut(source_mesh, p.integer("source-center-vertex", -1),
+                                        p.number("source-radius", p.number("radius", 0)), "--source-center-vertex")
+                                  : as_entry(source_mesh.mesh);
+  const double patch_seconds = seconds_since(t_start);
+
+  // 2. The map.
+  PatchMapOptions options;
+  options.map.alignment.samples = static_cast<int>(samples);
+  options.map.alignment.seed = static_cast<std::uint64_t>(seed);
+  options.map.newton.max_iterations = static_cast<int>(iterations);
+  const auto t_map = std::chrono::steady_clock::now();
+  const SurfaceMap map = map_patches(source, target, options);
+  const double map_seconds = seconds_since(t_map);
+  const int flips = count_phi_flips(source.mesh, map.phi, map.reflected);
+  const MapView view{source.mesh, source.uv, target.mesh, target.uv, map.phi, map.source_to_target, map.target_to_source};
+
+  // 3. Source constraints: fields and guide loops around the center.
+  const auto t_transfer = std::chrono::steady_clock::now();
+  const Eigen::VectorXd distance =
+      HeatGeodesics(source.mesh).from_point(source.center_triangle, source.center_barycentric);
+  const Eigen::VectorXd mean = mean_curvature_descriptor(source.mesh);
+  Eigen::MatrixXd interpolated(source.mesh.num_vertices(), 4);
+  std::vector<std::int32_t> rings(source.mesh.positions.size());
+  for (int v = 0; v < source.mesh.num_vertices(); ++v) {
+    interpolated.row(v) << source.uv[v].x(), source.uv[v].y(), mean[v], distance[v];
+    rings[v] = static_cast<std::int32_t>(std::floor(std::max(0.0, distance[v]) / 0.25));
+  }
+  std::vector<PolylineInput> guides;
+  for (double r : {0.3, 0.6})
+    for (PolylineInput& l : iso_lines(source.mesh, distance, r)) guides.push_back(std::move(l));
+
+  const Eigen::MatrixXd fields = transfer_interpolated(view, interpolated);
+  const std::vector<std::int32_t> ring_labels = transfer_labels(view, 1, rings, -1);
+  const std::vector<std::uint8_t> outside = outside_mask(view);
+  const PolylineTransfer transfer(view);
+  const std::vector<TracedPolyline> traced = transfer.map_polylines(guides);
+  const SurfacePointOnMesh center_on_target = transfer.map_point({source.center_triangle, source.center_barycentric});
+
+  // 4. Cross field of the target following the re-traced guides.
+  std::vector<std::vector<SurfacePoint>> guide_points;
+  for (const TracedPolyline& t : traced) {
+    std::vector<SurfacePoint> line;
+    for (const SurfacePointOnMesh& q : t.points) line.push_back({q.triangle, q.barycentric});
+    if (t.closed) line.push_back(line.front());
+    guide_points.push_back(std::move(line));
+  }
+  const CrossField field = compute_cross_field(target.mesh, constraints_from_polylines(target.mesh, guide_points));
+  const double transfer_seconds = seconds_since(t_transfer);
+
+  // 5. Files (target mesh units: host = center + radius * p).
+  std::filesystem::create_directories(out_dir);
+  auto host = [](const Patch& patch, const Vec3& x) { return Vec3(patch.center_position + patch.radius * x); };
+  TriMesh target_host = target.mesh;
+  for (Vec3& x : target_host.positions) x = host(target, x);
+  io::VertexAttribute uv{"source_uv", 2, {}}, h{"source_mean_curvature", 1, {}}, g{"source_geodesic_distance", 1, {}},
+      ring{"source_ring", 1, {}}, out_attr{"outside", 1, {}}, host_vertex{"host_vertex", 1, {}};
+  for (int w = 0; w < target.mesh.num_vertices(); ++w) {
+    uv.values.insert(uv.values.end(), {fields(w, 0), fields(w, 1)});
+    h.values.push_back(fields(w, 2));
+    g.values.push_back(fields(w, 3));
+    ring.values.push_back(ring_labels[w]);
+    out_attr.values.push_back(outside[w]);
+    const HostPoint& hp = target.host_vertex[w];
+    host_vertex.values.push_back(hp.v0 < 0 ? -1.0 : static_cast<double>(target_mesh.mesh_to_file[hp.t < 0.5 ? hp.v0 : hp.v1]));
+  }
+  const std::string ply = out_dir + "/target.ply", obj = out_dir + "/guides.obj", src_obj = out_dir + "/source_guides.obj",
+                    rosy = out_dir + "/target.rosy", summary_path = out_dir + "/summary.json";
+  io::write_ply(ply, target_host, {uv, h, g, ring, out_attr, host_vertex});
+  std::vector<std::vector<Vec3>> lines, source_lines;
+  std::vector<bool> closed, source_closed;
+  std::size_t traced_points = 0;
+  for (const TracedPolyline& t : traced) {
+    std::vector<Vec3> line;
+    for (const Vec3& x : t.positions) line.push_back(host(target, x));
+    lines.push_back(std::move(line));
+    closed.push_back(t.closed);
+    traced_points += t.points.size();
+  }
+  for (const PolylineInput& in : guides) {
+    std::vector<Vec3> line;
+    for (const SurfacePointOnMesh& q : in.points) line.push_back(host(source, on_mesh(source.mesh, q)));
+    source_lines.push_back(std::move(line));
+    source_closed.push_back(in.closed);
+  }
+  write_polylines_obj(obj, lines, closed);
+  write_polylines_obj(src_obj, source_lines, source_closed);
+  io::write_rosy(rosy, target.mesh, field.directions);
+
+  // 6. Summary.
+  using tools::Json;
+  std::size_t source_inside = 0, target_inside = 0;
+  for (const BarycentricPoint& q : map.source_to_target) source_inside += q.triangle >= 0;
+  for (std::uint8_t o : outside) target_inside += o == 0;
+  Json energies = Json::object();
+  energies.set("total", map.energy.total);
+  energies.set("descriptor", map.energy.descriptor);
+  energies.set("distortion", map.energy.distortion);
+  energies.set("area", map.energy.area);
+  energies.set("injectivity", map.energy.injectivity);
+  Json timings = Json::object();
+  timings.set("patches", patch_seconds);
+  timings.set("map", map_seconds);
+  timings.set("alignment", map.alignment_seconds);
+  timings.set("optimization", map.optimization_seconds);
+  timings.set("transfer", transfer_seconds);
+  timings.set("total", seconds_since(t_start));
+  Json files = Json::object();
+  files.set("target_ply", ply);
+  files.set("guides_obj", obj);
+  files.set("source_guides_obj", src_obj);
+  files.set("rosy", rosy);
+  Json summary = Json::object();
+  summary.set("source_vertices", source.mesh.num_vertices());
+  summary.set("target_vertices", target.mesh.num_vertices());
+  summary.set("source_vertices_inside", source_inside);
+  summary.set("target_vertices_inside", target_inside);
+  summary.set("overlap", map.overlap_ratio);
+  summary.set("matching_score", map.matching_score);
+  summary.set("alignment_score", map.alignment.score);
+  summary.set("energies", energies);
+  summary.set("iterations", map.iterations);
+  summary.set("levels", static_cast<int>(map.levels.size()));
+  summary.set("stop_reason", stop_reason_name(map.stop_reason));
+  summary.set("reflected", map.reflected);
+  summary.set("flips", flips);
+  summary.set("guides_in", guides.size());
+  summary.set("guides_out", traced.size());
+  summary.set("guide_points_out", traced_points);
+  summary.set("center_on_target", center_on_target.triangle >= 0);
+  summary.set("timings", timings);
+  summary.set("files", files);
+  tools::write_json_file(summary_path, summary);
+  if (p.flag("json")) {
+    std::printf("%s\n", tools::write_json(summary, false).c_str());
+  } else {
+    std::printf("map: %d -> %d vertices, overlap %.3f, %d iterations (%s), %s, %d flips, %.2f s\n",
+                source.mesh.num_vertices(), target.mesh.num_vertices(), map.overlap_ratio, map.iterations,
+                stop_reason_name(map.stop_reason), map.reflected ? "reflected" : "not reflected", flips, map_seconds);
+    std::printf("guides: %zu in, %zu out (%zu points); files in %s\n", guides.size(), traced.size(), traced_points,
+                out_dir.c_str());
+  }
+  return flips == 0 ? 0 : 1;
+}
+
+const Registration registration{"embed", "re-embed a source patch onto a target region and transfer its constraints",
+                                run_embed};
+
+}  // namespace
+}  // namespace mcon::cli

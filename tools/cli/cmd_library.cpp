@@ -1,0 +1,290 @@
+// `macrocon library build | add | info`: make a constraint library file from patches of mesh
+// files, add one entry to a library file, and describe a library file.
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "library_cli.h"
+#include "library_file.h"
+#include "library_retrieval.h"
+
+namespace mcon::cli {
+namespace {
+
+const char* kUsage =
+    "usage: macrocon library build --out LIB.mclb [--mesh FILE] [--face-range A:B]\n"
+    "                              (--center-vertex N --radius R --class C [--name S] [--author A]\n"
+    "                               [--licence L] [--tag T]...)...  [--spec FILE.json]\n"
+    "                              [--descriptor curv9|hks|wks] [--rings K] [--vocabulary K] [--seed S]\n"
+    "                              [--sigma X] [--json]\n"
+    "       macrocon library add --library LIB.mclb [--mesh FILE] [--face-range A:B] --center-vertex N\n"
+    "                            --radius R --class C [--name S] [--author A] [--licence L] [--tag T]...\n"
+    "                            [--id ID] [--json]\n"
+    "       macrocon library info --library LIB.mclb [--json]\n"
+    "build: every --center-vertex starts an entry: a geodesic disk of radius R (mesh units) around\n"
+    "  that vertex (file numbering) of the latest --mesh (and --face-range: file faces [A, B)); the\n"
+    "  options after it describe that entry. --spec reads entries from JSON instead or as well:\n"
+    "  {\"mesh\": \"body.obj.gz\", \"face_range\": \"0:13378\", \"entries\": [{\"center_vertex\": 297,\n"
+    "  \"radius\": 0.5, \"class\": \"nose\", \"name\": \"nose\", \"author\": \"..\", \"licence\": \"..\",\n"
+    "  \"tags\": [\"..\"], \"mesh\": \"(optional, per entry)\"}]} (paths relative to the spec file).\n"
+    "  Then the vocabulary (k-means++, k = --vocabulary, default 128), sigma and every histogram\n"
+    "  are computed; rings default to the measured best. The file is written atomically.\n"
+    "add: the entry's histogram is computed with the library's vocabulary (no rebuild), and the\n"
+    "  file is rewritten atomically.\n"
+    "info: counts, retrieval config and per-entry id/name/class/vertices/constraints/fields.\n";
+
+// Options that describe one entry, and options that hold for the whole command.
+bool is_entry_option(const std::string& key) {
+  return key == "radius" || key == "class" || key == "name" || key == "author" || key == "licence" || key == "tag";
+}
+
+struct Parsed {
+  std::vector<EntrySpec> entries;
+  std::map<std::string, std::string> global;  // --out, --library, --descriptor, ...
+  bool json = false;
+};
+
+// Reads the arguments in order: --mesh / --face-range set the source of the entries that
+// follow; --center-vertex starts an entry; entry options apply to the latest entry.
+Parsed parse(const Args& args, const std::set<std::string>& globals) {
+  Parsed p;
+  std::string mesh, face_range;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    require(a.rfind("--", 0) == 0, MCON_ERROR_INVALID_ARGUMENT, "unexpected argument '" + a + "'");
+    const std::string key = a.substr(2);
+    if (key == "json") {
+      p.json = true;
+      continue;
+    }
+    require(key == "mesh" || key == "face-range" || key == "center-vertex" || is_entry_option(key) ||
+                globals.count(key) > 0,
+            MCON_ERROR_INVALID_ARGUMENT, "unknown option '" + a + "'");
+    require(i + 1 < args.size(), MCON_ERROR_INVALID_ARGUMENT, "option '" + a + "' needs a value");
+    const std::string value = args[++i];
+    if (key == "mesh") {
+      mesh = value;
+    } else if (key == "face-range") {
+      long b = 0, e = 0;
+      parse_face_range(value, b, e);
+      face_range = value;
+    } else if (key == "center-vertex") {
+      EntrySpec s;
+      s.mesh = mesh;
+      s.face_range = face_range;
+      s.center_vertex = parse_integer(key, value);
+      p.entries.push_back(s);
+    } else if (is_entry_option(key)) {
+      require(!p.entries.empty(), MCON_ERROR_INVALID_ARGUMENT, "'" + a + "' before any --center-vertex");
+      EntrySpec& s = p.entries.back();
+      if (key == "radius") s.radius = parse_real(key, value);
+      if (key == "class") s.class_label = value;
+      if (key == "name") s.name = value;
+      if (key == "author") s.author = value;
+      if (key == "licence") s.licence = value;
+      if (key == "tag") s.tags.push_back(value);
+    } else {
+      require(p.global.count(key) == 0, MCON_ERROR_INVALID_ARGUMENT, "option '" + a + "' given twice");
+      p.global[key] = value;
+    }
+  }
+  return p;
+}
+
+void check_entry(const EntrySpec& s, std::size_t i) {
+  const std::string what = "entry " + std::to_string(i) + " (center vertex " + std::to_string(s.center_vertex) + ")";
+  require(s.radius > 0, MCON_ERROR_INVALID_ARGUMENT, what + ": needs --radius R > 0");
+  require(!s.class_label.empty(), MCON_ERROR_INVALID_ARGUMENT, what + ": needs --class");
+}
+
+std::vector<EntrySpec> read_spec(const std::string& path) {
+  const tools::Json spec = tools::read_json_file(path);
+  const std::filesystem::path dir = std::filesystem::path(path).parent_path();
+  auto resolve = [&](const std::string& p) {
+    const std::filesystem::path fp(p);
+    return fp.is_absolute() ? p : (dir / fp).string();
+  };
+  auto text = [](const tools::Json& j, const char* key, const std::string& fallback) {
+    const tools::Json* v = j.find(key);
+    return v ? v->as_string() : fallback;
+  };
+  const std::string mesh = text(spec, "mesh", "");
+  const std::string face_range = text(spec, "face_range", "");
+  std::vector<EntrySpec> out;
+  const tools::Json& entries = spec.at("entries");
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    const tools::Json& e = entries[i];
+    EntrySpec s;
+    const std::string m = text(e, "mesh", mesh);
+    require(!m.empty(), MCON_ERROR_INVALID_ARGUMENT, path + ": entry " + std::to_string(i) + " has no mesh");
+    s.mesh = resolve(m);
+    s.face_range = text(e, "face_range", face_range);
+    s.center_vertex = static_cast<long>(e.at("center_vertex").as_int());
+    s.radius = e.at("radius").as_number();
+    s.class_label = e.at("class").as_string();
+    s.name = text(e, "name", "");
+    s.author = text(e, "author", "");
+    s.licence = text(e, "licence", "");
+    if (const tools::Json* tags = e.find("tags"))
+      for (std::size_t t = 0; t < tags->size(); ++t) s.tags.push_back((*tags)[t].as_string());
+    out.push_back(s);
+  }
+  return out;
+}
+
+std::string get(const Parsed& p, const std::string& key, const std::string& fallback = "") {
+  auto it = p.global.find(key);
+  return it == p.global.end() ? fallback : it->second;
+}
+
+std::string required(const Parsed& p, const std::string& key) {
+  require(p.global.count(key) > 0, MCON_ERROR_INVALID_ARGUMENT, "missing required option --" + key);
+  return p.global.at(key);
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+int run_build(const Args& args) {
+  Parsed p = parse(args, {"out", "spec", "descriptor", "rings", "vocabulary", "seed", "sigma"});
+  const std::string out = required(p, "out");
+  if (p.global.count("spec")) {
+    std::vector<EntrySpec> more = read_spec(p.global.at("spec"));
+    p.entries.insert(p.entries.end(), more.begin(), more.end());
+  }
+  require(!p.entries.empty(), MCON_ERROR_INVALID_ARGUMENT, "no entries: give --center-vertex ... or --spec FILE");
+  for (std::size_t i = 0; i < p.entries.size(); ++i) check_entry(p.entries[i], i);
+
+  LibraryRetrievalOptions options;
+  options.descriptor = get(p, "descriptor", "curv9");
+  require(options.descriptor == "curv9" || options.descriptor == "hks" || options.descriptor == "wks",
+          MCON_ERROR_INVALID_ARGUMENT, "--descriptor must be curv9, hks or wks (got '" + options.descriptor + "')");
+  const long rings = parse_integer("rings", get(p, "rings", std::to_string(kDefaultRetrievalRings)));
+  const long k = parse_integer("vocabulary", get(p, "vocabulary", std::to_string(kDefaultVocabularySize)));
+  const long seed = parse_integer("seed", get(p, "seed", "0"));
+  require(rings >= 1 && rings <= 64, MCON_ERROR_INVALID_ARGUMENT, "--rings must be 1..64");
+  require(k >= 1 && k <= 65536, MCON_ERROR_INVALID_ARGUMENT, "--vocabulary must be 1..65536");
+  require(seed >= 0, MCON_ERROR_INVALID_ARGUMENT, "--seed must be >= 0");
+  options.rings = static_cast<std::uint32_t>(rings);
+  options.vocabulary_size = static_cast<std::uint32_t>(k);
+  options.seed = static_cast<std::uint64_t>(seed);
+  options.sigma_bof = parse_real("sigma", get(p, "sigma", "0"));
+
+  const auto t0 = std::chrono::steady_clock::now();
+  MeshCache meshes;
+  // Entries are computed with the chosen descriptor from the start (no CURV9 first).
+  RetrievalConfig start;
+  start.descriptor = options.descriptor;
+  ConstraintLibrary lib{start};
+  for (const EntrySpec& s : p.entries) add_library_entry(lib, cut_patch(meshes, s), entry_content(s));
+  const double patch_seconds = seconds_since(t0);
+  const auto t1 = std::chrono::steady_clock::now();
+  lib = build_library_retrieval(lib, options);
+  const double build_seconds = seconds_since(t1);
+  save_library_atomic(lib, out);
+
+  if (p.json) {
+    tools::Json j = library_summary(lib);
+    j.set("library", out);
+    j.set("entry_seconds", patch_seconds);
+    j.set("build_seconds", build_seconds);
+    std::printf("%s\n", tools::write_json(j, false).c_str());
+  } else {
+    const RetrievalConfig& c = lib.retrieval();
+    std::printf("%s: %zu entries, descriptor %s, %u words x %u rings, sigma %.4g (patches %.2f s, retrieval %.2f s)\n",
+                out.c_str(), lib.size(), c.descriptor.c_str(), c.vocabulary_size, c.rings, c.sigma_bof, patch_seconds,
+                build_seconds);
+  }
+  return 0;
+}
+
+int run_add(const Args& args) {
+  Parsed p = parse(args, {"library", "id"});
+  const std::string path = required(p, "library");
+  require(p.entries.size() == 1, MCON_ERROR_INVALID_ARGUMENT,
+          "library add takes exactly one --center-vertex (got " + std::to_string(p.entries.size()) + ")");
+  check_entry(p.entries[0], 0);
+  ConstraintLibrary lib = load_library_from_file(path);
+  MacroConstraint content = entry_content(p.entries[0]);
+  const long id = parse_integer("id", get(p, "id", "0"));
+  require(id >= 0, MCON_ERROR_INVALID_ARGUMENT, "--id must be >= 0 (0 = assign)");
+  content.id = static_cast<std::uint64_t>(id);
+  MeshCache meshes;
+  const std::uint64_t assigned = add_library_entry(lib, cut_patch(meshes, p.entries[0]), std::move(content));
+  save_library_atomic(lib, path);
+  if (p.json) {
+    tools::Json j = tools::Json::object();
+    j.set("library", path);
+    j.set("id", std::to_string(assigned));
+    j.set("index", static_cast<unsigned long>(lib.size() - 1));
+    j.set("entries", static_cast<unsigned long>(lib.size()));
+    j.set("has_histogram", !lib.entries().back().histogram.empty());
+    std::printf("%s\n", tools::write_json(j, false).c_str());
+  } else {
+    std::printf("%s: added entry id %llu (index %zu)%s\n", path.c_str(), static_cast<unsigned long long>(assigned),
+                lib.size() - 1,
+                lib.retrieval().vocabulary_size > 0 ? "" : "; no vocabulary yet: run library build to query");
+  }
+  return 0;
+}
+
+int run_info(const Args& args) {
+  Parsed p = parse(args, {"library"});
+  require(p.entries.empty(), MCON_ERROR_INVALID_ARGUMENT, "library info takes no entries");
+  const std::string path = required(p, "library");
+  const ConstraintLibrary lib = load_library_from_file(path);
+  if (p.json) {
+    tools::Json j = library_summary(lib);
+    j.set("library", path);
+    j.set("name", lib.name());
+    tools::Json entries = tools::Json::array();
+    for (const MacroConstraint& e : lib.entries()) {
+      tools::Json o = tools::Json::object();
+      o.set("id", std::to_string(e.id));
+      o.set("name", e.name);
+      o.set("class", e.class_label);
+      o.set("vertices", static_cast<unsigned long>(e.vertex_count()));
+      o.set("triangles", static_cast<unsigned long>(e.triangle_count()));
+      o.set("guides", static_cast<unsigned long>(e.guides.size()));
+      o.set("features", static_cast<unsigned long>(e.features.size()));
+      o.set("singularities", static_cast<unsigned long>(e.singularities.size()));
+      tools::Json fields = tools::Json::array();
+      for (const VertexField& f : e.fields) fields.push_back(f.name);
+      o.set("fields", fields);
+      o.set("source_scale", e.source_scale);
+      entries.push_back(o);
+    }
+    j.set("entry_list", entries);
+    std::printf("%s\n", tools::write_json(j, true).c_str());
+    return 0;
+  }
+  const RetrievalConfig& c = lib.retrieval();
+  std::printf("%s: %zu entries; descriptor %s (d = %u), %u words x %u rings, sigma %.4g, seed %llu\n", path.c_str(),
+              lib.size(), c.descriptor.c_str(), c.dimension, c.vocabulary_size, c.rings, c.sigma_bof,
+              static_cast<unsigned long long>(c.seed));
+  std::printf("%8s  %-24s %-16s %8s %6s %6s %6s\n", "id", "name", "class", "vertices", "lines", "sing", "fields");
+  for (const MacroConstraint& e : lib.entries())
+    std::printf("%8llu  %-24s %-16s %8zu %6zu %6zu %6zu\n", static_cast<unsigned long long>(e.id), e.name.c_str(),
+                e.class_label.c_str(), e.vertex_count(), e.guides.size() + e.features.size(), e.singularities.size(),
+                e.fields.size());
+  return 0;
+}
+
+int run_library(const Args& args) {
+  if (args.empty() || args[0] == "--help" || args[0] == "-h") {
+    std::fputs(kUsage, args.empty() ? stderr : stdout);
+    return args.empty() ? 2 : 0;
+  }
+  const Args rest(args.begin() + 1, args.end());
+  if (args[0] == "build") return run_build(rest);
+  if (args[0] == "add") return run_add(rest);
+  if (args[0] == "info") return run_info(rest);
+  fail(MCON_ERROR_INVALID_ARGUMENT, "unknown library command '" + args[0] + "' (build, add or info)");
+}
+
+const Registration registration{"library", "build, extend and describe constraint library files", run_library};
+
+}  // namespace
+}  // namespace mcon::cli
