@@ -2,13 +2,16 @@
 """Checks a host PLY written by a transfer sample (C, C++, Python, C#): the transferred fields are
 where they should be and keep the properties the starter library gave them.
 
-    check_transfer_output.py OUT.ply [--min-vertices N]
+    check_transfer_output.py OUT.ply [--min-vertices N] [--guides G.obj] [--rosy R.rosy --region R.obj]
 
  - macro_mask marks at least N host vertices (default 100);
  - on those vertices the skin weights (skin_weight_center + skin_weight_0..2) sum to 1: the
    starter library stores a partition of unity and interpolation keeps it;
  - uv lies in the closed unit disk, the colour in [0, 1] (PLY bytes), region labels in 0..5;
- - off the mask every transferred value is 0 (nothing leaks outside the region).
+ - off the mask every transferred value is 0 (nothing leaks outside the region);
+ - --guides: the OBJ has at least one 'l' polyline, every index names one of its vertices;
+ - --rosy with --region: a QuadWild .rosy with symmetry 4 and one unit direction per region
+   triangle, each tangent to its triangle (|d . n| small).
 Exit status 0 if all hold; otherwise each failure is printed.
 """
 import gzip
@@ -38,6 +41,60 @@ def read_ascii_ply(path):
                 break
         rows = [list(map(float, f.readline().split()[: len(names)])) for _ in range(count)]
     return names, rows
+
+
+def read_obj(path):
+    verts, faces, lines = [], [], []
+    with open(path) as f:
+        for line in f:
+            w = line.split()
+            if not w:
+                continue
+            if w[0] == "v":
+                verts.append(tuple(map(float, w[1:4])))
+            elif w[0] == "f":
+                faces.append([int(x.split("/")[0]) - 1 for x in w[1:]])
+            elif w[0] == "l":
+                lines.append([int(x) - 1 for x in w[1:]])
+    return verts, faces, lines
+
+
+def check_guides(path):
+    verts, _, lines = read_obj(path)
+    if not lines:
+        return [f"{path}: no polyline"]
+    if any(i < 0 or i >= len(verts) for l in lines for i in l):
+        return [f"{path}: a polyline index is out of range"]
+    if any(len(l) < 2 for l in lines):
+        return [f"{path}: a polyline with fewer than 2 points"]
+    return []
+
+
+def check_rosy(rosy_path, region_path):
+    verts, faces, _ = read_obj(region_path)
+    with open(rosy_path) as f:
+        words = f.read().split()
+    count, symmetry = int(words[0]), int(words[1])
+    out = []
+    if count != len(faces) or symmetry != 4:
+        return [f"{rosy_path}: {count} directions, symmetry {symmetry}; the region has {len(faces)} triangles"]
+    worst_norm = worst_normal = 0.0
+    for i, face in enumerate(faces):
+        d = [float(x) for x in words[2 + 3 * i: 5 + 3 * i]]
+        a, b, c = (verts[k] for k in face)
+        u = [b[j] - a[j] for j in range(3)]
+        v = [c[j] - a[j] for j in range(3)]
+        n = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]]
+        nn = sum(x * x for x in n) ** 0.5
+        dn = sum(x * x for x in d) ** 0.5
+        worst_norm = max(worst_norm, abs(dn - 1))
+        if nn > 0:
+            worst_normal = max(worst_normal, abs(sum(d[j] * n[j] for j in range(3))) / nn)
+    if worst_norm > 1e-4:  # the file has 6 decimals
+        out.append(f"{rosy_path}: directions are not unit vectors (off by {worst_norm:.2g})")
+    if worst_normal > 1e-3:
+        out.append(f"{rosy_path}: directions leave their triangle's plane (|d.n| up to {worst_normal:.2g})")
+    return out
 
 
 def main():
@@ -73,6 +130,10 @@ def main():
         failures.append(f"{len(leaks)} vertices outside the mask carry skin weights")
     if any(not (0 <= r[col[c]] <= 255) for r in masked for c in ("red", "green", "blue")):
         failures.append("colour bytes out of range")
+    if "--guides" in sys.argv:
+        failures += check_guides(sys.argv[sys.argv.index("--guides") + 1])
+    if "--rosy" in sys.argv and "--region" in sys.argv:
+        failures += check_rosy(sys.argv[sys.argv.index("--rosy") + 1], sys.argv[sys.argv.index("--region") + 1])
     for f in failures:
         print(f"FAIL {path}: {f}")
     if not failures:

@@ -13,13 +13,15 @@ file(MAKE_DIRECTORY ${MACROCON_SAMPLE_OUT})
 # Debian's interpreter (numpy comes from python3-numpy), as for the binding tests.
 set(MACROCON_PYTHON /usr/bin/python3 CACHE FILEPATH "Python with numpy and pytest for the binding tests")
 
-# Runs a sample, then the output checker on the PLY it wrote.
+# Runs a sample (COMMAND ...), then the output checker on the PLY it wrote (CHECK_ARGS: more
+# checker options).
 function(macrocon_sample_test name ply)
-  add_test(NAME samples.${name} COMMAND ${ARGN})
+  cmake_parse_arguments(arg "" "" "COMMAND;CHECK_ARGS" ${ARGN})
+  add_test(NAME samples.${name} COMMAND ${arg_COMMAND})
   set_tests_properties(samples.${name} PROPERTIES TIMEOUT 900 FIXTURES_SETUP sample_${name})
   if(MACROCON_PYTHON)
     add_test(NAME samples.${name}_output
-      COMMAND ${MACROCON_PYTHON} ${PROJECT_SOURCE_DIR}/samples/check_transfer_output.py ${ply})
+      COMMAND ${MACROCON_PYTHON} ${PROJECT_SOURCE_DIR}/samples/check_transfer_output.py ${ply} ${arg_CHECK_ARGS})
     set_tests_properties(samples.${name}_output PROPERTIES FIXTURES_REQUIRED sample_${name})
   endif()
 endfunction()
@@ -29,17 +31,28 @@ set_target_properties(sample_transfer_fields PROPERTIES C_STANDARD 99 C_STANDARD
 target_compile_options(sample_transfer_fields PRIVATE -Wall -Wextra -pedantic $<$<BOOL:${MACROCON_WERROR}>:-Werror>)
 target_link_libraries(sample_transfer_fields PRIVATE macrocon macrocon_sample_mesh)
 add_dependencies(sample_transfer_fields macrocon_starter_library)
-macrocon_sample_test(c_transfer_fields ${MACROCON_SAMPLE_OUT}/c_transfer_fields.ply
+macrocon_sample_test(c_transfer_fields ${MACROCON_SAMPLE_OUT}/c_transfer_fields.ply COMMAND
   $<TARGET_FILE:sample_transfer_fields> ${MACROCON_STARTER_LIBRARY} ${MACROCON_SAMPLE_BODY}
   ${MACROCON_SAMPLE_REGION} ${MACROCON_SAMPLE_OUT}/c_transfer_fields.ply)
+
+add_executable(sample_transfer_guides ${PROJECT_SOURCE_DIR}/samples/cpp/transfer_guides.cpp)
+target_link_libraries(sample_transfer_guides PRIVATE macrocon macrocon_sample_mesh)
+macrocon_warnings(sample_transfer_guides)
+add_dependencies(sample_transfer_guides macrocon_starter_library)
+macrocon_sample_test(cpp_transfer_guides ${MACROCON_SAMPLE_OUT}/cpp_transfer.ply COMMAND
+  $<TARGET_FILE:sample_transfer_guides> ${MACROCON_STARTER_LIBRARY} ${MACROCON_SAMPLE_BODY}
+  ${MACROCON_SAMPLE_REGION} ${MACROCON_SAMPLE_OUT}/cpp_transfer
+  CHECK_ARGS --guides ${MACROCON_SAMPLE_OUT}/cpp_transfer_guides.obj
+             --rosy ${MACROCON_SAMPLE_OUT}/cpp_transfer_region.rosy --region ${MACROCON_SAMPLE_OUT}/cpp_transfer_region.obj)
 
 # The bindings load libmacrocon into an uninstrumented interpreter / Mono, which an ASan library
 # cannot be: not in the sanitizer build (as the binding tests).
 if(NOT MACROCON_SANITIZE)
-  macrocon_sample_test(python_transfer ${MACROCON_SAMPLE_OUT}/python_transfer.ply
+  macrocon_sample_test(python_transfer ${MACROCON_SAMPLE_OUT}/python_transfer.ply COMMAND
     ${MACROCON_PYTHON} ${PROJECT_SOURCE_DIR}/samples/python/transfer_fields.py ${MACROCON_STARTER_LIBRARY}
     ${MACROCON_SAMPLE_BODY} ${MACROCON_SAMPLE_REGION} ${MACROCON_SAMPLE_OUT}/python_transfer.ply
-    --guides ${MACROCON_SAMPLE_OUT}/python_transfer_guides.obj --rosy ${MACROCON_SAMPLE_OUT}/python_transfer.rosy)
+    --guides ${MACROCON_SAMPLE_OUT}/python_transfer_guides.obj --rosy ${MACROCON_SAMPLE_OUT}/python_transfer.rosy
+    CHECK_ARGS --guides ${MACROCON_SAMPLE_OUT}/python_transfer_guides.obj)
   set_tests_properties(samples.python_transfer PROPERTIES
     ENVIRONMENT "MACROCON_LIBRARY=$<TARGET_FILE:macrocon>;PYTHONPATH=${PROJECT_SOURCE_DIR}/bindings/python")
 
@@ -56,7 +69,7 @@ if(NOT MACROCON_SANITIZE)
       DEPENDS ${MACROCON_CSHARP_BINDING_SOURCES} ${PROJECT_SOURCE_DIR}/samples/csharp/TransferFields.cs
       COMMENT "Building the C# sample with mcs")
     add_custom_target(macrocon_csharp_sample ALL DEPENDS ${cs_sample})
-    macrocon_sample_test(csharp_transfer ${MACROCON_SAMPLE_OUT}/csharp_transfer.ply
+    macrocon_sample_test(csharp_transfer ${MACROCON_SAMPLE_OUT}/csharp_transfer.ply COMMAND
       ${MACROCON_SAMPLE_MONO} ${cs_sample} ${MACROCON_STARTER_LIBRARY} ${MACROCON_SAMPLE_BODY}
       ${MACROCON_SAMPLE_REGION} ${MACROCON_SAMPLE_OUT}/csharp_transfer.ply)
     set_tests_properties(samples.csharp_transfer PROPERTIES ENVIRONMENT "LD_LIBRARY_PATH=$<TARGET_FILE_DIR:macrocon>")
