@@ -128,13 +128,22 @@ Constraints example_constraints(const starter::Geometry& g, const std::vector<do
   Constraints c;
   if (const auto* loops = spec.find("edge_loops")) {
     std::vector<starter::Polyline> rings;
+    // "edge_loop_front": "+z" picks, per level, the closed loop lying furthest along +z (on the
+    // face rather than inside the eye socket or the mouth cavity the patch also contains);
+    // otherwise the longest closed loop (small loops are noise).
+    const std::string front = spec.find("edge_loop_front") ? spec.at("edge_loop_front").string : "";
+    const int axis = front == "+x" ? 0 : front == "+y" ? 1 : front == "+z" ? 2 : -1;
+    auto score = [&](const starter::Polyline& l) {
+      if (axis < 0) return starter::length(g, l);
+      double s = 0;
+      for (const auto& sp : l.points) s += starter::point_position(g, sp)[static_cast<std::size_t>(axis)];
+      return s / static_cast<double>(l.points.size());
+    };
     for (const auto& level : loops->array) {
-      // The longest closed iso-line: the loop around the feature (small loops are noise).
       const auto lines = starter::iso_lines(g, d, level.number);
       const starter::Polyline* best = nullptr;
       for (const auto& l : lines)
-        if (l.closed && l.points.size() >= 6 && (best == nullptr || starter::length(g, l) > starter::length(g, *best)))
-          best = &l;
+        if (l.closed && l.points.size() >= 6 && (best == nullptr || score(l) > score(*best))) best = &l;
       if (best == nullptr) throw std::runtime_error(name + ": no closed edge loop at level " + std::to_string(level.number));
       rings.push_back(*best);
     }
