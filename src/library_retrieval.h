@@ -35,6 +35,9 @@
 
 namespace mcon {
 
+// Vocabulary size k of the default (thesis §3.2: 128 words).
+inline constexpr std::uint32_t kDefaultVocabularySize = 128;
+
 // "custom:<name>": per-vertex descriptors supplied by the caller (a host's own descriptor).
 inline constexpr const char* kCustomDescriptorPrefix = "custom:";
 // The name the C API gives caller-supplied descriptors.

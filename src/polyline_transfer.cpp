@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <mutex>
 #include <string>
 
 #include "error.h"
@@ -41,11 +43,14 @@ struct TracePoint {
 
 struct PolylineTransfer::Impl {
   MapView map;
-  TriangleLocator2D locator;
   std::vector<std::array<int, 3>> neighbor;       // target triangle across the edge opposite corner k
   std::vector<std::array<int, 2>> boundary_edges;  // (triangle, corner opposite the boundary edge)
+  // Built only if a point cannot be reached by walking (see locate): a quadtree over a squeezed
+  // disk parametrization (filled eye sockets, fingers) is far more expensive than the walks.
+  mutable std::once_flag locator_once;
+  mutable std::unique_ptr<TriangleLocator2D> locator;
 
-  explicit Impl(const MapView& m) : map(m), locator(m.target_uv, m.target.triangles) {
+  explicit Impl(const MapView& m) : map(m) {
     const MeshTopology topo = build_topology(m.target);
     neighbor.resize(m.target.triangles.size());
     for (int t = 0; t < m.target.num_triangles(); ++t)
@@ -66,6 +71,48 @@ struct PolylineTransfer::Impl {
     for (int k = 0; k < 3; ++k)
       if (neighbor[t][k] == other) return k;
     return -1;
+  }
+
+  // The target triangle containing p, the image of a point of source triangle `source_triangle`.
+  // Walks in the target's disk plane from the image of one of that triangle's corners (whose
+  // target triangle the map already knows) straight to p. The target's uv domain is convex (its
+  // boundary vertices lie on the unit circle in order), so a walk that leaves it means p lies
+  // outside. Only if no corner has an image on the target is the point located from scratch.
+  PointLocation locate(const Vec2& p, int source_triangle) const {
+    for (int k = 0; k < 3; ++k) {
+      const int v = map.source.triangles[source_triangle][k];
+      const BarycentricPoint& c = map.source_to_target[v];
+      if (c.triangle < 0) continue;
+      const Vec2 a = map.phi[v];
+      int cur = c.triangle, entry = -1;
+      for (std::size_t steps = 0; steps <= 4 * neighbor.size() + 16; ++steps) {
+        const Vec3 l0 = bary(cur, a), l1 = bary(cur, p), d = l1 - l0;
+        double s_exit = std::numeric_limits<double>::infinity();
+        int edge = -1;
+        for (int i = 0; i < 3; ++i) {
+          if (i == entry || !(d[i] < 0)) continue;
+          const double si = -l0[i] / d[i];
+          if (si < s_exit) {
+            s_exit = si;
+            edge = i;
+          }
+        }
+        if (edge < 0 || s_exit >= 1.0) {
+          PointLocation out;
+          out.triangle = cur;
+          out.barycentric = clamp_barycentric(l1);
+          return out;
+        }
+        const int next = neighbor[cur][edge];
+        if (next < 0) return PointLocation{};  // left the (convex) target disk: outside
+        entry = corner_facing(next, cur);
+        cur = next;
+      }
+      break;  // no termination (degenerate geometry): fall back to the locator
+    }
+    std::call_once(locator_once,
+                   [&] { locator = std::make_unique<TriangleLocator2D>(map.target_uv, map.target.triangles); });
+    return locator->locate(p);
   }
 
   // Smallest s in [s_min, 1] where segment a->b enters the target through a boundary edge, not
@@ -108,7 +155,7 @@ Vec2 PolylineTransfer::phi_of(const SurfacePointOnMesh& p) const {
 }
 
 SurfacePointOnMesh PolylineTransfer::map_point(const SurfacePointOnMesh& p) const {
-  const PointLocation loc = impl_->locator.locate(phi_of(p));
+  const PointLocation loc = impl_->locate(phi_of(p), p.triangle);
   SurfacePointOnMesh out;
   if (loc.triangle >= 0) {
     out.triangle = loc.triangle;
@@ -151,7 +198,7 @@ std::vector<TracedPolyline> PolylineTransfer::map_polylines(const std::vector<Po
     int cur = -1;    // target triangle of the walk, -1 outside
     int entry = -1;  // corner of `cur` opposite the edge the walk came in through
     {
-      const PointLocation loc = I.locator.locate(p[0]);
+      const PointLocation loc = I.locate(p[0], in.points[0].triangle);
       if (loc.triangle >= 0) {
         pieces.emplace_back();
         open = true;
@@ -208,7 +255,9 @@ std::vector<TracedPolyline> PolylineTransfer::map_polylines(const std::vector<Po
           left_edge = {cur, edge};
           cur = -1;
           entry = -1;
-          s = s_exit;
+          // Re-enter only strictly later: a segment grazing a boundary vertex could otherwise
+          // "enter" through the other boundary edge at the same point and circle the vertex.
+          s = s_exit + 1e-9;
           continue;
         }
         entry = I.corner_facing(next, cur);

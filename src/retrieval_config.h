@@ -13,8 +13,6 @@ namespace mcon {
 // ringed variant of design-notes §1). The one place the measured best default lives: the C API's
 // mcon_retrieval_options_init and the CLI read it from here.
 inline constexpr std::uint32_t kDefaultRetrievalRings = 4;
-// Vocabulary size k of the default (thesis §3.2 uses 128 words).
-inline constexpr std::uint32_t kDefaultVocabularySize = 128;
 
 struct RetrievalConfig {
   std::string descriptor = "curv9";        // "curv9", "hks", "wks", "custom:<name>"

@@ -196,13 +196,8 @@ TEST(CapiMap, ProgressReportsAndCancellationLeavesNothing) {
 TEST(CapiMap, PatchFromArraysIsADiskAndMapsLikeALibraryEntry) {
   Noses n = noses();
   const PatchArrays s = arrays_of_patch(n.source.get());
-  mcon_mesh_desc d;
-  ASSERT_EQ(mcon_mesh_desc_init(&d), MCON_OK);
-  d.positions = s.xyz.data();
-  d.position_type = MCON_SCALAR_FLOAT64;
-  d.vertex_count = s.nv();
-  d.indices = s.tri.data();
-  d.triangle_count = s.nt();
+  const Arrays entry_arrays{s.xyz, s.tri};
+  const mcon_mesh_desc d = desc_of(entry_arrays);
   mcon_patch_frame f;
   ASSERT_EQ(mcon_patch_frame_init(&f), MCON_OK);
   EXPECT_EQ(f.center_triangle, MCON_INVALID_INDEX);

@@ -1,7 +1,7 @@
 # NuGet package of the C# binding (bindings/csharp/Macrocon.nuspec): lib/netstandard2.0/Macrocon.dll
 # and runtimes/linux-x64/native/libmacrocon.so, zipped by nuget.pack.cmake (no nuget.exe here).
 # Needs the C# build of csharp.tests.cmake (included before this file: the glob is sorted).
-if(TARGET macrocon_csharp)
+if(TARGET macrocon_csharp AND NOT MACROCON_SANITIZE)  # the package ships the Release library
   set(nupkg ${cs_dir}/Macrocon.${PROJECT_VERSION}.nupkg)
   set(nuspec ${PROJECT_SOURCE_DIR}/bindings/csharp/Macrocon.nuspec)
   add_custom_command(OUTPUT ${nupkg}

@@ -1,6 +1,8 @@
 # Python binding tests with Debian's interpreter (numpy + pytest come from Debian packages).
-# Not in the sanitizer build: an ASan library cannot be loaded into an uninstrumented python3.
-if(NOT MACROCON_SANITIZE)
+# In the sanitizer build the uninstrumented python3 loads the ASan library with the sanitizer
+# runtimes preloaded (sanitizer_preload.cmake); the wheel test is Release-only.
+include(${CMAKE_CURRENT_LIST_DIR}/sanitizer_preload.cmake)
+if(NOT MACROCON_SANITIZE OR MACROCON_SANITIZER_ENV)
   set(MACROCON_PYTHON /usr/bin/python3 CACHE FILEPATH "Python with numpy and pytest for the binding tests")
   # The clean-exit tests (subprocesses that leave handles open after parallel work; the exit hook
   # must release them and mcon_shutdown must succeed) are their own ctest entry.
@@ -11,8 +13,10 @@ if(NOT MACROCON_SANITIZE)
     COMMAND ${MACROCON_PYTHON} -m pytest -q -p no:cacheprovider -k "exits_cleanly"
             ${PROJECT_SOURCE_DIR}/bindings/python/tests)
   set_tests_properties(python.pytest python.exit_clean_after_parallel_work PROPERTIES
-    ENVIRONMENT "MACROCON_LIBRARY=$<TARGET_FILE:macrocon>;PYTHONPATH=${PROJECT_SOURCE_DIR}/bindings/python"
-    TIMEOUT 900)
+    ENVIRONMENT "MACROCON_LIBRARY=$<TARGET_FILE:macrocon>;PYTHONPATH=${PROJECT_SOURCE_DIR}/bindings/python;${MACROCON_SANITIZER_ENV}"
+    TIMEOUT 1800)
+endif()
+if(NOT MACROCON_SANITIZE)
   # The wheel bundles the library: install it into a scratch folder and import it from there
   # without MACROCON_LIBRARY.
   add_test(NAME python.wheel

@@ -245,13 +245,19 @@ int run_embed(const Args& args) {
   for (double r : {0.3, 0.6})
     for (PolylineInput& l : iso_lines(source.mesh, distance, r)) guides.push_back(std::move(l));
 
+  const double source_field_seconds = seconds_since(t_transfer);
+  const auto t_fields = std::chrono::steady_clock::now();
   const Eigen::MatrixXd fields = transfer_interpolated(view, interpolated);
   const std::vector<std::int32_t> ring_labels = transfer_labels(view, 1, rings, -1);
   const std::vector<std::uint8_t> outside = outside_mask(view);
+  const double field_seconds = seconds_since(t_fields);
+  const auto t_polylines = std::chrono::steady_clock::now();
   const PolylineTransfer transfer(view);
   const std::vector<TracedPolyline> traced = transfer.map_polylines(guides);
   const SurfacePointOnMesh center_on_target = transfer.map_point({source.center_triangle, source.center_barycentric});
 
+  const double polyline_seconds = seconds_since(t_polylines);
+  const auto t_field = std::chrono::steady_clock::now();
   // 4. Cross field of the target following the re-traced guides.
   std::vector<std::vector<SurfacePoint>> guide_points;
   for (const TracedPolyline& t : traced) {
@@ -261,6 +267,7 @@ int run_embed(const Args& args) {
     guide_points.push_back(std::move(line));
   }
   const CrossField field = compute_cross_field(target.mesh, constraints_from_polylines(target.mesh, guide_points));
+  const double cross_field_seconds = seconds_since(t_field);
   const double transfer_seconds = seconds_since(t_transfer);
 
   // 5. Files (target mesh units: host = center + radius * p).
@@ -318,7 +325,11 @@ int run_embed(const Args& args) {
   timings.set("map", map_seconds);
   timings.set("alignment", map.alignment_seconds);
   timings.set("optimization", map.optimization_seconds);
-  timings.set("transfer", transfer_seconds);
+  timings.set("transfer", transfer_seconds);  // the next four together
+  timings.set("source_constraints", source_field_seconds);
+  timings.set("fields", field_seconds);
+  timings.set("polylines", polyline_seconds);
+  timings.set("cross_field", cross_field_seconds);
   timings.set("total", seconds_since(t_start));
   Json files = Json::object();
   files.set("target_ply", ply);
