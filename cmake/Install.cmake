@@ -26,6 +26,9 @@ file(RELATIVE_PATH MACROCON_PC_TO_PREFIX "/p/${CMAKE_INSTALL_LIBDIR}/pkgconfig" 
 configure_file(packaging/macrocon.pc.in ${PROJECT_BINARY_DIR}/packaging/macrocon.pc @ONLY)
 install(FILES ${PROJECT_BINARY_DIR}/packaging/macrocon.pc
   DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig COMPONENT development)
+# The starter constraint library, generated at build time (tools/starter_library); the CLI's
+# `macrocon demo` finds it at bin/../share/macrocon/starter.mclb.
+install(FILES ${MACROCON_STARTER_LIBRARY} DESTINATION ${CMAKE_INSTALL_DATADIR}/macrocon COMPONENT runtime)
 install(FILES README.md CHANGELOG.md samples/data/NOTICE.md
   DESTINATION ${CMAKE_INSTALL_DOCDIR} COMPONENT development)
 

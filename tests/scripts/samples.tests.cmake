@@ -1,0 +1,96 @@
+# The vendor samples (samples/), each built and run on the bundled MakeHuman body against the
+# starter library, and their output checked (samples/check_transfer_output.py):
+#   samples.c_transfer_fields     plain C against the C API (samples/c)
+#   samples.cpp_transfer_guides   the C++ wrapper, guides and .rosy (samples/cpp)
+#   samples.python_transfer       the Python binding (samples/python)
+#   samples.csharp_transfer       the C# binding under Mono (samples/csharp)
+#   samples.blender_headless      the Blender script, registered only if blender is found
+# The region is not one the library was built from (another radius), so the map is not trivial.
+set(MACROCON_SAMPLE_BODY ${PROJECT_SOURCE_DIR}/samples/data/makehuman-body.obj.gz)
+set(MACROCON_SAMPLE_OUT ${PROJECT_BINARY_DIR}/samples-out)
+set(MACROCON_SAMPLE_REGION 8021 0.55)  # the left eye, radius 0.55 (the library's eye_l has 0.6)
+file(MAKE_DIRECTORY ${MACROCON_SAMPLE_OUT})
+# Debian's interpreter (numpy comes from python3-numpy), as for the binding tests.
+set(MACROCON_PYTHON /usr/bin/python3 CACHE FILEPATH "Python with numpy and pytest for the binding tests")
+
+# Runs a sample (COMMAND ...), then the output checker on the PLY it wrote (CHECK_ARGS: more
+# checker options).
+function(macrocon_sample_test name ply)
+  cmake_parse_arguments(arg "" "" "COMMAND;CHECK_ARGS" ${ARGN})
+  add_test(NAME samples.${name} COMMAND ${arg_COMMAND})
+  set_tests_properties(samples.${name} PROPERTIES TIMEOUT 900 FIXTURES_SETUP sample_${name})
+  if(MACROCON_PYTHON)
+    add_test(NAME samples.${name}_output
+      COMMAND ${MACROCON_PYTHON} ${PROJECT_SOURCE_DIR}/samples/check_transfer_output.py ${ply} ${arg_CHECK_ARGS})
+    set_tests_properties(samples.${name}_output PROPERTIES FIXTURES_REQUIRED sample_${name})
+  endif()
+endfunction()
+
+add_executable(sample_transfer_fields ${PROJECT_SOURCE_DIR}/samples/c/transfer_fields.c)
+set_target_properties(sample_transfer_fields PROPERTIES C_STANDARD 99 C_STANDARD_REQUIRED ON C_EXTENSIONS OFF)
+target_compile_options(sample_transfer_fields PRIVATE -Wall -Wextra -pedantic $<$<BOOL:${MACROCON_WERROR}>:-Werror>)
+target_link_libraries(sample_transfer_fields PRIVATE macrocon macrocon_sample_mesh)
+add_dependencies(sample_transfer_fields macrocon_starter_library)
+macrocon_sample_test(c_transfer_fields ${MACROCON_SAMPLE_OUT}/c_transfer_fields.ply COMMAND
+  $<TARGET_FILE:sample_transfer_fields> ${MACROCON_STARTER_LIBRARY} ${MACROCON_SAMPLE_BODY}
+  ${MACROCON_SAMPLE_REGION} ${MACROCON_SAMPLE_OUT}/c_transfer_fields.ply)
+
+add_executable(sample_transfer_guides ${PROJECT_SOURCE_DIR}/samples/cpp/transfer_guides.cpp)
+target_link_libraries(sample_transfer_guides PRIVATE macrocon macrocon_sample_mesh)
+macrocon_warnings(sample_transfer_guides)
+add_dependencies(sample_transfer_guides macrocon_starter_library)
+macrocon_sample_test(cpp_transfer_guides ${MACROCON_SAMPLE_OUT}/cpp_transfer.ply COMMAND
+  $<TARGET_FILE:sample_transfer_guides> ${MACROCON_STARTER_LIBRARY} ${MACROCON_SAMPLE_BODY}
+  ${MACROCON_SAMPLE_REGION} ${MACROCON_SAMPLE_OUT}/cpp_transfer
+  CHECK_ARGS --guides ${MACROCON_SAMPLE_OUT}/cpp_transfer_guides.obj
+             --rosy ${MACROCON_SAMPLE_OUT}/cpp_transfer_region.rosy --region ${MACROCON_SAMPLE_OUT}/cpp_transfer_region.obj)
+
+# The bindings load libmacrocon into an uninstrumented interpreter / Mono, which an ASan library
+# cannot be: not in the sanitizer build (as the binding tests).
+if(NOT MACROCON_SANITIZE)
+  macrocon_sample_test(python_transfer ${MACROCON_SAMPLE_OUT}/python_transfer.ply COMMAND
+    ${MACROCON_PYTHON} ${PROJECT_SOURCE_DIR}/samples/python/transfer_fields.py ${MACROCON_STARTER_LIBRARY}
+    ${MACROCON_SAMPLE_BODY} ${MACROCON_SAMPLE_REGION} ${MACROCON_SAMPLE_OUT}/python_transfer.ply
+    --guides ${MACROCON_SAMPLE_OUT}/python_transfer_guides.obj --rosy ${MACROCON_SAMPLE_OUT}/python_transfer.rosy
+    CHECK_ARGS --guides ${MACROCON_SAMPLE_OUT}/python_transfer_guides.obj)
+  set_tests_properties(samples.python_transfer PROPERTIES
+    ENVIRONMENT "MACROCON_LIBRARY=$<TARGET_FILE:macrocon>;PYTHONPATH=${PROJECT_SOURCE_DIR}/bindings/python")
+
+  find_program(MACROCON_SAMPLE_MCS mcs)
+  find_program(MACROCON_SAMPLE_MONO mono)
+  if(MACROCON_SAMPLE_MCS AND MACROCON_SAMPLE_MONO)
+    # The sample compiles with the binding's sources (one assembly), as a plugin might vendor them.
+    file(GLOB MACROCON_CSHARP_BINDING_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/bindings/csharp/*.cs)
+    set(cs_sample ${PROJECT_BINARY_DIR}/samples-csharp/TransferFields.exe)
+    add_custom_command(OUTPUT ${cs_sample}
+      COMMAND ${CMAKE_COMMAND} -E make_directory ${PROJECT_BINARY_DIR}/samples-csharp
+      COMMAND ${MACROCON_SAMPLE_MCS} -langversion:7.2 -unsafe -warnaserror -out:${cs_sample}
+              ${MACROCON_CSHARP_BINDING_SOURCES} ${PROJECT_SOURCE_DIR}/samples/csharp/TransferFields.cs
+      DEPENDS ${MACROCON_CSHARP_BINDING_SOURCES} ${PROJECT_SOURCE_DIR}/samples/csharp/TransferFields.cs
+      COMMENT "Building the C# sample with mcs")
+    add_custom_target(macrocon_csharp_sample ALL DEPENDS ${cs_sample})
+    macrocon_sample_test(csharp_transfer ${MACROCON_SAMPLE_OUT}/csharp_transfer.ply COMMAND
+      ${MACROCON_SAMPLE_MONO} ${cs_sample} ${MACROCON_STARTER_LIBRARY} ${MACROCON_SAMPLE_BODY}
+      ${MACROCON_SAMPLE_REGION} ${MACROCON_SAMPLE_OUT}/csharp_transfer.ply)
+    set_tests_properties(samples.csharp_transfer PROPERTIES ENVIRONMENT "LD_LIBRARY_PATH=$<TARGET_FILE_DIR:macrocon>")
+  endif()
+
+  # Blender (Debian's blender 3.4: Python 3.11 + numpy) headless: registered only if blender is
+  # installed at configure time, so the suite has no skipped test either way.
+  find_program(MACROCON_BLENDER blender)
+  if(MACROCON_BLENDER)
+    set(blend ${MACROCON_SAMPLE_OUT}/blender_sample.blend)
+    set(blend_json ${MACROCON_SAMPLE_OUT}/blender_sample.json)
+    add_test(NAME samples.blender_headless
+      COMMAND ${MACROCON_BLENDER} -b --factory-startup --python-exit-code 1
+              --python ${PROJECT_SOURCE_DIR}/samples/blender/macrocon_blender.py --
+              --library ${MACROCON_STARTER_LIBRARY} --mesh ${MACROCON_SAMPLE_BODY}
+              --vertex 8021 --radius 0.55 --out ${blend} --json ${blend_json})
+    set_tests_properties(samples.blender_headless PROPERTIES TIMEOUT 900 FIXTURES_SETUP sample_blender
+      ENVIRONMENT "MACROCON_LIBRARY=$<TARGET_FILE:macrocon>;MACROCON_PYTHON_PATH=${PROJECT_SOURCE_DIR}/bindings/python")
+    add_test(NAME samples.blender_headless_output
+      COMMAND ${MACROCON_BLENDER} -b ${blend} --factory-startup --python-exit-code 1
+              --python ${PROJECT_SOURCE_DIR}/samples/blender/check_blend.py -- ${blend_json})
+    set_tests_properties(samples.blender_headless_output PROPERTIES TIMEOUT 300 FIXTURES_REQUIRED sample_blender)
+  endif()
+endif()

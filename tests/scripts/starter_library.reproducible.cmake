@@ -1,0 +1,13 @@
+# Generates the starter library again into WORK and requires the same bytes as EXPECTED.
+file(REMOVE_RECURSE ${WORK})
+file(MAKE_DIRECTORY ${WORK})
+execute_process(COMMAND ${GENERATOR} ${ENTRIES} ${DATA} ${WORK}/starter.mclb RESULT_VARIABLE rc OUTPUT_QUIET)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "build_starter_library failed (${rc})")
+endif()
+execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files ${WORK}/starter.mclb ${EXPECTED} RESULT_VARIABLE diff)
+if(NOT diff EQUAL 0)
+  message(FATAL_ERROR "a second generation of the starter library differs from ${EXPECTED}")
+endif()
+file(SIZE ${EXPECTED} size)
+message(STATUS "starter library reproduced byte for byte (${size} bytes)")
