@@ -296,7 +296,7 @@ TEST(CppWrapper, LibraryAddBuildQuerySaveOpenMergeAndEntries) {
   EXPECT_EQ(e.descriptors.size(), 9 * patches[1].vertex_count());
   EXPECT_EQ(lib.entry_positions(1).size(), 3 * patches[1].vertex_count());
   EXPECT_EQ(lib.entry_triangles(1).size(), 3 * patches[1].triangle_count());
-  EXPECT_EQ(lib.entry_histogram(1).size(), 8u * 4u);
+  EXPECT_EQ(lib.entry_histogram(1).size(), 8u * o.rings);  // k words per ring
 
   // Bytes round trip; merge of a copy; remove.
   const std::vector<std::uint8_t> bytes = lib.save_memory();
