@@ -76,9 +76,11 @@ double tan_half_angle(const Vec3& u, const Vec3& v) {
 
 std::vector<Vec2> disk_parametrization(const TriMesh& mesh, const std::vector<int>& boundary_loop,
                                       const DiskParametrizationOptions& options) {
-  require(options.stretch_iterations >= 0 && options.stretch_exponent > 0 && options.stretch_exponent <= 1,
+  require(options.stretch_iterations >= 0 && options.stretch_exponent > 0 && options.stretch_exponent <= 1 &&
+              options.stretch_threshold >= 0 && std::isfinite(options.stretch_threshold),
           MCON_ERROR_INVALID_ARGUMENT,
-          "disk parametrization: stretch_iterations must be >= 0 and stretch_exponent in (0, 1]");
+          "disk parametrization: stretch_iterations must be >= 0, stretch_exponent in (0, 1] and "
+          "stretch_threshold finite and >= 0");
   const MeshTopology topo = build_topology(mesh);
   check_boundary_loop(mesh, topo, boundary_loop);
   const int nv = mesh.num_vertices();
@@ -230,6 +232,7 @@ std::vector<Vec2> disk_parametrization(const TriMesh& mesh, const std::vector<in
     };
     std::vector<double> sigma;
     double best = stretch(uv, sigma);
+    if (!(best > options.stretch_threshold)) return uv;
     std::vector<Vec2> best_uv = uv;
     Eigen::SparseMatrix<double, Eigen::RowMajor> wk = w;
     for (int it = 0; it < options.stretch_iterations && std::isfinite(best); ++it) {

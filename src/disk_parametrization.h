@@ -27,9 +27,15 @@ struct DiskParametrizationOptions {
   // mean-value Tutte embedding.
   int stretch_iterations = 30;
   double stretch_exponent = 0.5;  // in (0, 1]
+  // The rounds run only if the mean-value map's L2 stretch (1: equal-area) exceeds this. The
+  // near-conformal mean-value map is smoother (a uv circle stays a smooth surface curve) and is
+  // what the other patch classes were tuned on; measured plain stretch on MakeHuman patches:
+  // arm 1.01, nose 1.05, ear 1.2, eye 5.8, face 9.2, mouth 10.2, foot 447, hand 15851.
+  double stretch_threshold = 20.0;
 };
 
-// INVALID_ARGUMENT also for stretch_iterations < 0 or stretch_exponent outside (0, 1].
+// INVALID_ARGUMENT also for stretch_iterations < 0, stretch_exponent outside (0, 1] or a negative
+// or non-finite stretch_threshold.
 std::vector<Vec2> disk_parametrization(const TriMesh& mesh, const std::vector<int>& boundary_loop,
                                        const DiskParametrizationOptions& options = {});
 
