@@ -39,10 +39,10 @@ double signed_area(const Vec2& a, const Vec2& b, const Vec2& c) {
 // Checks the whole contract on a disk mesh: boundary on the unit circle at arc-length angles
 // starting at 0, no flipped triangle, and the triangles tile the boundary polygon exactly once
 // (total signed area = polygon area), which with no flips means the map is a bijection.
-std::vector<Vec2> check_embedding(const TriMesh& mesh) {
+std::vector<Vec2> check_embedding(const TriMesh& mesh, const DiskParametrizationOptions& options = {}) {
   validate_mesh(mesh);
   const std::vector<int> loop = only_boundary_loop(mesh);
-  const std::vector<Vec2> uv = disk_parametrization(mesh, loop);
+  const std::vector<Vec2> uv = disk_parametrization(mesh, loop, options);
   EXPECT_EQ(uv.size(), mesh.positions.size());
 
   const std::size_t nb = loop.size();
@@ -72,9 +72,26 @@ std::vector<Vec2> check_embedding(const TriMesh& mesh) {
   return uv;
 }
 
-mcon_status status_of(const TriMesh& mesh, const std::vector<int>& loop) {
+// Area-weighted L2 stretch of the map uv -> 3D (Sander et al. 2001), scaled so that an
+// equal-area map scores 1: the quantity the stretch reduction lowers.
+double l2_stretch(const TriMesh& mesh, const std::vector<Vec2>& uv) {
+  double area2 = 0, area3 = 0, sum = 0;
+  for (const Tri& t : mesh.triangles) {
+    const Vec2 &p1 = uv[t[0]], &p2 = uv[t[1]], &p3 = uv[t[2]];
+    const Vec3 &q1 = mesh.positions[t[0]], &q2 = mesh.positions[t[1]], &q3 = mesh.positions[t[2]];
+    const double a = signed_area(p1, p2, p3), a3 = 0.5 * (q2 - q1).cross(q3 - q1).norm();
+    const Vec3 ss = (q1 * (p2.y() - p3.y()) + q2 * (p3.y() - p1.y()) + q3 * (p1.y() - p2.y())) / (2 * a);
+    const Vec3 st = (q1 * (p3.x() - p2.x()) + q2 * (p1.x() - p3.x()) + q3 * (p2.x() - p1.x())) / (2 * a);
+    sum += a3 * 0.5 * (ss.squaredNorm() + st.squaredNorm());
+    area2 += a;
+    area3 += a3;
+  }
+  return std::sqrt(sum / area3 * area2 / area3);
+}
+
+mcon_status status_of(const TriMesh& mesh, const std::vector<int>& loop, const DiskParametrizationOptions& o = {}) {
   try {
-    disk_parametrization(mesh, loop);
+    disk_parametrization(mesh, loop, o);
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()), "");
     return e.status();
@@ -173,6 +190,53 @@ TEST(DiskParametrization, VeryAnisotropicTrianglesHaveNoFlips) {
     p.x() = 0.005 * column_x[i];
   }
   check_embedding(grid);
+}
+
+TEST(DiskParametrization, StretchReductionUnsqueezesADeepCapAndStaysBijective) {
+  // Almost the whole sphere: the mean-value map squeezes the far pole region into a tiny part of
+  // the disk (as it squeezes the fingers of a hand patch cut at the wrist).
+  const TriMesh cap =
+      test_meshes::select_faces(test_meshes::make_icosphere(3), [](const Vec3& p) { return p.z() > -0.9; });
+  const std::vector<int> loop = only_boundary_loop(cap);
+  DiskParametrizationOptions plain;
+  plain.stretch_iterations = 0;
+  const std::vector<Vec2> uv0 = disk_parametrization(cap, loop, plain);
+  const double before = l2_stretch(cap, uv0);
+  EXPECT_GT(before, 2.0);
+  // Below the default threshold: the plain mean-value map, bit for bit.
+  EXPECT_LT(before, DiskParametrizationOptions{}.stretch_threshold);
+  EXPECT_EQ(disk_parametrization(cap, loop), uv0);
+  DiskParametrizationOptions reduce;
+  reduce.stretch_threshold = 1.0;
+  const std::vector<Vec2> uv = check_embedding(cap, reduce);  // bijective, boundary unchanged
+  const double after = l2_stretch(cap, uv);
+  EXPECT_LT(after, 0.6 * before) << "plain " << before << ", reduced " << after;
+  // Fewer rounds can only stretch more or equally (the least-stretched iterate is returned).
+  reduce.stretch_iterations = 1;
+  const double one = l2_stretch(cap, disk_parametrization(cap, loop, reduce));
+  EXPECT_LT(one, before);
+  EXPECT_LE(after, one);
+}
+
+TEST(DiskParametrization, RejectsInvalidStretchOptions) {
+  const TriMesh disk = test_meshes::make_disk(4);
+  const std::vector<int> loop = only_boundary_loop(disk);
+  DiskParametrizationOptions o;
+  o.stretch_iterations = -1;
+  EXPECT_EQ(status_of(disk, loop, o), MCON_ERROR_INVALID_ARGUMENT);
+  for (double e : {0.0, -0.5, 1.5, std::nan("")}) {
+    o = {};
+    o.stretch_exponent = e;
+    EXPECT_EQ(status_of(disk, loop, o), MCON_ERROR_INVALID_ARGUMENT) << e;
+  }
+  for (double t : {-1.0, std::nan(""), HUGE_VAL}) {
+    o = {};
+    o.stretch_threshold = t;
+    EXPECT_EQ(status_of(disk, loop, o), MCON_ERROR_INVALID_ARGUMENT) << t;
+  }
+  o = {};
+  o.stretch_iterations = 0;
+  EXPECT_EQ(status_of(disk, loop, o), MCON_OK);
 }
 
 TEST(DiskParametrization, RejectsLoopsThatAreNotTheBoundary) {
