@@ -39,6 +39,27 @@ struct TracePoint {
   Vec2 uv;  // in the target disk's plane
 };
 
+struct SegmentExit {
+  int edge = -1;  // the edge opposite this corner; -1 if the segment ends inside
+  double s = std::numeric_limits<double>::infinity();  // segment parameter of the crossing
+};
+
+// Where the straight segment with barycentric coordinates l0 + s * d (s in [0, 1]) first leaves
+// its triangle: the barycentric coordinate that reaches 0 first, ignoring the edge it came in by
+// (`entry`, -1 for none). Both walks (point location and re-tracing) step through it.
+SegmentExit first_exit(const Vec3& l0, const Vec3& d, int entry) {
+  SegmentExit out;
+  for (int i = 0; i < 3; ++i) {
+    if (i == entry || !(d[i] < 0)) continue;
+    const double si = -l0[i] / d[i];
+    if (si < out.s) {
+      out.s = si;
+      out.edge = i;
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 struct PolylineTransfer::Impl {
@@ -86,17 +107,10 @@ struct PolylineTransfer::Impl {
       const Vec2 a = map.phi[v];
       int cur = c.triangle, entry = -1;
       for (std::size_t steps = 0; steps <= 4 * neighbor.size() + 16; ++steps) {
-        const Vec3 l0 = bary(cur, a), l1 = bary(cur, p), d = l1 - l0;
-        double s_exit = std::numeric_limits<double>::infinity();
-        int edge = -1;
-        for (int i = 0; i < 3; ++i) {
-          if (i == entry || !(d[i] < 0)) continue;
-          const double si = -l0[i] / d[i];
-          if (si < s_exit) {
-            s_exit = si;
-            edge = i;
-          }
-        }
+        const Vec3 l0 = bary(cur, a), l1 = bary(cur, p);
+        const SegmentExit exit = first_exit(l0, l1 - l0, entry);
+        const int edge = exit.edge;
+        const double s_exit = exit.s;
         if (edge < 0 || s_exit >= 1.0) {
           PointLocation out;
           out.triangle = cur;
@@ -230,16 +244,9 @@ std::vector<TracedPolyline> PolylineTransfer::map_polylines(const std::vector<Po
           continue;
         }
         const Vec3 l0 = I.bary(cur, a), l1 = I.bary(cur, b), d = l1 - l0;
-        double s_exit = std::numeric_limits<double>::infinity();
-        int edge = -1;
-        for (int i = 0; i < 3; ++i) {
-          if (i == entry || !(d[i] < 0)) continue;
-          const double si = -l0[i] / d[i];
-          if (si < s_exit) {
-            s_exit = si;
-            edge = i;
-          }
-        }
+        const SegmentExit exit = first_exit(l0, d, entry);
+        const int edge = exit.edge;
+        double s_exit = exit.s;
         if (edge < 0 || s_exit >= 1.0) {  // b lies in this triangle
           append(cur, l1, b);
           entry = -1;
