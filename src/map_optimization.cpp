@@ -181,6 +181,15 @@ NewtonReport minimize_map_energy(const MapEnergy& energy, Eigen::VectorXd& x, co
       report.reason = StopReason::converged;
       break;
     }
+    const int w = options.progress_window;
+    if (w > 0 && report.iterations > w) {
+      const std::vector<double>& e = report.energy;
+      const double recent = e[e.size() - 1 - w] - e.back(), total = e.front() - e.back();
+      if (recent <= options.progress_fraction * total) {
+        report.reason = StopReason::converged;
+        break;
+      }
+    }
     if (iter + 1 == options.max_iterations) report.reason = StopReason::iteration_cap;
   }
   if (options.max_iterations <= 0) report.reason = StopReason::iteration_cap;

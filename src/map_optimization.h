@@ -34,6 +34,14 @@ struct NewtonOptions {
   double relative_decrease = 1e-6;
   double absolute_decrease = 1e-12;  // (energies are area-normalized: O(1e-4 .. 1))
   double energy_scale = 0;           // if larger than |E_0|, the tolerance is relative to it
+  // Also stop (converged) when the last progress_window iterations together decreased the energy
+  // by at most progress_fraction of this run's decrease so far: past that point the descriptor's
+  // kinks only allow slow linear progress whose gain is far below the map's accuracy, and on fine
+  // meshes (10k vertices) that tail was most of the time (subdivided face: 59 of 76 iterations at
+  // the finest level, 9.7 s; with 5 / 3e-3: 30 iterations; eval-mapping mean eps x 100 on seeds
+  // 1, 2, 3 unchanged to +-0.03). progress_window 0 disables the test.
+  int progress_window = 5;
+  double progress_fraction = 3e-3;
   double armijo = 1e-4;
   int max_backtracks = 40;
   double step_fraction = 0.9;       // first trial step = min(1, step_fraction * t_max)

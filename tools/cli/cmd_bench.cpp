@@ -112,7 +112,7 @@ int run_bench(const Args& args) {
       const Patch src = cut(a, fine ? a2 : a), dst = cut(b, fine ? b2 : b);
       std::vector<double> total, init, opt, cpu;
       SurfaceMap map;
-      const PatchMapOptions map_options;
+      PatchMapOptions map_options;
       for (int r = 0; r < runs; ++r) {
         const auto t0 = std::chrono::steady_clock::now();
         const std::clock_t c0 = std::clock();
@@ -132,6 +132,10 @@ int run_bench(const Args& args) {
       row.set("cpu_seconds_median", median(cpu));
       row.set("iterations", map.iterations);
       row.set("stop_reason", stop_reason_name(map.stop_reason));
+      row.set("orientation_compared", map.orientation_compared);
+      tools::Json level_iterations = tools::Json::array();
+      for (const LevelReport& lr : map.levels) level_iterations.push_back(lr.iterations);
+      row.set("level_iterations", level_iterations);
       row.set("flips", count_flips(src.mesh, map.phi, map.reflected));
       map_rows.push_back(row);
       if (!p.flag("json"))
