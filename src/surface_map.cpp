@@ -162,8 +162,9 @@ SurfaceMap compute_surface_map(const MapDomain& source, const MapDomain& target,
   const int n = source.mesh.num_vertices();
   const int cap = std::max(options.newton.max_iterations, 1);
   // Runs level l from x; `share` maps its iterations into the progress range.
-  double energy_scale = 0;  // the first level's start energy: the tolerance scale of later levels
-  auto run_level = [&](int l, const SourceDisk& disk, Eigen::VectorXd& x, double progress_from, double progress_to) {
+  // energy_scale: the first level's start energy, the tolerance scale of later levels.
+  auto run_level = [&](int l, const SourceDisk& disk, Eigen::VectorXd& x, double energy_scale, double progress_from,
+                       double progress_to) {
     ScoreSettings score = levels[l].score;
     score.outside = OutsideRule::nearest_rim;
     const MapEnergy energy(disk, *fields[l], source_values(l, disk.reflected), score, options.weights);
@@ -184,34 +185,53 @@ SurfaceMap compute_surface_map(const MapDomain& source, const MapDomain& target,
     return x;
   };
   const double level_share = (1 - kAlignShare) / L;
-  bool reflected = init.transform.reflected;
-  Eigen::VectorXd x = start_from(init.transform);
-  NewtonReport first;
+  // One orientation's optimization: its disk, iterate and per-level reports.
+  struct Candidate {
+    const SourceDisk* disk;
+    Eigen::VectorXd x;
+    std::vector<NewtonReport> reports;
+    double energy_scale = 0;
+  };
+  // Runs the candidate's next level in the progress range [p0, p1].
+  auto advance = [&](Candidate& c, double p0, double p1) {
+    const int l = static_cast<int>(c.reports.size());
+    c.reports.push_back(run_level(l, *c.disk, c.x, c.energy_scale, p0, p1));
+    if (l == 0) c.energy_scale = c.reports.back().energy.front();
+  };
+  auto level_from = [&](int l) { return kAlignShare + l * level_share; };
+  const SourceDisk mirrored = make_source_disk(source.mesh, source.uv, true);
   const bool compare = init.score_unreflected >= 0 && init.score_reflected >= 0 &&
                        options.alignment.allow_reflection &&
                        std::abs(init.score_reflected - init.score_unreflected) < options.orientation_ambiguity;
+  Candidate chosen{init.transform.reflected ? &mirrored : &plain, start_from(init.transform), {}, 0};
   if (compare) {
-    // Both orientations at the smoothest level; the lower energy decides.
-    Eigen::VectorXd xp = start_from(init.best_unreflected), xm = start_from(init.best_reflected);
-    const SourceDisk mirrored = make_source_disk(source.mesh, source.uv, true);
-    NewtonReport rp = run_level(0, plain, xp, kAlignShare, kAlignShare + 0.5 * level_share);
-    NewtonReport rm = run_level(0, mirrored, xm, kAlignShare + 0.5 * level_share, kAlignShare + level_share);
+    // Both orientations, each optimized on its own; the lower energy after the compared levels
+    // decides, the mirrored one only by the relative margin.
+    Candidate cp{&plain, start_from(init.best_unreflected), {}, 0};
+    Candidate cm{&mirrored, start_from(init.best_reflected), {}, 0};
+    const int upto = std::clamp(options.compared_levels, 1, L);
+    for (int l = 0; l < upto; ++l) {
+      const double mid = level_from(l) + 0.5 * level_share;
+      advance(cp, level_from(l), mid);
+      advance(cm, mid, level_from(l + 1));
+    }
     out.orientation_compared = true;
-    out.level0_energy_unreflected = rp.energy.back();
-    out.level0_energy_reflected = rm.energy.back();
-    reflected = rm.energy.back() < (1 - options.mirror_energy_margin) * rp.energy.back();
-    x = reflected ? xm : xp;
-    first = reflected ? std::move(rm) : std::move(rp);
-    out.alignment.transform = reflected ? init.best_reflected : init.best_unreflected;
-    out.alignment.score = reflected ? init.score_reflected : init.score_unreflected;
+    out.level0_energy_unreflected = cp.reports.front().energy.back();
+    out.level0_energy_reflected = cm.reports.front().energy.back();
+    const bool mirror_wins =
+        cm.reports.back().energy.back() < (1 - options.mirror_energy_margin) * cp.reports.back().energy.back();
+    chosen = mirror_wins ? std::move(cm) : std::move(cp);
+    out.alignment.transform = mirror_wins ? init.best_reflected : init.best_unreflected;
+    out.alignment.score = mirror_wins ? init.score_reflected : init.score_unreflected;
   }
-  out.reflected = reflected;
-  const SourceDisk disk = reflected ? make_source_disk(source.mesh, source.uv, true) : plain;
+  const SourceDisk& disk = *chosen.disk;
+  out.reflected = disk.reflected;
+  while (static_cast<int>(chosen.reports.size()) < L) {
+    const int l = static_cast<int>(chosen.reports.size());
+    advance(chosen, level_from(l), level_from(l + 1));
+  }
   for (int l = 0; l < L; ++l) {
-    const NewtonReport r = (l == 0 && compare)
-                               ? std::move(first)
-                               : run_level(l, disk, x, kAlignShare + l * level_share, kAlignShare + (l + 1) * level_share);
-    if (l == 0) energy_scale = r.energy.front();
+    const NewtonReport& r = chosen.reports[l];
     LevelReport& lr = out.levels[l];
     lr.iterations = r.iterations;
     lr.stop_reason = r.reason;
@@ -225,6 +245,7 @@ SurfaceMap compute_surface_map(const MapDomain& source, const MapDomain& target,
     out.stop_reason = r.reason;
     out.energy = r.terms;
   }
+  const Eigen::VectorXd& x = chosen.x;
   out.optimization_seconds = seconds_since(t1);
   const int inverted = count_inverted(disk.triangles, x);
   require(inverted == 0, MCON_ERROR_NUMERICAL,

@@ -47,6 +47,9 @@ struct SurfaceMapOptions {
   // mirrored map compares the source's negated values with the target's.
   std::vector<int> chiral_columns;
   double mirror_energy_margin = 0.1;
+  // Levels (from the smoothest) both orientations are optimized through before the energies are
+  // compared; the winner continues alone.
+  int compared_levels = 1;
   // Progress in [0, 1] on the calling thread; returning false throws MCON_ERROR_CANCELLED.
   std::function<bool(double)> progress;
 };
