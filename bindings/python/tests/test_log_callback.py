@@ -93,7 +93,7 @@ def test_log_must_be_callable():
         macrocon.Context(log="not a function")
 
 
-def test_log_is_called_from_worker_threads_safely():
+def test_log_from_several_threads_gets_every_message_once():
     # Many failing calls from several Python threads at once; every message arrives exactly once.
     import threading
 
