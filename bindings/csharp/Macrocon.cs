@@ -1,6 +1,7 @@
 // C# binding over the Macrocon C ABI: P/Invoke, one SafeHandle per handle type, IDisposable
-// wrappers, exceptions from status codes, arrays and spans in, progress through a static
-// trampoline (the delegate never moves; the user's callback travels as a GCHandle).
+// wrappers, exceptions from status codes, arrays and spans in, progress and log callbacks through
+// static trampolines (the delegate never moves; the user's callback travels as a GCHandle for
+// progress, as a table key for the log, see LogTrampoline).
 using System;
 using System.Collections.Generic;
 using System.Runtime.InteropServices;
@@ -111,6 +112,9 @@ namespace Macrocon
 
         [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
         internal delegate int ProgressCallback(IntPtr user, double fraction);
+
+        [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
+        internal delegate void LogCallback(IntPtr user, Status status, IntPtr message);
 
         [StructLayout(LayoutKind.Sequential)]
         internal struct ContextOptions { public uint struct_size; public uint max_threads; public IntPtr log_callback; public IntPtr log_user_data; }
@@ -349,6 +353,59 @@ namespace Macrocon
             }
         }
 
+        // ---- the log callback (mcon_context_options.log_callback) ----
+        // One static, never-collected trampoline for every context. user_data is a key into
+        // `logs`, not GCHandle.ToIntPtr: the native context outlives its ContextHandle while a mesh,
+        // patch, map or library made in it lives (they retain it), and a message raised then
+        // would resolve a freed GCHandle (undefined: a crash or another object). A key whose
+        // context handle was released is simply not found, and the message is dropped.
+        internal static readonly LogCallback LogTrampolineDelegate = LogTrampoline;
+        internal static readonly IntPtr LogTrampolinePtr = Marshal.GetFunctionPointerForDelegate(LogTrampolineDelegate);
+        private static readonly object logsLock = new object();
+        private static readonly Dictionary<long, LogState> logs = new Dictionary<long, LogState>();
+        private static long nextLogKey;
+
+        internal sealed class LogState
+        {
+            internal const int Keep = 100;
+            public Action<Status, string> Callback;
+            public readonly List<Exception> Exceptions = new List<Exception>();
+        }
+
+        internal static long RegisterLog(LogState state)
+        {
+            lock (logsLock)
+            {
+                long key = ++nextLogKey;
+                logs.Add(key, state);
+                return key;
+            }
+        }
+
+        internal static void UnregisterLog(long key)
+        {
+            lock (logsLock) logs.Remove(key);
+        }
+
+        // Runs on whichever thread raised the error (a TBB worker too). Nothing may unwind into C.
+        private static void LogTrampoline(IntPtr user, Status status, IntPtr message)
+        {
+            try
+            {
+                LogState state;
+                lock (logsLock)
+                    if (!logs.TryGetValue(user.ToInt64(), out state)) return;
+                // Decoded as Check decodes mcon_get_last_error: the text equals the exception's.
+                string text = message == IntPtr.Zero ? "" : Marshal.PtrToStringAnsi(message);
+                try { state.Callback(status, text); }
+                catch (Exception e)
+                {
+                    lock (state.Exceptions) if (state.Exceptions.Count < LogState.Keep) state.Exceptions.Add(e);
+                }
+            }
+            catch (Exception) { }  // e.g. out of memory while decoding: drop the message
+        }
+
         // ---- the exit hook: release what the program left open, then mcon_shutdown ----
         // mcon_shutdown refuses while a context lives, and without it TBB's workers outlive
         // Mono's teardown (design-notes §5: a segfault at exit).
@@ -398,9 +455,16 @@ namespace Macrocon
 
     public sealed class ContextHandle : SafeHandle
     {
+        // The log callback's key in Native's table (0: none); unregistered after the release.
+        internal long LogKey;
         public ContextHandle() : base(IntPtr.Zero, true) { Native.Track(this); }
         public override bool IsInvalid => handle == IntPtr.Zero;
-        protected override bool ReleaseHandle() => Native.mcon_context_release(handle) == Status.Ok;
+        protected override bool ReleaseHandle()
+        {
+            bool ok = Native.mcon_context_release(handle) == Status.Ok;
+            if (LogKey != 0) Native.UnregisterLog(LogKey);
+            return ok;
+        }
     }
 
     public sealed class MeshHandle : SafeHandle
@@ -479,13 +543,48 @@ namespace Macrocon
     public sealed class Context : IDisposable
     {
         internal readonly ContextHandle Handle;
+        private readonly Native.LogState log;
 
-        public Context(uint maxThreads = 0)
+        /// <summary>`log(status, message)`, if given, receives every error message raised in this
+        /// context (calls on the context and on meshes, patches, maps and libraries made in it) with
+        /// the status and text of the exception the failing call throws; it may run on any thread.
+        /// An exception thrown by `log` never crosses into native code: it is kept in
+        /// <see cref="LogExceptions"/> and the failing call still throws its own exception. The
+        /// callback is unregistered when the context is disposed (later messages of objects that
+        /// outlive it are dropped).</summary>
+        public Context(uint maxThreads = 0, Action<Status, string> log = null)
         {
             var options = new Native.ContextOptions();
             Native.Check(Native.mcon_context_options_init(ref options));
             options.max_threads = maxThreads;
-            Native.Check(Native.mcon_context_create(ref options, out Handle));
+            long key = 0;
+            if (log != null)
+            {
+                this.log = new Native.LogState { Callback = log };
+                key = Native.RegisterLog(this.log);
+                options.log_callback = Native.LogTrampolinePtr;
+                options.log_user_data = new IntPtr(key);
+            }
+            try
+            {
+                Native.Check(Native.mcon_context_create(ref options, out Handle));
+                Handle.LogKey = key;
+            }
+            catch
+            {
+                if (key != 0) Native.UnregisterLog(key);
+                throw;
+            }
+        }
+
+        /// <summary>Exceptions the log callback threw (oldest first, at most 100; empty without one).</summary>
+        public IReadOnlyList<Exception> LogExceptions
+        {
+            get
+            {
+                if (log == null) return new Exception[0];
+                lock (log.Exceptions) return log.Exceptions.ToArray();
+            }
         }
 
         public void Dispose() => Handle.Dispose();

@@ -1,14 +1,21 @@
 #!/usr/bin/env python3
 """Builds a wheel of the pure-Python package that bundles libmacrocon next to it.
 
-usage: build_wheel.py --library build/lib/libmacrocon.so.0 --out DIR
+usage: build_wheel.py --library build/lib/libmacrocon.so.0 --out DIR [--strip /usr/bin/strip]
 No pip or setuptools needed: a wheel is a zip with a dist-info folder (PEP 427).
+The bundled library is a `strip --strip-unneeded` copy (--strip: the tool, CMake passes
+CMAKE_STRIP; default: `strip` on PATH); without a strip tool it is bundled unstripped, with a note
+on stderr (stdout carries only the wheel's path).
 """
 import argparse
 import base64
 import hashlib
 import platform
 import re
+import shutil
+import subprocess
+import sys
+import tempfile
 import zipfile
 from pathlib import Path
 
@@ -25,10 +32,23 @@ def record_line(name: str, data: bytes) -> str:
     return f"{name},sha256={digest},{len(data)}"
 
 
+def library_bytes(library: Path, strip: str) -> bytes:
+    """The library's bytes, stripped of debug info and the static symbol table if `strip` exists."""
+    real = library.resolve()
+    if not strip or shutil.which(strip) is None:
+        print(f"build_wheel.py: no strip tool ({strip!r}): bundling {real} unstripped", file=sys.stderr)
+        return real.read_bytes()
+    with tempfile.TemporaryDirectory() as tmp:
+        out = Path(tmp) / real.name
+        subprocess.run([strip, "--strip-unneeded", "-o", str(out), str(real)], check=True)
+        return out.read_bytes()
+
+
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--library", required=True, type=Path)
     ap.add_argument("--out", required=True, type=Path)
+    ap.add_argument("--strip", default=shutil.which("strip") or "", help="strip tool ('' = bundle unstripped)")
     args = ap.parse_args()
     ver = version()
     tag = f"py3-none-linux_{platform.machine()}"
@@ -37,7 +57,7 @@ def main() -> None:
     for path in sorted((HERE / "macrocon").iterdir()):
         if path.suffix in (".py", ".typed"):
             files[f"macrocon/{path.name}"] = path.read_bytes()
-    files[f"macrocon/{args.library.name}"] = args.library.resolve().read_bytes()
+    files[f"macrocon/{args.library.name}"] = library_bytes(args.library, args.strip)
     files[f"{dist}/METADATA"] = (
         f"Metadata-Version: 2.1\nName: macrocon\nVersion: {ver}\nRequires-Python: >=3.8\nRequires-Dist: numpy\n"
         "Summary: Retrieval and re-embedding of macro constraints for quad meshing\n\n"

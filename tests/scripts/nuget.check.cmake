@@ -1,5 +1,7 @@
 # Checks the C# binding's .nupkg: exactly the expected members at the NuGet paths, the nuspec's
-# id and version, the packaged files identical to the build's, and the package usable as laid
+# id and version, the packaged DLL identical to the build's, the packaged native library stripped
+# (STRIP set: no .debug_info, checked with READELF; the same mcon_ exports, checked with NM) or
+# identical (no strip tool), and the package usable as laid
 # out: a Mono program next to lib/netstandard2.0/Macrocon.dll finds the native library through
 # runtimes/linux-x64/native/ alone (LD_LIBRARY_PATH pointing there, nothing else) and exits clean.
 foreach(v NUPKG DLL LIB VERSION MONO CONSUMER WORK)
@@ -7,6 +9,7 @@ foreach(v NUPKG DLL LIB VERSION MONO CONSUMER WORK)
     message(FATAL_ERROR "nuget.check.cmake: -D${v}= is required")
   endif()
 endforeach()
+include(${CMAKE_CURRENT_LIST_DIR}/packaged_library.cmake)
 execute_process(COMMAND ${CMAKE_COMMAND} -E tar tf ${NUPKG} OUTPUT_VARIABLE listing RESULT_VARIABLE rc)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "${NUPKG} is not a readable zip")
@@ -41,10 +44,14 @@ foreach(pair "${DLL}|lib/netstandard2.0/Macrocon.dll|4d5a" "${lib_real}|runtimes
   list(GET pair 0 built)
   list(GET pair 1 packed)
   list(GET pair 2 magic)
-  file(SHA256 ${built} a)
-  file(SHA256 ${WORK}/${packed} b)
-  if(NOT a STREQUAL b)
-    message(FATAL_ERROR "${packed} differs from ${built}")
+  if(packed MATCHES "[.]so$")
+    macrocon_check_packaged_library(${WORK}/${packed} ${built} "${STRIP}" "${READELF}" "${NM}")
+  else()
+    file(SHA256 ${built} a)
+    file(SHA256 ${WORK}/${packed} b)
+    if(NOT a STREQUAL b)
+      message(FATAL_ERROR "${packed} differs from ${built}")
+    endif()
   endif()
   string(LENGTH ${magic} n)
   math(EXPR n "${n} / 2")

@@ -1,8 +1,10 @@
 # Packs the C# binding as a .nupkg without nuget.exe (none can be downloaded here): a .nupkg is an
 # OPC zip with the .nuspec at its root. Reads the <file src= target=> entries of NUSPEC, copies
-# DLL (Macrocon.dll) and LIB (the native library, real file behind the symlinks) to those targets,
-# adds the OPC parts ([Content_Types].xml, _rels/.rels) and zips it to OUT.
-#   cmake -DNUSPEC=... -DDLL=... -DLIB=... -DVERSION=0.1.0 -DOUT=.../Macrocon.0.1.0.nupkg -P nuget.pack.cmake
+# DLL (Macrocon.dll) and LIB (the native library, real file behind the symlinks; stripped with
+# STRIP = CMAKE_STRIP, unstripped if empty) to those targets, adds the OPC parts
+# ([Content_Types].xml, _rels/.rels) and zips it to OUT.
+#   cmake -DNUSPEC=... -DDLL=... -DLIB=... -DVERSION=0.1.0 -DOUT=.../Macrocon.0.1.0.nupkg [-DSTRIP=/usr/bin/strip] -P nuget.pack.cmake
+include(${CMAKE_CURRENT_LIST_DIR}/packaged_library.cmake)
 foreach(v NUSPEC DLL LIB VERSION OUT)
   if(NOT DEFINED ${v})
     message(FATAL_ERROR "nuget.pack.cmake: -D${v}= is required")
@@ -37,7 +39,11 @@ foreach(e ${entries})
   endif()
   get_filename_component(target_dir ${stage}/${target} DIRECTORY)
   file(MAKE_DIRECTORY ${target_dir})
-  file(COPY_FILE ${from} ${stage}/${target})
+  if(src STREQUAL "libmacrocon.so")
+    macrocon_strip_copy(${from} ${stage}/${target} "${STRIP}")
+  else()
+    file(COPY_FILE ${from} ${stage}/${target})
+  endif()
   list(APPEND members ${target})
 endforeach()
 file(WRITE "${stage}/[Content_Types].xml"

@@ -576,7 +576,66 @@ static class Tests
     // No tuple deconstruction (`var (a, b) = ...`) anywhere here: mcs 6.8 silently drops a lambda that
     // contains one (which hid most of this runner's tests before) or crashes when a lambda captures
     // a deconstructed variable. The runner also checks how many tests ran.
-    const int ExpectedTests = 12;
+    const int ExpectedTests = 14;
+
+    // The log callback receives the status and the message of the exception (mesh and patch
+    // errors of the context); other contexts do not log; a disposed context drops late messages.
+    static void TestLog()
+    {
+        var got = new List<(Status S, string M)>();
+        var r = Grid(5); var p = r.Item1; var t = r.Item2;
+        t[5] = 999;  // out of range
+        using (var ctx = new Context(2, (s, m) => { lock (got) got.Add((s, m)); }))
+        {
+            var e = Expect<InvalidMeshException>(() => new Mesh(ctx, p, t));
+            Check(e.Status == Status.IndexOutOfRange, "status");
+            Check(got.Count == 1, "one message, got " + got.Count);
+            Check(got[0].S == Status.IndexOutOfRange, "logged status " + got[0].S);
+            Check(got[0].M.Contains("999"), "logged message names the index: " + got[0].M);
+            Check(e.Message == e.Status + ": " + got[0].M, "logged text equals the exception's: " + e.Message + " | " + got[0].M);
+            Check(ctx.LogExceptions.Count == 0, "no callback exceptions");
+            var g = Grid(11);
+            using (var m = new Mesh(ctx, g.Item1, g.Item2))
+            {
+                Check(got.Count == 1, "a successful call logs nothing");
+                var pe = Expect<MacroconException>(() => Patch.Extract(m, 60, -1));
+                Check(got.Count == 2 && got[1].S == pe.Status && pe.Message == pe.Status + ": " + got[1].M, "patch error logged");
+            }
+            using (var plain = new Context(2))
+                Expect<InvalidMeshException>(() => new Mesh(plain, p, t));
+            Check(got.Count == 2, "another context does not log");
+        }
+        // The mesh outlives its context's handle (the native mesh keeps the native context alive):
+        // its errors must neither crash nor reach the callback that was unregistered.
+        var g2 = Grid(11);
+        Mesh orphan;
+        using (var ctx2 = new Context(2, (s, m) => { lock (got) got.Add((s, m)); })) orphan = new Mesh(ctx2, g2.Item1, g2.Item2);
+        GC.Collect(); GC.WaitForPendingFinalizers();
+        Expect<MacroconException>(() => Patch.Extract(orphan, 60, -1));
+        Check(got.Count == 2, "messages after the context's disposal are dropped, got " + got.Count);
+        orphan.Dispose();
+    }
+
+    // A throwing log callback: nothing crosses into native code, the original error surfaces,
+    // the callback's exception is kept, and the context keeps working.
+    static void TestLogThrows()
+    {
+        int calls = 0;
+        var r = Grid(5); var p = r.Item1; var t = r.Item2;
+        t[5] = 999;
+        using (var ctx = new Context(2, (s, m) => { ++calls; throw new InvalidOperationException("logger is broken"); }))
+        {
+            var e = Expect<InvalidMeshException>(() => new Mesh(ctx, p, t));
+            Check(e.Status == Status.IndexOutOfRange && e.Message.Contains("999"), "original error: " + e.Message);
+            Check(calls == 1, "called once");
+            Check(ctx.LogExceptions.Count == 1 && ctx.LogExceptions[0] is InvalidOperationException &&
+                  ctx.LogExceptions[0].Message == "logger is broken", "callback exception kept");
+            Expect<InvalidMeshException>(() => new Mesh(ctx, p, t));
+            Check(calls == 2 && ctx.LogExceptions.Count == 2, "second failure");
+            var g = Grid(5);
+            using (var m = new Mesh(ctx, g.Item1, g.Item2)) Check(m.Counts.Vertices == 25, "context still works");
+        }
+    }
 
     static int Main()
     {
@@ -591,6 +650,8 @@ static class Tests
         Run("library: bad input, forged bytes, disposed handles", Test8);
         Run("map: from arrays, compute, correspondences, transfer, cross field", Test9);
         Run("struct layouts match macrocon.h", TestLayout);
+        Run("log callback gets status and message of errors", TestLog);
+        Run("throwing log callback: error surfaces, nothing crosses into native code", TestLogThrows);
         Run("heavy parallel work then shutdown", Test10);
         GC.Collect();
         GC.WaitForPendingFinalizers();

@@ -8,6 +8,7 @@ from .core import (
     DESCRIPTOR_CURV9,
     DESCRIPTOR_MEAN_CURVATURE,
     Context,
+    LogCallbackWarning,
     Mesh,
     Patch,
     close_all,
@@ -49,7 +50,7 @@ from .errors import (
 __version__ = "0.1.0"
 
 __all__ = [
-    "ABI_MAJOR", "library_version", "version", "shutdown", "Context", "Mesh", "Patch",
+    "ABI_MAJOR", "library_version", "version", "shutdown", "Context", "LogCallbackWarning", "Mesh", "Patch",
     "DESCRIPTOR_CURV9", "DESCRIPTOR_MEAN_CURVATURE", "Error", "InvalidArgumentError", "NullPointerError",
     "StructSizeError", "BufferTooSmallError", "CancelledError", "InvalidMeshError", "NotADiskError",
     "NumericalError", "InvalidLibraryError", "UnsupportedError", "NotFoundError", "status_name", "close_all",

@@ -3,7 +3,9 @@ from __future__ import annotations
 
 import atexit
 import ctypes
+import itertools
 import sys
+import warnings
 import weakref
 from typing import Callable, Optional
 
@@ -13,6 +15,8 @@ from . import _native
 from .errors import CancelledError, Error, check
 
 ProgressCallback = Callable[[float], bool]
+#: ``log(status, message)``: every error message of a context as it is raised (any thread).
+LogCallback = Callable[[int, str], None]
 
 DESCRIPTOR_CURV9 = 1
 DESCRIPTOR_MEAN_CURVATURE = 2
@@ -121,18 +125,103 @@ class _Progress:
         check(status)
 
 
+class LogCallbackWarning(RuntimeWarning):
+    """A context's log callback raised; the exception is kept in ``Context.log_exceptions``."""
+
+
+class _Log:
+    """One context's log callback and the exceptions it raised (never let into C)."""
+
+    #: At most this many raised exceptions are kept (a logger failing on every message must not
+    #: grow without bound); ``dropped`` counts the rest.
+    KEEP = 100
+
+    def __init__(self, fn: LogCallback):
+        self.fn = fn
+        self.exceptions: list[BaseException] = []
+        self.dropped = 0
+
+    def deliver(self, status: int, message: Optional[bytes]) -> None:
+        # Decoded like errors.check decodes mcon_get_last_error, so the text equals Error.message.
+        text = message.decode("utf-8", "replace") if message else ""
+        try:
+            self.fn(int(status), text)
+        except BaseException as exc:  # noqa: BLE001 - must not propagate into C (ctypes would only print it)
+            if len(self.exceptions) < self.KEEP:
+                self.exceptions.append(exc)
+            else:
+                self.dropped += 1
+            try:
+                warnings.warn(LogCallbackWarning(f"macrocon log callback raised {exc!r} (kept in Context.log_exceptions)"))
+            except BaseException:  # noqa: BLE001 - e.g. -W error turns the warning itself into an exception
+                pass
+
+
+#: Log callbacks by key. The C side gets one module-lifetime trampoline and the key as user_data,
+#: never a per-context ctypes object: the native context outlives its Python object while a
+#: dependent handle (mesh, patch, map, library) still holds it, and a message raised then must not
+#: call a freed CFUNCTYPE thunk. A key whose Context object is gone is simply not found.
+_log_targets: "dict[int, _Log]" = {}
+_log_keys = itertools.count(1)
+
+
+def _log_trampoline(user_data: Optional[int], status: int, message: Optional[bytes]) -> None:
+    # ctypes takes the GIL for the call, also on TBB worker threads the interpreter never saw.
+    try:
+        target = _log_targets.get(user_data or 0)
+        if target is not None:
+            target.deliver(status, message)
+    except BaseException:  # noqa: BLE001 - nothing may unwind into C, not even at interpreter teardown
+        pass
+
+
+_LOG_TRAMPOLINE = _native.LOG_CALLBACK(_log_trampoline)
+
+
 class Context(_Handle):
-    """Owns the SDK's thread pool. ``max_threads=0`` uses every hardware thread."""
+    """Owns the SDK's thread pool. ``max_threads=0`` uses every hardware thread.
+
+    ``log(status, message)``, if given, receives every error message raised in this context (by
+    calls on the context and on meshes, patches, maps and libraries made in it), with the same
+    status and text as the :class:`Error` the failing call raises. It may run on any thread.
+    An exception raised by ``log`` never reaches the C side: it is kept in ``log_exceptions``
+    (the first 100), reported as a :class:`LogCallbackWarning`, and the failing call still raises
+    its own :class:`Error`. The callback stays registered as long as this object lives (meshes,
+    patches and libraries made in the context keep it alive), also after ``close()``.
+    """
 
     _release = _native.lib.mcon_context_release
 
-    def __init__(self, max_threads: int = 0):
+    def __init__(self, max_threads: int = 0, log: Optional[LogCallback] = None):
+        if log is not None and not callable(log):
+            raise TypeError(f"log must be callable(status: int, message: str), got {type(log).__name__}")
         options = _native.ContextOptions()
         check(_native.lib.mcon_context_options_init(ctypes.byref(options)))
         options.max_threads = int(max_threads)
+        self._log: Optional[_Log] = None
+        key = 0
+        if log is not None:
+            self._log = _Log(log)
+            key = next(_log_keys)
+            _log_targets[key] = self._log
+            options.log_callback = _LOG_TRAMPOLINE
+            options.log_user_data = key
         handle = ctypes.c_void_p()
-        check(_native.lib.mcon_context_create(ctypes.byref(options), ctypes.byref(handle)))
+        try:
+            check(_native.lib.mcon_context_create(ctypes.byref(options), ctypes.byref(handle)))
+        except BaseException:
+            _log_targets.pop(key, None)
+            raise
         super().__init__(handle)
+        if key:
+            # Runs after __del__ (which releases the native reference), so the callback is
+            # unregistered only once this object, and every Python object holding it, is gone.
+            weakref.finalize(self, _log_targets.pop, key, None)
+
+    @property
+    def log_exceptions(self) -> list:
+        """Exceptions the log callback raised (oldest first, at most 100; empty without ``log``)."""
+        return list(self._log.exceptions) if self._log is not None else []
 
 
 def _as_array(name: str, array, dtypes: tuple, columns: int) -> np.ndarray:
@@ -182,6 +271,7 @@ class Patch(_Handle):
     def __init__(self, handle: ctypes.c_void_p):
         super().__init__(handle)
         self._info = None
+        self.context: Optional[Context] = None  # set by the constructors: keeps the log callback registered
 
     @classmethod
     def extract(
@@ -216,7 +306,9 @@ class Patch(_Handle):
         handle = ctypes.c_void_p()
         status = _native.lib.mcon_patch_extract(mesh.handle, ctypes.byref(options), ctypes.byref(handle))
         cb.check(status)
-        return cls(handle)
+        patch = cls(handle)
+        patch.context = mesh.context  # errors on the patch go to this context's log callback
+        return patch
 
     @classmethod
     def from_arrays(
@@ -253,7 +345,9 @@ class Patch(_Handle):
         handle = ctypes.c_void_p()
         check(_native.lib.mcon_patch_create_from_arrays(context.handle, ctypes.byref(desc), ctypes.byref(frame),
                                                         ctypes.byref(handle)))
-        return cls(handle)
+        patch = cls(handle)
+        patch.context = context
+        return patch
 
     def cross_field(
         self,
@@ -368,4 +462,4 @@ class Patch(_Handle):
         return out
 
 
-__all__ = ["Context", "Mesh", "Patch", "Error", "CancelledError", "version", "shutdown", "close_all"]
+__all__ = ["Context", "Mesh", "Patch", "LogCallbackWarning", "Error", "CancelledError", "version", "shutdown", "close_all"]
