@@ -18,8 +18,8 @@ constexpr double kChiralityCenterRadius = 0.3;  // normalized geodesic radius of
 // straight-line (3D) distance from it. Both patches are geodesic disks around corresponding
 // centers (design-notes §1: "patches are disks with a known center"), so the center distance
 // pins every point's ring, which curvature alone cannot on parts with repeated features
-// (fingers, toes); the chord/arc difference is extrinsic and tells the directions of a bent
-// patch apart (across vs. along a forearm, where intrinsic descriptors are blind).
+// (fingers, toes); the chord is extrinsic and tells the directions of a bent patch apart
+// (across vs. along a forearm, where intrinsic descriptors are blind).
 Eigen::MatrixXd raw_channels(const Patch& patch, bool center_channels) {
   const int n = patch.mesh.num_vertices();
   Eigen::MatrixXd c(n, center_channels ? 4 : 1);
@@ -70,8 +70,12 @@ SurfaceMap map_patches(const Patch& source, const Patch& target, const PatchMapO
   // Joint normalization (thesis §3.1: every dimension std 1 over both patches), then weights.
   const double weights[4] = {1.0, options.center_distance_weight, options.chord_weight, options.chirality_weight};
   for (int k = 0; k < s.cols(); ++k) {
-    // The chord channel carries the chord/arc difference, which is what distinguishes
-    // directions; the arc itself is already channel 1.
+    // The chord channel is the *standardized* arc (channel 1 after its normalization below, std
+    // 1) minus the chord (radius units, std ~0.2), normalized again: a second center-distance
+    // channel bent by the chord, i.e. by the patch's extrinsic shape. The plain arc - chord
+    // difference measured worse: eval-mapping seeds 1 / 2 / 3 mean eps x 100 6.32 / 5.47 / 5.65
+    // against 2.90 / 6.64 / 2.68 (forearms change orientation either way; the other classes move
+    // by +-0.3), and dropping the channel 3.01 / 6.71 / 2.73.
     if (k == 2) {
       s.col(2) = s.col(1) - s.col(2);
       t.col(2) = t.col(1) - t.col(2);

@@ -18,8 +18,8 @@ struct PatchMapOptions {
   std::vector<double> pyramid_sigmas = {0.3, 0.15, 0.0};
   // Descriptor channels besides the mean curvature (each normalized to std 1 over both patches,
   // then scaled by its weight; 0 drops it): the geodesic distance from the patch center, and the
-  // difference between that arc and the straight 3D chord to the center. Both 0: the thesis'
-  // mean curvature alone.
+  // standardized distance minus the straight 3D chord to the center (patch_map.cpp says why not
+  // the plain difference). All three 0: the thesis' mean curvature alone.
   double center_distance_weight = 1.0;
   double chord_weight = 1.0;
   // A chiral channel (changes sign under reflection; patch_map.cpp), so that mirrored and
