@@ -152,8 +152,18 @@ SurfaceMap compute_surface_map(const MapDomain& source, const MapDomain& target,
   const auto t0 = std::chrono::steady_clock::now();
   const SourceDisk plain = make_source_disk(source.mesh, source.uv, false);
   constexpr double kAlignShare = 0.15;
-  const RigidAlignmentResult init = align_rigid(source.uv, plain.vertex_weight, levels, options.alignment,
-                                                [&](double f) { report(kAlignShare * f); return true; });
+  RigidAlignmentOptions alignment_options = options.alignment;
+  if (options.orientation != MapOrientation::automatic) alignment_options.allow_reflection = true;  // both scored
+  RigidAlignmentResult init = align_rigid(source.uv, plain.vertex_weight, levels, alignment_options,
+                                          [&](double f) { report(kAlignShare * f); return true; });
+  if (options.orientation != MapOrientation::automatic) {
+    // A forced orientation takes that orientation's best refined candidate.
+    const bool reverse = options.orientation == MapOrientation::reverse;
+    const double score = reverse ? init.score_reflected : init.score_unreflected;
+    require(score >= 0, MCON_ERROR_NUMERICAL, "surface map: no rigid candidate of the requested orientation");
+    init.transform = reverse ? init.best_reflected : init.best_unreflected;
+    init.score = score;
+  }
   out.alignment_seconds = seconds_since(t0);
   out.alignment = init;
 
@@ -200,8 +210,8 @@ SurfaceMap compute_surface_map(const MapDomain& source, const MapDomain& target,
   };
   auto level_from = [&](int l) { return kAlignShare + l * level_share; };
   const SourceDisk mirrored = make_source_disk(source.mesh, source.uv, true);
-  const bool compare = init.score_unreflected >= 0 && init.score_reflected >= 0 &&
-                       options.alignment.allow_reflection &&
+  const bool compare = options.orientation == MapOrientation::automatic && init.score_unreflected >= 0 &&
+                       init.score_reflected >= 0 && options.alignment.allow_reflection &&
                        std::abs(init.score_reflected - init.score_unreflected) < options.orientation_ambiguity;
   Candidate chosen{init.transform.reflected ? &mirrored : &plain, start_from(init.transform), {}, 0};
   if (compare) {

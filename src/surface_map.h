@@ -32,7 +32,13 @@ struct MapDomain {
   const std::vector<Eigen::MatrixXd>& descriptor_levels; // smoothest first; rows = vertices, d columns
 };
 
+// Which orientations the map may take. automatic: the descriptors and energies decide (with
+// alignment.allow_reflection); preserve / reverse force one, e.g. when a host lets its user flip
+// a nearly mirror-symmetric patch (a forearm strip) whose orientation the geometry cannot tell.
+enum class MapOrientation { automatic, preserve, reverse };
+
 struct SurfaceMapOptions {
+  MapOrientation orientation = MapOrientation::automatic;
   RigidAlignmentOptions alignment;
   MapEnergyWeights weights;
   NewtonOptions newton;        // per descriptor level

@@ -219,6 +219,31 @@ TEST(SurfaceMap, ProgressWindowStopsAtTheFirstSlowWindow) {
   }
 }
 
+TEST(SurfaceMap, ForcedOrientationIsObeyed) {
+  // A mirrored truth: automatic finds the reflection, preserve must not take it (and still
+  // return an injective map), reverse takes it without comparing.
+  synthetic::GroundTruth truth;
+  truth.angle = 1.2;
+  truth.reflected = true;
+  const synthetic::Problem pr = problem(truth);
+  SurfaceMapOptions o;
+  o.orientation = MapOrientation::preserve;
+  const SurfaceMap plain = run(pr, o);
+  EXPECT_FALSE(plain.reflected);
+  EXPECT_FALSE(plain.orientation_compared);
+  EXPECT_EQ(inverted(pr, plain), 0);
+  o.orientation = MapOrientation::reverse;
+  const SurfaceMap mirrored = run(pr, o);
+  EXPECT_TRUE(mirrored.reflected);
+  EXPECT_FALSE(mirrored.orientation_compared);
+  EXPECT_EQ(inverted(pr, mirrored), 0);
+  EXPECT_LT(synthetic::mean_error(pr, mirrored.phi), 0.025);
+  EXPECT_GT(synthetic::mean_error(pr, plain.phi), 2 * synthetic::mean_error(pr, mirrored.phi));
+  // Forcing works even where automatic reflections are switched off.
+  o.alignment.allow_reflection = false;
+  EXPECT_TRUE(run(pr, o).reflected);
+}
+
 TEST(SurfaceMap, ToleratesDescriptorMismatch) {
   synthetic::GroundTruth truth;
   truth.angle = -2.0;
