@@ -69,17 +69,13 @@ SurfaceMap map_patches(const Patch& source, const Patch& target, const PatchMapO
   Eigen::MatrixXd s = raw_channels(source, center), t = raw_channels(target, center);
   // Joint normalization (thesis §3.1: every dimension std 1 over both patches), then weights.
   const double weights[4] = {1.0, options.center_distance_weight, options.chord_weight, options.chirality_weight};
+  // The chord channel carries arc - chord (both in radius units, before any normalization):
+  // zero along straight directions, growing across bent ones.
+  if (s.cols() > 2) {
+    s.col(2) = s.col(1) - s.col(2);
+    t.col(2) = t.col(1) - t.col(2);
+  }
   for (int k = 0; k < s.cols(); ++k) {
-    // The chord channel is the *standardized* arc (channel 1 after its normalization below, std
-    // 1) minus the chord (radius units, std ~0.2), normalized again: a second center-distance
-    // channel bent by the chord, i.e. by the patch's extrinsic shape. The plain arc - chord
-    // difference measured worse: eval-mapping seeds 1 / 2 / 3 mean eps x 100 6.32 / 5.47 / 5.65
-    // against 2.90 / 6.64 / 2.68 (forearms change orientation either way; the other classes move
-    // by +-0.3), and dropping the channel 3.01 / 6.71 / 2.73.
-    if (k == 2) {
-      s.col(2) = s.col(1) - s.col(2);
-      t.col(2) = t.col(1) - t.col(2);
-    }
     const double mean = (s.col(k).sum() + t.col(k).sum()) / static_cast<double>(s.rows() + t.rows());
     const double var = ((s.col(k).array() - mean).square().sum() + (t.col(k).array() - mean).square().sum()) /
                        static_cast<double>(s.rows() + t.rows());

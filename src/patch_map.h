@@ -18,14 +18,20 @@ struct PatchMapOptions {
   std::vector<double> pyramid_sigmas = {0.3, 0.15, 0.0};
   // Descriptor channels besides the mean curvature (each normalized to std 1 over both patches,
   // then scaled by its weight; 0 drops it): the geodesic distance from the patch center, and the
-  // standardized distance minus the straight 3D chord to the center (patch_map.cpp says why not
-  // the plain difference). All three 0: the thesis' mean curvature alone.
+  // difference between that arc and the straight 3D chord to the center. All three 0: the
+  // thesis' mean curvature alone.
   double center_distance_weight = 1.0;
   double chord_weight = 1.0;
   // A chiral channel (changes sign under reflection; patch_map.cpp), so that mirrored and
-  // same-side pairs are told apart by the descriptors themselves. 2 measured best on the default
-  // eval-mapping run (1: overall mean eps x 100 10.8, forearms 26.5; 2: 7.3 and 4.9).
-  double chirality_weight = 2.0;
+  // same-side pairs are told apart by the descriptors themselves. Weight 1 with the arc - chord
+  // channel measured best on eval-mapping seeds 1-7 (91 pairs; per-class mean eps x 100 averaged
+  // over the seeds, against weight 2 with the earlier chord channel built from the standardized
+  // arc): nose 2.9 vs 3.2, ear 2.2 vs 2.7, hand 3.3 vs 3.4, foot 2.9 vs 3.0, eye and face equal,
+  // mouth better on 5 of 7 seeds; 0.5 was no better. Forearm strips are nearly mirror-symmetric:
+  // their orientation is a coin toss with every setting tried (4-5 of 7 seeds lose a mirrored
+  // forearm pair to the plain orientation), which is why hosts can force it
+  // (SurfaceMapOptions::orientation).
+  double chirality_weight = 1.0;
 };
 
 // Maps `source` onto `target` (both from extract_geodesic_disk, normalized to radius 1).

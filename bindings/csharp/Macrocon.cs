@@ -741,6 +741,9 @@ namespace Macrocon
         public double MaxGeodesicDistance => info.max_geodesic_distance;
         public double Radius => info.radius;
         public unsafe double[] Center { get { fixed (double* c = info.center) return new[] { c[0], c[1], c[2] }; } }
+        // The center as a point of the patch's own mesh (what FromArrays takes back).
+        public uint CenterPatchTriangle => info.center_patch_triangle;
+        public unsafe double[] CenterBarycentric { get { fixed (double* c = info.center_barycentric) return new[] { c[0], c[1], c[2] }; } }
 
         public double[] Positions()
         {

@@ -397,7 +397,8 @@ static class Tests
         using (var ctx = new Context())
         using (var m = new Mesh(ctx, p, t))
         using (var target = Patch.Extract(m, 21 * 41 + 20, 0.25))
-        using (var source = Patch.FromArrays(ctx, target.Positions(), target.Triangles(), 0, null, target.Center, target.Radius))
+        using (var source = Patch.FromArrays(ctx, target.Positions(), target.Triangles(), target.CenterPatchTriangle,
+                                             target.CenterBarycentric, target.Center, target.Radius))
         {
             Check(source.VertexCount == target.VertexCount && source.BoundaryLoops == 1, "from arrays");
             var r14 = source.HostVertices(); var hv0 = r14.Item1; var hv1 = r14.Item2; var ht = r14.Item3;
