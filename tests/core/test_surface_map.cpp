@@ -319,7 +319,11 @@ TEST(SurfaceMap, RejectsBadInput) {
   std::vector<Eigen::MatrixXd> none;
   EXPECT_EQ(status_of([&] { compute_surface_map({pr.source, pr.source_uv, none}, dst, o); }), MCON_ERROR_INVALID_ARGUMENT);
   std::vector<Eigen::MatrixXd> wide = pr.target_levels;
-  for (auto& l : wide) l.conservativeResize(Eigen::NoChange, 3);
+  for (auto& l : wide) {
+    const Eigen::Index d = l.cols();
+    l.conservativeResize(Eigen::NoChange, 3);
+    l.rightCols(3 - d).setZero();  // conservativeResize leaves new columns uninitialized (NaN -> NON_FINITE)
+  }
   EXPECT_EQ(status_of([&] { compute_surface_map(src, {pr.target, pr.target_uv, wide}, o); }), MCON_ERROR_INVALID_ARGUMENT);
   std::vector<Eigen::MatrixXd> nan = pr.source_levels;
   nan[1](3, 0) = std::numeric_limits<double>::quiet_NaN();
