@@ -27,6 +27,8 @@ namespace Macrocon
     public enum RetrievalDescriptor { Curv9 = 1, Hks = 3, Wks = 4, Custom = 256 }
     public enum MapStopReason { Converged = 1, Stalled = 2, IterationCap = 3, Cancelled = 4 }
     public enum MapDirection { SourceToTarget = 1, TargetToSource = 2 }
+    /// <summary>mcon_map_orientation: the descriptors decide, or one orientation is forced (a "flip").</summary>
+    public enum MapOrientation { Automatic = 0, Preserve = 1, Reverse = 2 }
     public enum EntryString { Name = 1, ClassLabel = 2, Author = 3, Licence = 4, Tag = 5, FieldName = 6 }
 
     /// <summary>mcon_surface_point: triangle `Face` of a patch and the weights of its corners.</summary>
@@ -71,6 +73,12 @@ namespace Macrocon
         public double EnergyTotal, EnergyDescriptor, EnergyDistortion, EnergyArea, EnergyInjectivity;
         public uint Iterations; public MapStopReason StopReason; public uint Reflected; public uint Levels; public uint FlippedTriangles;
         public double AlignmentScore, AlignmentSeconds, OptimizationSeconds;
+        /// <summary>Rigid scores of each orientation's best candidate (-1: not tried).</summary>
+        public double AlignmentScoreUnreflected, AlignmentScoreReflected;
+        /// <summary>1 if both orientations were optimized at level 0 and compared.</summary>
+        public uint OrientationCompared;
+        /// <summary>Their level-0 energies (-1: not compared).</summary>
+        public double Level0EnergyUnreflected, Level0EnergyReflected;
     }
 
     /// <summary>A failed Macrocon call: the C status code and the library's message.</summary>
@@ -243,6 +251,7 @@ namespace Macrocon
         {
             public uint struct_size; public ulong seed; public uint alignment_samples; public uint allow_reflection;
             public uint max_iterations; public IntPtr progress; public IntPtr progress_user_data;
+            public uint orientation;
         }
 
         [StructLayout(LayoutKind.Sequential)]

@@ -10,7 +10,9 @@ namespace Macrocon
     {
         public ulong Seed;
         public uint? AlignmentSamples, MaxIterations;
-        public bool AllowReflection = true;
+        public bool AllowReflection = true;  // restricts Automatic only
+        /// <summary>Automatic, or force one (a "flip" recomputes with the one opposite to Info.Reflected).</summary>
+        public MapOrientation Orientation = MapOrientation.Automatic;
     }
 
     /// <summary>Polylines re-traced on a target patch (every segment inside one target triangle).</summary>
@@ -75,6 +77,7 @@ namespace Macrocon
             if (settings.AlignmentSamples.HasValue) o.alignment_samples = settings.AlignmentSamples.Value;
             if (settings.MaxIterations.HasValue) o.max_iterations = settings.MaxIterations.Value;
             o.allow_reflection = settings.AllowReflection ? 1u : 0u;
+            o.orientation = (uint)settings.Orientation;
             using (var scope = new Native.ProgressScope(progress))
             {
                 o.progress = scope.Function;

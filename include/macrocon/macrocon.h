@@ -529,6 +529,18 @@ typedef enum mcon_map_stop_reason {
   MCON_MAP_STOP_CANCELLED = 4      /* (never returned by a successful mcon_map_compute) */
 } mcon_map_stop_reason;
 
+/* Which orientation the map takes (mcon_map_options.orientation). */
+typedef enum mcon_map_orientation {
+  /* The descriptors decide; when both orientations' best rigid starts score alike (a nearly
+   * mirror-symmetric patch) both are optimized at the smoothest level and the lower energy wins
+   * (see mcon_map_info.orientation_compared). allow_reflection = 0 rules reflections out. */
+  MCON_MAP_ORIENTATION_AUTOMATIC = 0,
+  /* Forced: the best orientation-preserving rigid candidate, no comparison. */
+  MCON_MAP_ORIENTATION_PRESERVE = 1,
+  /* Forced: the best orientation-reversing (mirrored) rigid candidate, no comparison. */
+  MCON_MAP_ORIENTATION_REVERSE = 2
+} mcon_map_orientation;
+
 typedef struct mcon_map_options {
   uint32_t struct_size;
   /* Seed of the rigid initialization's candidates; results are bit-identical for any thread
@@ -542,6 +554,12 @@ typedef struct mcon_map_options {
   uint32_t max_iterations;
   mcon_progress_callback progress;
   void* progress_user_data;
+  /* Appended after progress_user_data (a struct_size that ends before it keeps the default): an
+   * mcon_map_orientation, default MCON_MAP_ORIENTATION_AUTOMATIC; any other value is
+   * INVALID_ARGUMENT. allow_reflection only restricts AUTOMATIC: a forced orientation is an
+   * explicit request and is obeyed. Typical use: a "flip" button that recomputes with the
+   * orientation opposite to mcon_map_info.reflected. */
+  uint32_t orientation;
 } mcon_map_options;
 
 MCON_API mcon_status mcon_map_options_init(mcon_map_options* options);
@@ -581,6 +599,18 @@ typedef struct mcon_map_info {
   double alignment_score;         /* score of the rigid initialization */
   double alignment_seconds;
   double optimization_seconds;
+  /* Added after optimization_seconds (an older struct_size simply does not receive them): the
+   * evidence of the orientation decision. Rigid scores of the best orientation-preserving and
+   * best mirrored candidate (-1: that orientation was not tried, e.g. reflected with
+   * allow_reflection = 0). Their difference says how close the automatic call was. */
+  double alignment_score_unreflected;
+  double alignment_score_reflected;
+  /* 1 if both orientations were optimized at the smoothest level and compared (automatic mode and
+   * rigid scores within the ambiguity margin); 0 for a clear call or a forced orientation. */
+  uint32_t orientation_compared;
+  /* The two level-0 energies of that comparison (lower is better); -1 if not compared. */
+  double level0_energy_unreflected;
+  double level0_energy_reflected;
 } mcon_map_info;
 
 MCON_API mcon_status mcon_map_info_init(mcon_map_info* info);

@@ -747,11 +747,13 @@ class PolylineSet {
 struct MapOptions {
   std::uint64_t seed = 0;
   std::uint32_t alignment_samples = 10000;
-  bool allow_reflection = true;
+  bool allow_reflection = true;  // restricts automatic only
   std::uint32_t max_iterations = 100;
   // Fraction in [0, 1]; return false to cancel (Error with MCON_ERROR_CANCELLED). An exception it
   // throws cancels the computation and is rethrown from Map::compute.
   std::function<bool(double)> progress;
+  // Automatic, or force one orientation (a "flip" recomputes with the one opposite to info().reflected).
+  mcon_map_orientation orientation = MCON_MAP_ORIENTATION_AUTOMATIC;
 };
 
 // The re-embedding map Phi of a source patch onto a target patch, and transfers through it.
@@ -764,6 +766,7 @@ class Map {
     c.alignment_samples = options.alignment_samples;
     c.allow_reflection = options.allow_reflection ? 1u : 0u;
     c.max_iterations = options.max_iterations;
+    c.orientation = static_cast<std::uint32_t>(options.orientation);
     Forward forward{&options.progress, nullptr};
     if (options.progress) {
       c.progress = &Forward::call;

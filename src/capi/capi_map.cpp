@@ -2,6 +2,7 @@
 // with progress and cancellation, and its queries (info, both correspondences, phi, outside mask).
 // Transfers are in capi_transfer.cpp, the cross field in capi_cross_field.cpp.
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 
 #include "capi_map_handles.h"
@@ -19,6 +20,12 @@ mcon_map_t::~mcon_map_t() {
 
 namespace {
 
+// The first published sizes: mcon_map_options ended with progress_user_data and mcon_map_info
+// with optimization_seconds. Callers compiled against that header keep working (the appended
+// fields keep their defaults, or are not written).
+constexpr std::size_t kMapOptionsMinSize = offsetof(mcon_map_options, orientation);
+constexpr std::size_t kMapInfoMinSize = offsetof(mcon_map_info, alignment_score_unreflected);
+
 mcon_patch_frame default_frame() {
   mcon_patch_frame f{};
   f.struct_size = sizeof(mcon_patch_frame);
@@ -35,6 +42,7 @@ mcon_map_options default_map_options() {
   o.alignment_samples = 10000;
   o.allow_reflection = 1;
   o.max_iterations = 100;
+  o.orientation = MCON_MAP_ORIENTATION_AUTOMATIC;
   return o;
 }
 
@@ -120,18 +128,24 @@ mcon_status mcon_map_compute(mcon_patch source, mcon_patch target, const mcon_ma
         check_handle(source, "patch");
         log_context = source->context;
         check_handle(target, "patch");
-        const auto o = options ? read_options(options, sizeof(mcon_map_options), "mcon_map_options",
+        const auto o = options ? read_options(options, kMapOptionsMinSize, "mcon_map_options",
                                               default_map_options())
                                : default_map_options();
         require(o.alignment_samples >= 1 && o.alignment_samples <= 100000000u, MCON_ERROR_INVALID_ARGUMENT,
                 "alignment_samples must be in [1, 1e8] (got " + std::to_string(o.alignment_samples) + ")");
         require(o.max_iterations >= 1 && o.max_iterations <= 1000000u, MCON_ERROR_INVALID_ARGUMENT,
                 "max_iterations must be in [1, 1e6] (got " + std::to_string(o.max_iterations) + ")");
+        require(o.orientation <= MCON_MAP_ORIENTATION_REVERSE, MCON_ERROR_INVALID_ARGUMENT,
+                "orientation " + std::to_string(o.orientation) +
+                    " is not an mcon_map_orientation (0 automatic, 1 preserve, 2 reverse)");
 
         PatchMapOptions po;
         po.map.alignment.samples = static_cast<int>(o.alignment_samples);
         po.map.alignment.seed = o.seed;
         po.map.alignment.allow_reflection = o.allow_reflection != 0;
+        po.map.orientation = o.orientation == MCON_MAP_ORIENTATION_PRESERVE  ? MapOrientation::preserve
+                             : o.orientation == MCON_MAP_ORIENTATION_REVERSE ? MapOrientation::reverse
+                                                                             : MapOrientation::automatic;
         po.map.newton.max_iterations = static_cast<int>(o.max_iterations);
         std::shared_ptr<const std::atomic<bool>> cancelled;
         po.map.progress = make_progress(o.progress, o.progress_user_data, &cancelled);
@@ -194,7 +208,12 @@ mcon_status mcon_map_get_info(mcon_map map, mcon_map_info* info) {
     v.alignment_score = m.alignment.score;
     v.alignment_seconds = m.alignment_seconds;
     v.optimization_seconds = m.optimization_seconds;
-    write_info(info, sizeof(mcon_map_info), "mcon_map_info", v);
+    v.alignment_score_unreflected = m.alignment.score_unreflected;
+    v.alignment_score_reflected = m.alignment.score_reflected;
+    v.orientation_compared = m.orientation_compared ? 1 : 0;
+    v.level0_energy_unreflected = m.level0_energy_unreflected;
+    v.level0_energy_reflected = m.level0_energy_reflected;
+    write_info(info, kMapInfoMinSize, "mcon_map_info", v);
   });
 }
 

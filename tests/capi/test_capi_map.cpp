@@ -24,6 +24,22 @@ Noses noses(uint32_t max_threads = 0) {
   return n;
 }
 
+// Triangles of phi whose orientation disagrees with the map's (reflected maps flip every one).
+size_t wrongly_oriented(mcon_map map, mcon_patch source, bool reflected) {
+  const PatchArrays s = arrays_of_patch(source);
+  std::vector<double> phi(2 * s.nv());
+  EXPECT_EQ(mcon_map_get_phi(map, phi.data(), phi.size()), MCON_OK);
+  size_t wrong = 0;
+  for (size_t f = 0; f < s.nt(); ++f) {
+    const double* a = &phi[2 * s.tri[3 * f]];
+    const double* b = &phi[2 * s.tri[3 * f + 1]];
+    const double* c = &phi[2 * s.tri[3 * f + 2]];
+    const double area = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+    wrong += (reflected ? -area : area) > 0 ? 0 : 1;
+  }
+  return wrong;
+}
+
 void expect_valid_map(mcon_map map, mcon_patch source, mcon_patch target) {
   const PatchArrays s = arrays_of_patch(source), t = arrays_of_patch(target);
   mcon_map_info info;
@@ -74,17 +90,7 @@ void expect_valid_map(mcon_map map, mcon_patch source, mcon_patch target) {
   EXPECT_GT(inside2, 0u);
 
   // phi: no inverted triangle (counted here again, in the map's orientation).
-  std::vector<double> phi(2 * s.nv());
-  ASSERT_EQ(mcon_map_get_phi(map, phi.data(), phi.size()), MCON_OK);
-  size_t wrong = 0;
-  for (size_t f = 0; f < s.nt(); ++f) {
-    const double* a = &phi[2 * s.tri[3 * f]];
-    const double* b = &phi[2 * s.tri[3 * f + 1]];
-    const double* c = &phi[2 * s.tri[3 * f + 2]];
-    const double area = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
-    wrong += (info.reflected ? -area : area) > 0 ? 0 : 1;
-  }
-  EXPECT_EQ(wrong, 0u);
+  EXPECT_EQ(wrongly_oriented(map, source, info.reflected != 0), 0u);
 }
 
 }  // namespace
@@ -102,6 +108,66 @@ TEST(CapiMap, NoseOntoNoseIsLocallyInjectiveInBothDirections) {
   mcon_map_info_init(&info);
   ASSERT_EQ(mcon_map_get_info(forward.get(), &info), MCON_OK);
   EXPECT_EQ(info.reflected, 0u);  // a nose onto the same nose keeps its orientation
+}
+
+TEST(CapiMap, ForcedOrientationsAreObeyedAndReportTheirEvidence) {
+  // The nose is nearly mirror-symmetric: the "flip" workflow forces either orientation. Both must
+  // come back locally injective in their own orientation, with both rigid scores reported.
+  Noses n = noses();
+  mcon_map_info automatic;
+  {
+    const MapPtr map = compute(n.source.get(), n.target.get(), fast_options());
+    ASSERT_TRUE(map);
+    ASSERT_EQ(mcon_map_info_init(&automatic), MCON_OK);
+    ASSERT_EQ(mcon_map_get_info(map.get(), &automatic), MCON_OK);
+    EXPECT_GE(automatic.alignment_score_unreflected, 0.0);
+    EXPECT_GE(automatic.alignment_score_reflected, 0.0);  // allow_reflection is on by default
+    EXPECT_EQ(automatic.alignment_score,
+              automatic.reflected ? automatic.alignment_score_reflected : automatic.alignment_score_unreflected);
+    if (automatic.orientation_compared) {
+      EXPECT_GT(automatic.level0_energy_unreflected, 0.0);
+      EXPECT_GT(automatic.level0_energy_reflected, 0.0);
+    } else {
+      EXPECT_EQ(automatic.level0_energy_unreflected, -1.0);
+      EXPECT_EQ(automatic.level0_energy_reflected, -1.0);
+    }
+  }
+  for (uint32_t orientation : {static_cast<uint32_t>(MCON_MAP_ORIENTATION_PRESERVE),
+                               static_cast<uint32_t>(MCON_MAP_ORIENTATION_REVERSE)}) {
+    SCOPED_TRACE(orientation);
+    mcon_map_options o = fast_options();
+    o.orientation = orientation;
+    const MapPtr map = compute(n.source.get(), n.target.get(), o);
+    ASSERT_TRUE(map);
+    mcon_map_info info;
+    ASSERT_EQ(mcon_map_info_init(&info), MCON_OK);
+    ASSERT_EQ(mcon_map_get_info(map.get(), &info), MCON_OK);
+    const bool reverse = orientation == MCON_MAP_ORIENTATION_REVERSE;
+    EXPECT_EQ(info.reflected, reverse ? 1u : 0u);
+    EXPECT_EQ(info.flipped_triangles, 0u);
+    EXPECT_EQ(wrongly_oriented(map.get(), n.source.get(), reverse), 0u);
+    // Forced: no comparison, and the start is that orientation's best rigid candidate.
+    EXPECT_EQ(info.orientation_compared, 0u);
+    EXPECT_EQ(info.level0_energy_unreflected, -1.0);
+    EXPECT_EQ(info.level0_energy_reflected, -1.0);
+    EXPECT_EQ(info.alignment_score, reverse ? info.alignment_score_reflected : info.alignment_score_unreflected);
+    // Both orientations' rigid candidates are scored whatever is forced, with the same seed: the
+    // scores are those of the automatic run.
+    EXPECT_EQ(info.alignment_score_unreflected, automatic.alignment_score_unreflected);
+    EXPECT_EQ(info.alignment_score_reflected, automatic.alignment_score_reflected);
+    EXPECT_GT(info.source_vertices_inside, 0u);
+  }
+  // Reverse with automatic reflections switched off is still an explicit request, obeyed.
+  mcon_map_options o = fast_options();
+  o.orientation = MCON_MAP_ORIENTATION_REVERSE;
+  o.allow_reflection = 0;
+  const MapPtr map = compute(n.source.get(), n.target.get(), o);
+  ASSERT_TRUE(map);
+  mcon_map_info info;
+  ASSERT_EQ(mcon_map_info_init(&info), MCON_OK);
+  ASSERT_EQ(mcon_map_get_info(map.get(), &info), MCON_OK);
+  EXPECT_EQ(info.reflected, 1u);
+  EXPECT_EQ(info.flipped_triangles, 0u);
 }
 
 TEST(CapiMap, TheMapKeepsItsPatchesAlive) {

@@ -3,6 +3,7 @@
 // dimensions for a kind, non-disk arrays, NaN. The patches are small synthetic bumpy disks made
 // with mcon_patch_create_from_arrays, so the map is quick.
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <limits>
 
@@ -108,6 +109,7 @@ TEST_F(CapiMapArgs, InitFunctions) {
   EXPECT_EQ(o.allow_reflection, 1u);
   EXPECT_EQ(o.max_iterations, 100u);
   EXPECT_EQ(o.progress, nullptr);
+  EXPECT_EQ(o.orientation, static_cast<uint32_t>(MCON_MAP_ORIENTATION_AUTOMATIC));
   mcon_patch_frame f;
   std::memset(&f, 0x55, sizeof f);
   ASSERT_EQ(mcon_patch_frame_init(&f), MCON_OK);
@@ -194,7 +196,8 @@ TEST_F(CapiMapArgs, ComputeRejectsBadArguments) {
   Garbage g;
   EXPECT_EQ(mcon_map_compute(reinterpret_cast<mcon_patch>(&g), target_, &o, &m), MCON_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(mcon_map_compute(source_, reinterpret_cast<mcon_patch>(map_), &o, &m), MCON_ERROR_INVALID_ARGUMENT);
-  for (uint32_t size : {0u, static_cast<uint32_t>(sizeof(mcon_map_options) - 1)}) {
+  // The first published size (ending before `orientation`) is the minimum.
+  for (uint32_t size : {0u, static_cast<uint32_t>(offsetof(mcon_map_options, orientation) - 1)}) {
     mcon_map_options x = o;
     x.struct_size = size;
     EXPECT_EQ(mcon_map_compute(source_, target_, &x, &m), MCON_ERROR_STRUCT_SIZE);
@@ -208,6 +211,64 @@ TEST_F(CapiMapArgs, ComputeRejectsBadArguments) {
   EXPECT_EQ(mcon_map_compute(source_, target_, &x, &m), MCON_ERROR_INVALID_ARGUMENT);
   EXPECT_TRUE(mentions("max_iterations")) << last_message();
   EXPECT_EQ(m, nullptr);
+}
+
+TEST_F(CapiMapArgs, ComputeRejectsAnOrientationOutsideTheEnum) {
+  const mcon_map_options o = fast_options();
+  for (uint32_t bad : {3u, 7u, 0x80000000u, 0xFFFFFFFFu}) {
+    mcon_map_options x = o;
+    x.orientation = bad;
+    mcon_map m = reinterpret_cast<mcon_map>(&x);
+    EXPECT_EQ(mcon_map_compute(source_, target_, &x, &m), MCON_ERROR_INVALID_ARGUMENT) << bad;
+    EXPECT_TRUE(mentions("orientation " + std::to_string(bad))) << last_message();
+    EXPECT_TRUE(mentions("mcon_map_orientation")) << last_message();
+    EXPECT_EQ(m, nullptr);
+  }
+}
+
+TEST_F(CapiMapArgs, OptionsOfTheFirstPublishedSizeGetTheAutomaticOrientation) {
+  // A caller compiled before `orientation` existed passes the old struct_size; whatever lies
+  // beyond it in memory (here a REVERSE that would flip the map, or an invalid value) is not read.
+  mcon_map_info reference;
+  ASSERT_EQ(mcon_map_info_init(&reference), MCON_OK);
+  ASSERT_EQ(mcon_map_get_info(map_, &reference), MCON_OK);  // map_: fast_options, full size
+  std::vector<double> phi_reference(2 * ns_);
+  ASSERT_EQ(mcon_map_get_phi(map_, phi_reference.data(), phi_reference.size()), MCON_OK);
+  for (uint32_t beyond : {static_cast<uint32_t>(MCON_MAP_ORIENTATION_REVERSE), 99u}) {
+    mcon_map_options old = fast_options();
+    old.struct_size = static_cast<uint32_t>(offsetof(mcon_map_options, orientation));
+    old.orientation = beyond;
+    mcon_map m = nullptr;
+    ASSERT_EQ(mcon_map_compute(source_, target_, &old, &m), MCON_OK) << last_message();
+    const MapPtr map(m);
+    EXPECT_EQ(old.struct_size, offsetof(mcon_map_options, orientation));  // the caller's struct is untouched
+    mcon_map_info info;
+    ASSERT_EQ(mcon_map_info_init(&info), MCON_OK);
+    ASSERT_EQ(mcon_map_get_info(m, &info), MCON_OK);
+    EXPECT_EQ(info.reflected, reference.reflected);
+    EXPECT_EQ(info.orientation_compared, reference.orientation_compared);
+    std::vector<double> phi(2 * ns_);
+    ASSERT_EQ(mcon_map_get_phi(m, phi.data(), phi.size()), MCON_OK);
+    EXPECT_EQ(phi, phi_reference);  // bit-identical to the automatic default
+  }
+}
+
+TEST_F(CapiMapArgs, InfoOfTheFirstPublishedSizeIsFilledUpToItsEnd) {
+  // An old caller's info struct ends at optimization_seconds: those bytes are written, nothing after.
+  const size_t old_size = offsetof(mcon_map_info, alignment_score_unreflected);
+  std::vector<unsigned char> buffer(sizeof(mcon_map_info) + 16, 0xA5);
+  mcon_map_info* info = reinterpret_cast<mcon_map_info*>(buffer.data());
+  const uint32_t size = static_cast<uint32_t>(old_size);
+  std::memcpy(buffer.data(), &size, sizeof size);
+  ASSERT_EQ(mcon_map_get_info(map_, info), MCON_OK) << last_message();
+  EXPECT_EQ(info->struct_size, size);
+  EXPECT_EQ(info->source_vertex_count, ns_);
+  EXPECT_GT(info->optimization_seconds, 0.0);
+  for (size_t b = old_size; b < buffer.size(); ++b) ASSERT_EQ(buffer[b], 0xA5) << "byte " << b << " was written";
+  mcon_map_info small;
+  ASSERT_EQ(mcon_map_info_init(&small), MCON_OK);
+  small.struct_size = static_cast<uint32_t>(old_size - 1);
+  EXPECT_EQ(mcon_map_get_info(map_, &small), MCON_ERROR_STRUCT_SIZE);
 }
 
 TEST_F(CapiMapArgs, RetainReleaseAndInfo) {

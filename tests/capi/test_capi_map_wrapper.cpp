@@ -109,3 +109,28 @@ TEST(CppMap, ProgressExceptionsAndCancellation) {
   EXPECT_EQ(entry.info().boundary_loops, 1u);
   EXPECT_EQ(macrocon::Map::compute(entry, target, fast()).info().flipped_triangles, 0u);
 }
+
+TEST(CppMap, OrientationOptionReachesTheCApi) {
+  // The flip workflow through the wrapper: force the orientation opposite to the automatic call.
+  const macrocon::Context ctx;
+  const auto& a = map_test::body().arrays;
+  const macrocon::Mesh body = macrocon::Mesh::from_arrays(ctx, a.positions, a.indices);
+  const macrocon::Patch source = nose(body, 0.45), target = nose(body, 0.55);
+  macrocon::MapOptions o = fast();
+  EXPECT_EQ(o.orientation, MCON_MAP_ORIENTATION_AUTOMATIC);
+  const mcon_map_info automatic = macrocon::Map::compute(source, target, o).info();
+  o.orientation = automatic.reflected ? MCON_MAP_ORIENTATION_PRESERVE : MCON_MAP_ORIENTATION_REVERSE;
+  const mcon_map_info flipped = macrocon::Map::compute(source, target, o).info();
+  EXPECT_NE(flipped.reflected, automatic.reflected);
+  EXPECT_EQ(flipped.flipped_triangles, 0u);
+  EXPECT_EQ(flipped.orientation_compared, 0u);
+  EXPECT_EQ(flipped.alignment_score_unreflected, automatic.alignment_score_unreflected);
+  EXPECT_EQ(flipped.alignment_score_reflected, automatic.alignment_score_reflected);
+  o.orientation = static_cast<mcon_map_orientation>(3);  // in the enum's value range, not a member
+  try {
+    (void)macrocon::Map::compute(source, target, o);
+    ADD_FAILURE() << "an invalid orientation was accepted";
+  } catch (const macrocon::Error& e) {
+    EXPECT_EQ(e.status(), MCON_ERROR_INVALID_ARGUMENT);
+  }
+}

@@ -52,6 +52,59 @@ if(NOT stdout_flips EQUAL 0)
   message(FATAL_ERROR "--json printed flips ${stdout_flips}")
 endif()
 check_run(${OUT}/cut)
+# The orientation evidence: both rigid scores (>= 0: both orientations are tried by default), the
+# comparison flag and the level-0 energies (-1 unless compared).
+string(JSON auto_reflected GET "${out}" reflected)
+string(JSON auto_unreflected_score GET "${out}" alignment_score_unreflected)
+string(JSON auto_reflected_score GET "${out}" alignment_score_reflected)
+string(JSON auto_compared GET "${out}" orientation_compared)
+string(JSON auto_e0 GET "${out}" level0_energy_unreflected)
+string(JSON auto_e1 GET "${out}" level0_energy_reflected)
+string(JSON auto_mode GET "${out}" orientation)
+message(STATUS "auto: reflected ${auto_reflected}, rigid ${auto_unreflected_score} / ${auto_reflected_score}, "
+               "compared ${auto_compared}, level 0 ${auto_e0} / ${auto_e1}")
+if(NOT auto_mode STREQUAL "auto" OR auto_unreflected_score LESS 0 OR auto_reflected_score LESS 0)
+  message(FATAL_ERROR "automatic run: orientation '${auto_mode}', rigid scores ${auto_unreflected_score} / ${auto_reflected_score}")
+endif()
+if(auto_compared AND (auto_e0 LESS_EQUAL 0 OR auto_e1 LESS_EQUAL 0))
+  message(FATAL_ERROR "compared, but the level-0 energies are ${auto_e0} / ${auto_e1}")
+endif()
+if(NOT auto_compared AND (NOT auto_e0 EQUAL -1 OR NOT auto_e1 EQUAL -1))
+  message(FATAL_ERROR "not compared, but the level-0 energies are ${auto_e0} / ${auto_e1}")
+endif()
+
+# The flip: the orientation opposite to the automatic call, forced; no comparison, no flips.
+if(auto_reflected)
+  set(flip preserve)
+else()
+  set(flip reverse)
+endif()
+execute_process(
+  COMMAND ${CLI} embed --source ${MESH} --target ${MESH} --center-vertex 297 --radius 0.55
+          --source-center-vertex 297 --source-radius 0.45 --samples 500 --seed 1 --orientation ${flip}
+          --out ${OUT}/flip --json
+  OUTPUT_VARIABLE out ERROR_VARIABLE err RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "macrocon embed --orientation ${flip} failed (${rc}): ${err}")
+endif()
+string(JSON flip_reflected GET "${out}" reflected)
+string(JSON flip_compared GET "${out}" orientation_compared)
+string(JSON flip_flips GET "${out}" flips)
+string(JSON flip_mode GET "${out}" orientation)
+string(JSON flip_unreflected_score GET "${out}" alignment_score_unreflected)
+if((flip_reflected AND auto_reflected) OR (NOT flip_reflected AND NOT auto_reflected) OR flip_compared
+   OR NOT flip_flips EQUAL 0 OR NOT flip_mode STREQUAL flip)
+  message(FATAL_ERROR "--orientation ${flip}: reflected ${flip_reflected} (auto ${auto_reflected}), compared "
+                      "${flip_compared}, flips ${flip_flips}, orientation '${flip_mode}'")
+endif()
+if(NOT flip_unreflected_score STREQUAL auto_unreflected_score)
+  message(FATAL_ERROR "the same seed scored the rigid candidates differently: ${flip_unreflected_score} vs ${auto_unreflected_score}")
+endif()
+execute_process(COMMAND ${CLI} embed --source ${MESH} --target ${MESH} --center-vertex 297 --radius 0.5
+                --orientation sideways --out ${OUT}/bad RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_QUIET)
+if(rc EQUAL 0 OR NOT err MATCHES "--orientation must be auto, preserve or reverse")
+  message(FATAL_ERROR "a bad --orientation was accepted (${rc}): ${err}")
+endif()
 
 execute_process(COMMAND ${CLI} patch --mesh ${MESH} --center-vertex 297 --radius 0.45 --out ${OUT}/nose.ply
                 RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_QUIET)

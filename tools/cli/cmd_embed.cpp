@@ -32,7 +32,7 @@ const char* kUsage =
     "usage: macrocon embed --source FILE --target FILE --center-vertex N --radius R\n"
     "                      [--source-center-vertex M --source-radius Q] [--face-range A:B]\n"
     "                      [--source-face-range A:B] [--seed S] [--samples K] [--iterations I]\n"
-    "                      [--out DIR] [--json]\n"
+    "                      [--orientation auto|preserve|reverse] [--out DIR] [--json]\n"
     "Maps a source patch onto the geodesic disk of radius R around vertex N of the target mesh and\n"
     "transfers the source's constraints. With --source-center-vertex the source patch is cut the same\n"
     "way from the source mesh (radius Q, default R); without it the source file must already be one\n"
@@ -42,7 +42,11 @@ const char* kUsage =
     "--out DIR (default embed-out) receives target.ply (target patch in target mesh units with the\n"
     "transferred fields and 'outside' = 1 where no source point maps), guides.obj (re-traced guides),\n"
     "source_guides.obj, target.rosy (cross field following the guides) and summary.json; --json\n"
-    "also prints the summary. Vertex numbers and face ranges refer to the files.\n";
+    "also prints the summary. Vertex numbers and face ranges refer to the files.\n"
+    "--orientation (default auto) forces an orientation-preserving or -reversing map, e.g. to flip a\n"
+    "nearly mirror-symmetric patch; the summary's alignment_score_unreflected/_reflected (-1: not\n"
+    "tried), orientation_compared and level0_energy_unreflected/_reflected (-1: not compared) show\n"
+    "how close the automatic call was.\n";
 
 void parse_range(const std::string& key, const std::string& s, long& begin, long& end) {
   const auto colon = s.find(':');
@@ -195,7 +199,7 @@ int run_embed(const Args& args) {
   }
   const ArgParser p(args,
                     {"source", "target", "center-vertex", "radius", "source-center-vertex", "source-radius",
-                     "face-range", "source-face-range", "seed", "samples", "iterations", "out"},
+                     "face-range", "source-face-range", "seed", "samples", "iterations", "orientation", "out"},
                     {"json"});
   const auto t_start = std::chrono::steady_clock::now();
   require(p.has("center-vertex"), MCON_ERROR_INVALID_ARGUMENT, "missing required option --center-vertex");
@@ -206,6 +210,9 @@ int run_embed(const Args& args) {
   require(iterations >= 1, MCON_ERROR_INVALID_ARGUMENT, "--iterations must be >= 1");
   const long seed = p.integer("seed", 0);
   require(seed >= 0, MCON_ERROR_INVALID_ARGUMENT, "--seed must be >= 0");
+  const std::string orientation = p.get("orientation", "auto");
+  require(orientation == "auto" || orientation == "preserve" || orientation == "reverse", MCON_ERROR_INVALID_ARGUMENT,
+          "--orientation must be auto, preserve or reverse, got '" + orientation + "'");
 
   // 1. Patches.
   const io::LoadedMesh target_mesh = load(p, "target", "face-range");
@@ -224,6 +231,9 @@ int run_embed(const Args& args) {
   options.map.alignment.samples = static_cast<int>(samples);
   options.map.alignment.seed = static_cast<std::uint64_t>(seed);
   options.map.newton.max_iterations = static_cast<int>(iterations);
+  options.map.orientation = orientation == "preserve"  ? MapOrientation::preserve
+                            : orientation == "reverse" ? MapOrientation::reverse
+                                                       : MapOrientation::automatic;
   const auto t_map = std::chrono::steady_clock::now();
   const SurfaceMap map = map_patches(source, target, options);
   const double map_seconds = seconds_since(t_map);
@@ -349,6 +359,13 @@ int run_embed(const Args& args) {
   summary.set("levels", static_cast<int>(map.levels.size()));
   summary.set("stop_reason", stop_reason_name(map.stop_reason));
   summary.set("reflected", map.reflected);
+  // The evidence of the orientation call, for a host that offers a "flip" (--orientation).
+  summary.set("orientation", orientation);
+  summary.set("alignment_score_unreflected", map.alignment.score_unreflected);
+  summary.set("alignment_score_reflected", map.alignment.score_reflected);
+  summary.set("orientation_compared", map.orientation_compared);
+  summary.set("level0_energy_unreflected", map.level0_energy_unreflected);
+  summary.set("level0_energy_reflected", map.level0_energy_reflected);
   summary.set("flips", flips);
   summary.set("guides_in", guides.size());
   summary.set("guides_out", traced.size());

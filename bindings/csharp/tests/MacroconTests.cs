@@ -503,6 +503,43 @@ static class Tests
         System.IO.Directory.Delete(dir, true);
     }
 
+    // map: forced orientation (the "flip" workflow) and the evidence of the automatic call
+    static void TestOrientation()
+    {
+        var r = Bumpy(41); var p = r.Item1; var t = r.Item2;
+        using (var ctx = new Context())
+        using (var m = new Mesh(ctx, p, t))
+        using (var target = Patch.Extract(m, 21 * 41 + 20, 0.25))
+        using (var source = Patch.FromArrays(ctx, target.Positions(), target.Triangles(), 0, null, target.Center, target.Radius))
+        {
+            Check(new MapSettings().Orientation == MapOrientation.Automatic, "default automatic");
+            var settings = new MapSettings { Seed = 3, AlignmentSamples = 400, MaxIterations = 30 };
+            MapInfo a;
+            using (var map = Map.Compute(source, target, settings)) a = map.Info;
+            Check(a.AlignmentScoreUnreflected >= 0 && a.AlignmentScoreReflected >= 0, "both rigid scores");
+            Check(a.AlignmentScore == (a.Reflected != 0 ? a.AlignmentScoreReflected : a.AlignmentScoreUnreflected), "winner's score");
+            Check(a.OrientationCompared != 0
+                      ? a.Level0EnergyUnreflected > 0 && a.Level0EnergyReflected > 0
+                      : a.Level0EnergyUnreflected == -1 && a.Level0EnergyReflected == -1, "level-0 energies");
+            foreach (var forced in new[] { MapOrientation.Preserve, MapOrientation.Reverse })
+            {
+                settings.Orientation = forced;
+                using (var map = Map.Compute(source, target, settings))
+                {
+                    var i = map.Info;
+                    Check(i.Reflected == (forced == MapOrientation.Reverse ? 1u : 0u), forced + ": reflected " + i.Reflected);
+                    Check(i.FlippedTriangles == 0 && i.OrientationCompared == 0, forced + ": injective, not compared");
+                    Check(i.Level0EnergyUnreflected == -1 && i.Level0EnergyReflected == -1, forced + ": no level-0 energies");
+                    Check(i.AlignmentScoreUnreflected == a.AlignmentScoreUnreflected &&
+                          i.AlignmentScoreReflected == a.AlignmentScoreReflected, forced + ": same rigid scores");
+                }
+            }
+            settings.Orientation = (MapOrientation)7;
+            Check(Expect<MacroconException>(() => Map.Compute(source, target, settings)).Status == Status.InvalidArgument,
+                  "bad orientation");
+        }
+    }
+
     // heavy parallel work then shutdown
     static void Test10()
     {
@@ -577,7 +614,7 @@ static class Tests
     // No tuple deconstruction (`var (a, b) = ...`) anywhere here: mcs 6.8 silently drops a lambda that
     // contains one (which hid most of this runner's tests before) or crashes when a lambda captures
     // a deconstructed variable. The runner also checks how many tests ran.
-    const int ExpectedTests = 14;
+    const int ExpectedTests = 15;
 
     // The log callback receives the status and the message of the exception (mesh and patch
     // errors of the context); other contexts do not log; a disposed context drops late messages.
@@ -650,6 +687,7 @@ static class Tests
         Run("library: retrieval finds each entry itself; cancel leaves it unchanged", Test7);
         Run("library: bad input, forged bytes, disposed handles", Test8);
         Run("map: from arrays, compute, correspondences, transfer, cross field", Test9);
+        Run("map: forced orientation and the evidence of the automatic call", TestOrientation);
         Run("struct layouts match macrocon.h", TestLayout);
         Run("log callback gets status and message of errors", TestLog);
         Run("throwing log callback: error surfaces, nothing crosses into native code", TestLogThrows);

@@ -28,7 +28,7 @@ from .library import (
     RetrievalDescriptor,
     Singularities,
 )
-from .mapping import Direction, Map, MapInfo, PolylineSet, StopReason
+from .mapping import Direction, Map, MapInfo, Orientation, PolylineSet, StopReason
 from .errors import (
     BufferTooSmallError,
     CancelledError,
@@ -56,5 +56,5 @@ __all__ = [
     "NumericalError", "InvalidLibraryError", "UnsupportedError", "NotFoundError", "status_name", "close_all",
     "Library", "Entry", "EntryInfo", "LibraryInfo", "QueryResult", "Polyline", "PolylineKind", "Singularities",
     "Field", "FieldKind", "RetrievalDescriptor", "Map", "MapInfo", "PolylineSet", "StopReason", "Direction",
-    "OutOfMemoryError", "IOError_",
+    "Orientation", "OutOfMemoryError", "IOError_",
 ]

@@ -191,6 +191,7 @@ class MapOptions(ctypes.Structure):
         ("max_iterations", ctypes.c_uint32),
         ("progress", PROGRESS_CALLBACK),
         ("progress_user_data", ctypes.c_void_p),
+        ("orientation", ctypes.c_uint32),
     ]
 
 
@@ -216,6 +217,11 @@ class MapInfo(ctypes.Structure):
         ("alignment_score", ctypes.c_double),
         ("alignment_seconds", ctypes.c_double),
         ("optimization_seconds", ctypes.c_double),
+        ("alignment_score_unreflected", ctypes.c_double),
+        ("alignment_score_reflected", ctypes.c_double),
+        ("orientation_compared", ctypes.c_uint32),
+        ("level0_energy_unreflected", ctypes.c_double),
+        ("level0_energy_reflected", ctypes.c_double),
     ]
 
 

@@ -27,6 +27,17 @@ class Direction(IntEnum):
     TARGET_TO_SOURCE = 2
 
 
+class Orientation(IntEnum):
+    """mcon_map_orientation: let the descriptors decide, or force one orientation."""
+    AUTOMATIC = 0
+    PRESERVE = 1
+    REVERSE = 2
+
+
+_ORIENTATIONS = {"automatic": Orientation.AUTOMATIC, "preserve": Orientation.PRESERVE,
+                 "reverse": Orientation.REVERSE}
+
+
 @dataclass(frozen=True)
 class MapInfo:
     source_vertex_count: int
@@ -48,6 +59,14 @@ class MapInfo:
     alignment_score: float
     alignment_seconds: float
     optimization_seconds: float
+    # Evidence of the orientation decision: rigid scores of each orientation's best candidate
+    # (-1: not tried), whether both were optimized and compared, and their level-0 energies
+    # (-1: not compared).
+    alignment_score_unreflected: float
+    alignment_score_reflected: float
+    orientation_compared: bool
+    level0_energy_unreflected: float
+    level0_energy_reflected: float
 
 
 class PolylineSet(_Handle):
@@ -113,9 +132,15 @@ class Map(_Handle):
         allow_reflection: bool = True,
         max_iterations: Optional[int] = None,
         progress: Optional[ProgressCallback] = None,
+        orientation: str = "automatic",
     ) -> "Map":
+        """orientation: "automatic" (the descriptors decide; allow_reflection restricts it),
+        "preserve" or "reverse" (forced, e.g. a "flip" that recomputes with the orientation
+        opposite to info.reflected)."""
         require_type(source, Patch, "source")
         require_type(target, Patch, "target")
+        if not isinstance(orientation, str) or orientation not in _ORIENTATIONS:
+            raise ValueError(f"orientation must be one of {sorted(_ORIENTATIONS)}, got {orientation!r}")
         o = _native.MapOptions()
         check(_native.lib.mcon_map_options_init(ctypes.byref(o)))
         o.seed = int(seed)
@@ -124,6 +149,7 @@ class Map(_Handle):
         o.allow_reflection = 1 if allow_reflection else 0
         if max_iterations is not None:
             o.max_iterations = int(max_iterations)
+        o.orientation = int(_ORIENTATIONS[orientation])
         cb = _Progress(progress)
         o.progress = cb.c_fn
         handle = ctypes.c_void_p()
@@ -138,7 +164,9 @@ class Map(_Handle):
         return MapInfo(i.source_vertex_count, i.target_vertex_count, i.source_vertices_inside, i.target_vertices_inside,
                        i.overlap_ratio, i.matching_score, i.energy_total, i.energy_descriptor, i.energy_distortion,
                        i.energy_area, i.energy_injectivity, i.iterations, StopReason(i.stop_reason), bool(i.reflected),
-                       i.levels, i.flipped_triangles, i.alignment_score, i.alignment_seconds, i.optimization_seconds)
+                       i.levels, i.flipped_triangles, i.alignment_score, i.alignment_seconds, i.optimization_seconds,
+                       i.alignment_score_unreflected, i.alignment_score_reflected, bool(i.orientation_compared),
+                       i.level0_energy_unreflected, i.level0_energy_reflected)
 
     def correspondences(self, direction: Direction = Direction.SOURCE_TO_TARGET) -> Tuple[np.ndarray, np.ndarray]:
         """Per vertex of the direction's domain: (triangle of the other patch, -1 = outside; barycentric (n, 3))."""

@@ -273,3 +273,33 @@ def test_the_readme_flow_end_to_end(context, host, tmp_path):
                 directions, _ = region.cross_field(guides)
             region.write_rosy(directions, tmp_path / "region.rosy")
             assert (tmp_path / "region.rosy").stat().st_size > 0
+
+
+def test_forced_orientation_and_its_evidence(source, target):
+    """The flip workflow: automatic, then each orientation forced; the info reports the evidence."""
+    with macrocon.Map.compute(source, target, seed=3, **FAST) as auto:
+        a = auto.info
+    assert a.alignment_score_unreflected >= 0 and a.alignment_score_reflected >= 0
+    assert a.alignment_score == (a.alignment_score_reflected if a.reflected else a.alignment_score_unreflected)
+    if a.orientation_compared:
+        assert a.level0_energy_unreflected > 0 and a.level0_energy_reflected > 0
+    else:
+        assert a.level0_energy_unreflected == -1 and a.level0_energy_reflected == -1
+    for name, reflected in (("preserve", False), ("reverse", True)):
+        with macrocon.Map.compute(source, target, seed=3, orientation=name, **FAST) as m:
+            i = m.info
+            assert i.reflected is reflected, name
+            assert i.flipped_triangles == 0
+            assert i.orientation_compared is False
+            assert i.level0_energy_unreflected == -1 and i.level0_energy_reflected == -1
+            # Same seed: both orientations' rigid candidates are scored as in the automatic run.
+            assert i.alignment_score_unreflected == a.alignment_score_unreflected
+            assert i.alignment_score_reflected == a.alignment_score_reflected
+            # phi is locally injective in the forced orientation.
+            uv = m.phi[source.triangles]
+            cross = ((uv[:, 1, 0] - uv[:, 0, 0]) * (uv[:, 2, 1] - uv[:, 0, 1])
+                     - (uv[:, 1, 1] - uv[:, 0, 1]) * (uv[:, 2, 0] - uv[:, 0, 0]))
+            assert np.all(-cross > 0 if reflected else cross > 0), name
+    for bad in ("flip", "AUTOMATIC", 1, None):
+        with pytest.raises(ValueError, match="orientation"):
+            macrocon.Map.compute(source, target, orientation=bad, **FAST)
