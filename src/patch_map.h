@@ -28,8 +28,9 @@ struct PatchMapOptions {
   // over the seeds, against weight 2 with the earlier chord channel built from the standardized
   // arc): nose 2.9 vs 3.2, ear 2.2 vs 2.7, hand 3.3 vs 3.4, foot 2.9 vs 3.0, eye and face equal,
   // mouth better on 5 of 7 seeds; 0.5 was no better. Forearm strips are nearly mirror-symmetric:
-  // their orientation is a coin toss with every setting tried (4-5 of 7 seeds lose a mirrored
-  // forearm pair to the plain orientation), which is why hosts can force it
+  // a plain map that swaps their sides fits about as well, and ties go to the plain orientation
+  // (the mirrored forearm pair stays plain on 5 of 7 seeds, 4 of 7 with the earlier channel;
+  // same-side pairs are right on all 7), which is why hosts can force it
   // (SurfaceMapOptions::orientation).
   double chirality_weight = 1.0;
 };
