@@ -31,7 +31,8 @@ const char* kUsage =
     "vertices) on the body, and the same classes on the body subdivided once (about 6,700 and 11,000).\n"
     "Medians over --runs runs (default 3) in a --threads arena (default 2). --json prints\n"
     "{\"map\": [{\"case\", \"source_vertices\", \"target_vertices\", \"seconds_median\", \"init_seconds_median\",\n"
-    "\"optimization_seconds_median\", \"cpu_seconds_median\", \"iterations\", \"flips\"}, ...],\n"
+    "\"optimization_seconds_median\", \"cpu_seconds_median\", \"iterations\", \"stop_reason\",\n"
+    "\"orientation_compared\", \"level_iterations\" (per coarse-to-fine level), \"flips\"}, ...],\n"
     "\"heat_geodesics\": [{\"vertices\", \"factor_seconds_median\", \"solve_seconds_median\"}, ...], \"threads\", \"load_average\"}.\n";
 
 double median(std::vector<double> v) {
