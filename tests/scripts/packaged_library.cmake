@@ -168,8 +168,8 @@ endfunction()
 
 # Checks the bundled dependencies in DIR (the extracted package folder holding PACKED, the
 # packaged libmacrocon) against those of BUILT: each present under its soname, an ELF file with
-# that SONAME, stripped if STRIP exists; PACKED has RUNPATH/RPATH $ORIGIN; NOTICES has a section
-# with a License: field per library; and ldd, with no LD_LIBRARY_PATH, resolves each dependency of
+# that SONAME, stripped if STRIP exists; PACKED has RUNPATH/RPATH $ORIGIN and no empty entry;
+# NOTICES has a section with a License: field per library; and ldd, with no LD_LIBRARY_PATH, resolves each dependency of
 # PACKED to the copy in DIR (the proof that the bundled copies are the ones used).
 function(macrocon_check_bundled_dependencies dir packed built notices strip readelf)
   if(NOT (readelf AND EXISTS "${readelf}"))
@@ -185,8 +185,14 @@ function(macrocon_check_bundled_dependencies dir packed built notices strip read
     message(FATAL_ERROR "${packed} has no RUNPATH/RPATH:\n${dyn}")
   endif()
   string(REPLACE ":" ";" runpath "${CMAKE_MATCH_2}")
-  if(NOT "$ORIGIN" IN_LIST runpath)
+  list(FIND runpath "$ORIGIN" at)  # script mode: no policies, so no IN_LIST
+  if(at EQUAL -1)
     message(FATAL_ERROR "${packed}: ${CMAKE_MATCH_1} is '${CMAKE_MATCH_2}', which lacks $ORIGIN")
+  endif()
+  # An empty entry (CMake pads build RPATHs with ':') means the current directory to the loader: a
+  # customer's program would load a libtbb.so.12 from wherever it is started.
+  if(CMAKE_MATCH_2 MATCHES "(^|:)(:|$)")
+    message(FATAL_ERROR "${packed}: ${CMAKE_MATCH_1} '${CMAKE_MATCH_2}' has an empty entry (the current directory)")
   endif()
   file(READ ${notices} notice_text)
   execute_process(COMMAND ${CMAKE_COMMAND} -E env --unset=LD_LIBRARY_PATH --unset=LD_PRELOAD ldd ${packed}
