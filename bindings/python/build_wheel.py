@@ -6,10 +6,16 @@ No pip or setuptools needed: a wheel is a zip with a dist-info folder (PEP 427).
 The bundled library is a `strip --strip-unneeded` copy (--strip: the tool, CMake passes
 CMAKE_STRIP; default: `strip` on PATH); without a strip tool it is bundled unstripped, with a note
 on stderr (stdout carries only the wheel's path).
+The library's non-system runtime dependencies (libtbb, libz: whatever `ldd` resolves beyond glibc,
+the loader, libstdc++ and libgcc_s) are bundled next to it under their sonames, stripped the same
+way, with their Debian copyright files in macrocon/THIRD_PARTY_NOTICES.txt; the library's RUNPATH
+$ORIGIN (src/CMakeLists.txt) makes the loader take them from the package folder. The same rules
+as tests/scripts/packaged_library.cmake (the NuGet package), which python.wheel checks this against.
 """
 import argparse
 import base64
 import hashlib
+import os
 import platform
 import re
 import shutil
@@ -18,6 +24,7 @@ import sys
 import tempfile
 import zipfile
 from pathlib import Path
+from typing import Dict
 
 HERE = Path(__file__).resolve().parent
 
@@ -44,6 +51,56 @@ def library_bytes(library: Path, strip: str) -> bytes:
         return out.read_bytes()
 
 
+# The C/C++ runtime every Linux has; everything else the library needs is bundled.
+SYSTEM_LIBRARY = re.compile(
+    r"^(linux-vdso|linux-gate|ld-linux[-a-z0-9_]*|libc|libm|libmvec|libpthread|libdl|librt|libresolv|libutil"
+    r"|libstdc\+\+|libgcc_s)\.so(\..*)?$")
+
+
+def bundled_dependencies(library: Path) -> Dict[str, Path]:
+    """soname -> resolved path of the library's non-system runtime dependencies (ldd, transitive)."""
+    env = {k: v for k, v in os.environ.items() if k not in ("LD_LIBRARY_PATH", "LD_PRELOAD")}
+    out = subprocess.run(["ldd", str(library.resolve())], check=True, capture_output=True, text=True, env=env).stdout
+    deps = {}
+    for line in out.splitlines():
+        m = re.match(r"\s*(\S+) => (\S+)", line)
+        if not m:
+            continue  # linux-vdso, the absolute loader path
+        if m.group(2) == "not":
+            raise SystemExit(f"build_wheel.py: {library} needs {m.group(1)}, which the loader does not find")
+        if not SYSTEM_LIBRARY.match(m.group(1)):
+            deps[m.group(1)] = Path(m.group(2))
+    return dict(sorted(deps.items()))
+
+
+def owning_package(path: Path) -> str:
+    """The Debian package owning PATH (dpkg knows it under /lib or /usr/lib, as linked or real)."""
+    candidates = []
+    for p in (str(path), str(path.resolve())):
+        candidates += [p, p[4:] if p.startswith("/usr/") else "/usr" + p]
+    for p in candidates:
+        r = subprocess.run(["dpkg-query", "-S", p], capture_output=True, text=True)
+        if r.returncode == 0 and r.stdout:
+            return re.match(r"[^:,]+", r.stdout).group(0)
+    return ""
+
+
+def notices(deps: Dict[str, Path]) -> bytes:
+    """THIRD_PARTY_NOTICES.txt: per bundled library its Debian package, version and copyright file."""
+    text = ("Third-party libraries bundled with libmacrocon (runtime dependencies, unmodified\n"
+            "except for stripping), with their copyright and licence notices as shipped by Debian.\n")
+    for soname, path in deps.items():
+        pkg = owning_package(path)
+        copyright_file = Path(f"/usr/share/doc/{pkg}/copyright")
+        if not pkg or not copyright_file.is_file():
+            raise SystemExit(f"build_wheel.py: no licence notice for {soname} ({path}): owning package {pkg!r} "
+                             "has no /usr/share/doc/<package>/copyright; refusing to bundle it without one")
+        ver = subprocess.run(["dpkg-query", "-W", "--showformat=${Version}", pkg],
+                             capture_output=True, text=True).stdout
+        text += f"\n==== {soname} ====\nDebian package {pkg} {ver}, {copyright_file}:\n\n{copyright_file.read_text()}"
+    return text.encode()
+
+
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--library", required=True, type=Path)
@@ -58,6 +115,10 @@ def main() -> None:
         if path.suffix in (".py", ".typed"):
             files[f"macrocon/{path.name}"] = path.read_bytes()
     files[f"macrocon/{args.library.name}"] = library_bytes(args.library, args.strip)
+    deps = bundled_dependencies(args.library)
+    for soname, path in deps.items():
+        files[f"macrocon/{soname}"] = library_bytes(path, args.strip)
+    files["macrocon/THIRD_PARTY_NOTICES.txt"] = notices(deps)
     files[f"{dist}/METADATA"] = (
         f"Metadata-Version: 2.1\nName: macrocon\nVersion: {ver}\nRequires-Python: >=3.8\nRequires-Dist: numpy\n"
         "Summary: Retrieval and re-embedding of macro constraints for quad meshing\n\n"

@@ -1,5 +1,7 @@
 # Builds the wheel (library stripped with STRIP = CMAKE_STRIP), checks the bundled library
-# (stripped, same mcon_ exports: packaged_library.cmake) and imports the package from it.
+# (stripped, same mcon_ exports: packaged_library.cmake), its bundled runtime dependencies (libtbb,
+# libz: present, stripped, licensed, found through RUNPATH $ORIGIN) and imports the package from it
+# with an empty LD_LIBRARY_PATH, checking that the loader took the bundled copies.
 include(${CMAKE_CURRENT_LIST_DIR}/packaged_library.cmake)
 file(REMOVE_RECURSE ${WORK})
 execute_process(COMMAND ${PYTHON} ${SRC}/build_wheel.py --library ${LIB} --out ${WORK}/dist "--strip=${STRIP}"
@@ -13,10 +15,70 @@ if(NOT EXISTS ${WORK}/site/macrocon/${lib_name})
   message(FATAL_ERROR "the wheel lacks macrocon/${lib_name}")
 endif()
 macrocon_check_packaged_library(${WORK}/site/macrocon/${lib_name} ${LIB} "${STRIP}" "${READELF}" "${NM}")
-execute_process(COMMAND ${CMAKE_COMMAND} -E env --unset=MACROCON_LIBRARY PYTHONPATH=${WORK}/site
-  ${PYTHON} -c "import macrocon, os; assert os.path.dirname(macrocon.__file__).startswith('${WORK}'); print(macrocon.version())"
-  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "importing from the wheel failed: ${err}")
+# The bundled dependencies (build_wheel.py): the files ldd names for the built library, stripped,
+# with RUNPATH $ORIGIN on the packaged library, licensed, and resolved by ldd to the wheel's copies.
+set(pkg ${WORK}/site/macrocon)
+macrocon_check_bundled_dependencies(${pkg} ${pkg}/${lib_name} ${LIB} ${pkg}/THIRD_PARTY_NOTICES.txt "${STRIP}" "${READELF}")
+# build_wheel.py implements the bundling in Python; it must give the bytes the CMake rules of the
+# NuGet package give (packaged_library.cmake), and no other shared library may be in the wheel.
+macrocon_bundled_dependencies(${LIB} deps)
+file(MAKE_DIRECTORY ${WORK}/expected)
+macrocon_bundle_dependencies("${deps}" ${WORK}/expected ${WORK}/expected/THIRD_PARTY_NOTICES.txt "${STRIP}")
+set(want_libs ${lib_name})
+foreach(d ${deps} "THIRD_PARTY_NOTICES.txt=")
+  string(REGEX REPLACE "=.*$" "" name "${d}")
+  file(SHA256 ${WORK}/expected/${name} a)
+  file(SHA256 ${pkg}/${name} b)
+  if(NOT a STREQUAL b)
+    message(FATAL_ERROR "the wheel's macrocon/${name} differs from the one packaged_library.cmake makes")
+  endif()
+  if(name MATCHES "[.]so")
+    list(APPEND want_libs ${name})
+  endif()
+endforeach()
+file(GLOB have_libs RELATIVE ${pkg} ${pkg}/*.so ${pkg}/*.so.*)
+list(SORT have_libs)
+list(SORT want_libs)
+if(NOT have_libs STREQUAL want_libs)
+  message(FATAL_ERROR "the wheel's shared libraries are ${have_libs}, expected ${want_libs}")
 endif()
-message(STATUS "wheel ${wheel} imports: ${out}")
+# Load test: a fresh interpreter with an empty LD_LIBRARY_PATH and no MACROCON_LIBRARY imports the
+# package from the extracted wheel and queries the version. Every bundled dependency that the bare
+# interpreter had not mapped already (python3 itself links libz) must then be mapped from the
+# wheel's folder, not from /usr/lib: /proc/self/maps shows which file the loader took.
+set(sonames "")
+foreach(d ${deps})
+  string(REGEX REPLACE "=.*$" "" soname "${d}")
+  string(APPEND sonames "'${soname}',")
+endforeach()
+set(probe [=[
+import os, sys
+def mapped():
+    with open('/proc/self/maps') as f:
+        return {l.split()[-1] for l in f if '/' in l}
+before = mapped()
+import macrocon
+pkg = os.path.realpath(os.path.dirname(macrocon.__file__))
+assert pkg == os.path.realpath(sys.argv[1]), pkg
+print('version', '.'.join(map(str, macrocon.version())))
+after = mapped()
+bundled = 0
+for soname in (@sonames@):
+    if any(os.path.basename(p) == soname or os.path.basename(os.path.realpath(p)).startswith(soname) for p in before):
+        print('preloaded by the interpreter:', soname)
+        continue
+    hits = sorted(p for p in after if os.path.basename(p) == soname or os.path.basename(os.path.realpath(p)).startswith(soname))
+    assert hits == [os.path.join(pkg, soname)], (soname, hits)
+    print('loaded from the wheel:', hits[0])
+    bundled += 1
+assert bundled > 0, 'no bundled dependency was loaded from the wheel'
+]=])
+string(CONFIGURE "${probe}" probe @ONLY)
+file(WRITE ${WORK}/probe.py "${probe}")
+execute_process(COMMAND ${CMAKE_COMMAND} -E env --unset=MACROCON_LIBRARY --unset=LD_PRELOAD LD_LIBRARY_PATH= PYTHONPATH=${WORK}/site
+  ${PYTHON} ${WORK}/probe.py ${pkg}
+  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR NOT out MATCHES "version [0-9]+[.][0-9]+[.][0-9]+")
+  message(FATAL_ERROR "importing from the wheel failed (exit ${rc}):\n${out}\n${err}")
+endif()
+message(STATUS "wheel ${wheel} imports with LD_LIBRARY_PATH empty:\n${out}")

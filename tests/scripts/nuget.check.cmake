@@ -4,6 +4,8 @@
 # identical (no strip tool), and the package usable as laid
 # out: a Mono program next to lib/netstandard2.0/Macrocon.dll finds the native library through
 # runtimes/linux-x64/native/ alone (LD_LIBRARY_PATH pointing there, nothing else) and exits clean.
+# The native library's non-system dependencies (libtbb, libz) are bundled next to it with
+# THIRD_PARTY_NOTICES.txt, and ldd resolves them to those copies (packaged_library.cmake).
 foreach(v NUPKG DLL LIB VERSION MONO CONSUMER WORK)
   if(NOT DEFINED ${v})
     message(FATAL_ERROR "nuget.check.cmake: -D${v}= is required")
@@ -18,8 +20,17 @@ string(REGEX REPLACE "\n$" "" listing "${listing}")
 string(REPLACE "\n" ";" members "${listing}")
 list(FILTER members EXCLUDE REGEX "/$")  # directory entries
 list(SORT members)
+set(native runtimes/linux-x64/native)
 set(expected "Macrocon.nuspec" "[Content_Types].xml" "_rels/.rels" "lib/netstandard2.0/Macrocon.dll"
-    "runtimes/linux-x64/native/libmacrocon.so")
+    "${native}/libmacrocon.so" "${native}/THIRD_PARTY_NOTICES.txt")
+# Plus the built library's non-system runtime dependencies (ldd), bundled next to it.
+macrocon_bundled_dependencies(${LIB} deps)
+set(dep_targets "")
+foreach(d ${deps})
+  string(REGEX REPLACE "=.*$" "" soname "${d}")
+  list(APPEND expected ${native}/${soname})
+  list(APPEND dep_targets "target=\"${native}/${soname}\"")
+endforeach()
 list(SORT expected)
 if(NOT members STREQUAL expected)
   message(FATAL_ERROR "package members\n  ${members}\nexpected\n  ${expected}")
@@ -28,7 +39,8 @@ file(REMOVE_RECURSE ${WORK})
 file(ARCHIVE_EXTRACT INPUT ${NUPKG} DESTINATION ${WORK})
 file(READ ${WORK}/Macrocon.nuspec spec)
 foreach(want "<id>Macrocon</id>" "<version>${VERSION}</version>"
-        "target=\"lib/netstandard2.0/Macrocon.dll\"" "target=\"runtimes/linux-x64/native/libmacrocon.so\"")
+        "target=\"lib/netstandard2.0/Macrocon.dll\"" "target=\"runtimes/linux-x64/native/libmacrocon.so\""
+        "target=\"${native}/THIRD_PARTY_NOTICES.txt\"" ${dep_targets})
   string(FIND "${spec}" "${want}" at)
   if(at EQUAL -1)
     message(FATAL_ERROR "Macrocon.nuspec lacks ${want}")
@@ -58,6 +70,18 @@ foreach(pair "${DLL}|lib/netstandard2.0/Macrocon.dll|4d5a" "${lib_real}|runtimes
   file(READ ${WORK}/${packed} head LIMIT ${n} HEX)
   if(NOT head STREQUAL magic)
     message(FATAL_ERROR "${packed} does not start with ${magic} (got ${head})")
+  endif()
+endforeach()
+# The dependencies: present, stripped, licensed, and the ones ldd resolves for the packaged library
+# with no LD_LIBRARY_PATH (its RUNPATH $ORIGIN).
+macrocon_check_bundled_dependencies(${WORK}/${native} ${WORK}/${native}/libmacrocon.so ${LIB}
+  ${WORK}/${native}/THIRD_PARTY_NOTICES.txt "${STRIP}" "${READELF}")
+file(READ "${WORK}/[Content_Types].xml" types)
+foreach(d ${deps})
+  string(REGEX REPLACE "=.*$" "" soname "${d}")
+  string(FIND "${types}" "PartName=\"/${native}/${soname}\"" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "[Content_Types].xml gives ${native}/${soname} no content type")
   endif()
 endforeach()
 file(COPY ${CONSUMER} DESTINATION ${WORK}/lib/netstandard2.0)

@@ -2,7 +2,8 @@
 # OPC zip with the .nuspec at its root. Reads the <file src= target=> entries of NUSPEC, copies
 # DLL (Macrocon.dll) and LIB (the native library, real file behind the symlinks; stripped with
 # STRIP = CMAKE_STRIP, unstripped if empty) to those targets, adds the OPC parts
-# ([Content_Types].xml, _rels/.rels) and zips it to OUT.
+# ([Content_Types].xml, _rels/.rels) and zips it to OUT. The native library's non-system runtime
+# dependencies and their licence notices (THIRD_PARTY_NOTICES.txt) are bundled next to it.
 #   cmake -DNUSPEC=... -DDLL=... -DLIB=... -DVERSION=0.1.0 -DOUT=.../Macrocon.0.1.0.nupkg [-DSTRIP=/usr/bin/strip] -P nuget.pack.cmake
 include(${CMAKE_CURRENT_LIST_DIR}/packaged_library.cmake)
 foreach(v NUSPEC DLL LIB VERSION OUT)
@@ -45,7 +46,29 @@ foreach(e ${entries})
     file(COPY_FILE ${from} ${stage}/${target})
   endif()
   list(APPEND members ${target})
+  if(src STREQUAL "libmacrocon.so")
+    set(native_dir ${target_dir})
+  endif()
 endforeach()
+# The native library's non-system runtime dependencies (libtbb, libz: found with ldd) go next to it
+# with their licence notices (packaged_library.cmake); libmacrocon's RUNPATH $ORIGIN finds them.
+# They are listed in the staged nuspec too, and get OPC content types by part name (their
+# extensions are version numbers).
+macrocon_bundled_dependencies(${lib_real} deps)
+macrocon_bundle_dependencies("${deps}" ${native_dir} ${native_dir}/THIRD_PARTY_NOTICES.txt "${STRIP}")
+file(RELATIVE_PATH native_rel ${stage} ${native_dir})
+set(extra_files "")
+set(overrides "")
+foreach(d ${deps} "THIRD_PARTY_NOTICES.txt=")
+  string(REGEX REPLACE "=.*$" "" name "${d}")
+  string(APPEND extra_files "    <file src=\"${name}\" target=\"${native_rel}/${name}\" />\n")
+  if(NOT name MATCHES "[.]txt$")
+    string(APPEND overrides "<Override PartName=\"/${native_rel}/${name}\" ContentType=\"application/octet\" />")
+  endif()
+  list(APPEND members ${native_rel}/${name})
+endforeach()
+string(REPLACE "  </files>" "${extra_files}  </files>" spec "${spec}")
+file(WRITE ${stage}/Macrocon.nuspec "${spec}")
 file(WRITE "${stage}/[Content_Types].xml"
   "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n"
   "<Types xmlns=\"http://schemas.openxmlformats.org/package/2006/content-types\">"
@@ -53,6 +76,8 @@ file(WRITE "${stage}/[Content_Types].xml"
   "<Default Extension=\"nuspec\" ContentType=\"application/octet\" />"
   "<Default Extension=\"dll\" ContentType=\"application/octet\" />"
   "<Default Extension=\"so\" ContentType=\"application/octet\" />"
+  "<Default Extension=\"txt\" ContentType=\"text/plain\" />"
+  "${overrides}"
   "</Types>\n")
 file(MAKE_DIRECTORY ${stage}/_rels)
 file(WRITE ${stage}/_rels/.rels
