@@ -209,10 +209,12 @@ SurfaceMap compute_surface_map(const MapDomain& source, const MapDomain& target,
     if (l == 0) c.energy_scale = c.reports.back().energy.front();
   };
   auto level_from = [&](int l) { return kAlignShare + l * level_share; };
-  const SourceDisk mirrored = make_source_disk(source.mesh, source.uv, true);
   const bool compare = options.orientation == MapOrientation::automatic && init.score_unreflected >= 0 &&
                        init.score_reflected >= 0 && options.alignment.allow_reflection &&
                        std::abs(init.score_reflected - init.score_unreflected) < options.orientation_ambiguity;
+  // The mirrored rest disk only where a mirrored candidate runs.
+  const SourceDisk mirrored = (compare || init.transform.reflected) ? make_source_disk(source.mesh, source.uv, true)
+                                                                    : SourceDisk{};
   Candidate chosen{init.transform.reflected ? &mirrored : &plain, start_from(init.transform), {}, 0};
   if (compare) {
     // Both orientations, each optimized on its own; the lower energy after the compared levels
