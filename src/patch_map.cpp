@@ -1,6 +1,7 @@
 #include "patch_map.h"
 
 #include <cmath>
+#include <vector>
 
 #include "curvature_descriptors.h"
 #include "descriptor_pyramid.h"
@@ -65,13 +66,34 @@ SurfaceMap map_patches(const Patch& source, const Patch& target, const PatchMapO
           MCON_ERROR_INVALID_ARGUMENT, "map_patches: invalid descriptor weights");
   require(options.chirality_weight >= 0 && std::isfinite(options.chirality_weight), MCON_ERROR_INVALID_ARGUMENT,
           "map_patches: invalid chirality weight");
+  require((options.source_guidance == nullptr) == (options.target_guidance == nullptr), MCON_ERROR_INVALID_ARGUMENT,
+          "map_patches: guidance needs both a source and a target matrix");
+  if (options.source_guidance) {
+    const Eigen::MatrixXd &gs = *options.source_guidance, &gt = *options.target_guidance;
+    require(gs.rows() == source.mesh.num_vertices() && gt.rows() == target.mesh.num_vertices(),
+            MCON_ERROR_INVALID_ARGUMENT, "map_patches: guidance needs one row per patch vertex");
+    require(gs.cols() == gt.cols() && gs.cols() > 0, MCON_ERROR_INVALID_ARGUMENT,
+            "map_patches: source and target guidance need the same (non-zero) number of columns");
+    require(gs.allFinite() && gt.allFinite(), MCON_ERROR_NON_FINITE, "map_patches: non-finite guidance value");
+    require(options.guidance_weight >= 0 && std::isfinite(options.guidance_weight), MCON_ERROR_INVALID_ARGUMENT,
+            "map_patches: invalid guidance weight");
+  }
   const bool center = options.center_distance_weight > 0 || options.chord_weight > 0 || options.chirality_weight > 0;
   Eigen::MatrixXd s = raw_channels(source, center), t = raw_channels(target, center);
   // Joint normalization (thesis §3.1: every dimension std 1 over both patches), then weights.
-  const double weights[4] = {1.0, options.center_distance_weight, options.chord_weight, options.chirality_weight};
+  std::vector<double> weights = {1.0, options.center_distance_weight, options.chord_weight, options.chirality_weight};
+  weights.resize(static_cast<std::size_t>(s.cols()));
+  if (options.source_guidance) {
+    const Eigen::Index c0 = s.cols(), g = options.source_guidance->cols();
+    s.conservativeResize(Eigen::NoChange, c0 + g);
+    t.conservativeResize(Eigen::NoChange, c0 + g);
+    s.rightCols(g) = *options.source_guidance;
+    t.rightCols(g) = *options.target_guidance;
+    weights.resize(static_cast<std::size_t>(c0 + g), options.guidance_weight);
+  }
   // The chord channel carries arc - chord (both in radius units, before any normalization):
   // zero along straight directions, growing across bent ones.
-  if (s.cols() > 2) {
+  if (center) {
     s.col(2) = s.col(1) - s.col(2);
     t.col(2) = t.col(1) - t.col(2);
   }
@@ -79,7 +101,7 @@ SurfaceMap map_patches(const Patch& source, const Patch& target, const PatchMapO
     const double mean = (s.col(k).sum() + t.col(k).sum()) / static_cast<double>(s.rows() + t.rows());
     const double var = ((s.col(k).array() - mean).square().sum() + (t.col(k).array() - mean).square().sum()) /
                        static_cast<double>(s.rows() + t.rows());
-    const double scale = weights[k] / std::sqrt(std::max(var, 1e-24));
+    const double scale = weights[static_cast<std::size_t>(k)] / std::sqrt(std::max(var, 1e-24));
     s.col(k) = (s.col(k).array() - mean) * scale;
     t.col(k) = (t.col(k).array() - mean) * scale;
   }

@@ -4,6 +4,8 @@
 // compute_surface_map (surface_map.h) on the patches' disk parametrizations.
 #pragma once
 
+#include <Eigen/Core>
+
 #include <functional>
 
 #include "geodesic_disk_patch.h"
@@ -33,6 +35,15 @@ struct PatchMapOptions {
   // same-side pairs are right on all 7), which is why hosts can force it
   // (SurfaceMapOptions::orientation).
   double chirality_weight = 1.0;
+  // Optional guidance channels from the host, one row per vertex of the source / target patch
+  // and the same columns on both (e.g. painted region labels, landmark distances): appended to
+  // the geometric channels, each column normalized jointly like them, then scaled by
+  // guidance_weight. Both null: none. The matrices are read during the call only. The benchmark's
+  // `oracle` method feeds ground-truth correspondents through here to measure what the
+  // optimizer reaches when the descriptors are unambiguous.
+  const Eigen::MatrixXd* source_guidance = nullptr;
+  const Eigen::MatrixXd* target_guidance = nullptr;
+  double guidance_weight = 1.0;
 };
 
 // Maps `source` onto `target` (both from extract_geodesic_disk, normalized to radius 1).

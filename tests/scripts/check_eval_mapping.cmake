@@ -53,3 +53,20 @@ foreach(bad "--classes;elbow" "--method;newton" "--pairs;0" "--samples;-3")
     message(FATAL_ERROR "eval-mapping ${bad} should fail with a message (status ${r}): ${e}")
   endif()
 endforeach()
+
+# The oracle diagnostic (ground-truth guidance channels): asked for explicitly, it must run, keep
+# the map flip-free, and on the featureless forearm strip, where the descriptors leave the map
+# sliding (macrocon ~7.3 mean eps x 100 on these two pairs, oracle ~4.0), land clearly closer.
+execute_process(
+  COMMAND ${CLI} eval-mapping --shared ${SHARED} --classes arm --pairs 2 --method macrocon,oracle --json --quiet
+  OUTPUT_VARIABLE oracle_out ERROR_VARIABLE oracle_err RESULT_VARIABLE oracle_rc)
+if(NOT oracle_rc EQUAL 0)
+  message(FATAL_ERROR "eval-mapping --method macrocon,oracle failed (${oracle_rc}): ${oracle_err}")
+endif()
+string(JSON oracle_eps GET "${oracle_out}" methods oracle overall mean_eps100)
+string(JSON plain_eps GET "${oracle_out}" methods macrocon overall mean_eps100)
+string(JSON oracle_flips GET "${oracle_out}" methods oracle overall flipped_triangles)
+if(NOT oracle_flips EQUAL 0 OR NOT oracle_eps LESS plain_eps OR NOT oracle_eps LESS 6)
+  message(FATAL_ERROR "oracle: expected 0 flips and a lower mean eps x 100 than macrocon (and < 6): ${oracle_out}")
+endif()
+message(STATUS "eval-mapping oracle ${oracle_eps} vs macrocon ${plain_eps}")

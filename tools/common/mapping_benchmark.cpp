@@ -25,6 +25,8 @@
 namespace mcon::tools {
 
 const char* const kMappingMethods[3] = {"macrocon", "rigid", "thesis"};
+// Weight of each ground-truth guidance column of the `oracle` method (3 channels, each std 1).
+constexpr double kOracleGuidanceWeight = 3.0;
 const char* const kMappingParts[8] = {"eye", "nose", "mouth", "ear", "face", "hand", "foot", "arm"};
 
 namespace {
@@ -189,7 +191,7 @@ std::vector<MappingPairResult> run_mapping_evaluation(const MappingEvalOptions& 
               options.thesis_iterations >= 0 && options.max_evaluated_vertices >= 1,
           MCON_ERROR_INVALID_ARGUMENT, "eval-mapping: invalid options");
   for (const std::string& m : options.methods)
-    require(m == "macrocon" || m == "rigid" || m == "thesis", MCON_ERROR_INVALID_ARGUMENT,
+    require(m == "macrocon" || m == "rigid" || m == "thesis" || m == "oracle", MCON_ERROR_INVALID_ARGUMENT,
             "eval-mapping: unknown method '" + m + "'");
   const std::vector<MappingSlot> slots = mapping_slots(options.shared_dir, options.parts);
   require(!slots.empty(), MCON_ERROR_INVALID_ARGUMENT, "eval-mapping: no class selected");
@@ -314,6 +316,41 @@ std::vector<MappingPairResult> run_mapping_evaluation(const MappingEvalOptions& 
         reflected["thesis"] = T.reflected;
         res.methods["thesis"].seconds = map.alignment_seconds + th.seconds;
         res.methods["thesis"].iterations = th.iterations;
+      }
+
+      if (wants("oracle")) {
+        // Guidance = the base-mesh position of every vertex's true correspondent (the source's
+        // mirrored for a mirrored pair): descriptors without ambiguity, so what is left of the
+        // error is the optimizer's and the distortion prior's share.
+        const TriMesh& base = model.base().mesh;
+        auto guidance = [&](const std::vector<int>& host, bool mirror) {
+          Eigen::MatrixXd g(static_cast<Eigen::Index>(host.size()), 3);
+          Vec3 mean = Vec3::Zero();
+          int known = 0;
+          for (std::size_t v = 0; v < host.size(); ++v) {
+            if (host[v] < 0) continue;
+            const int h = mirror ? model.mirror[static_cast<std::size_t>(host[v])] : host[v];
+            g.row(static_cast<Eigen::Index>(v)) = base.positions[static_cast<std::size_t>(h)].transpose();
+            mean += base.positions[static_cast<std::size_t>(h)];
+            ++known;
+          }
+          mean /= std::max(known, 1);
+          for (std::size_t v = 0; v < host.size(); ++v)
+            if (host[v] < 0) g.row(static_cast<Eigen::Index>(v)) = mean.transpose();
+          return g;
+        };
+        const Eigen::MatrixXd gs = guidance(src.host, slot.mirrored), gt = guidance(dst.host, false);
+        PatchMapOptions oo;  // the full map (mo has no Newton iterations when macrocon is not asked for)
+        oo.map.alignment = mo.map.alignment;
+        oo.source_guidance = &gs;
+        oo.target_guidance = &gt;
+        oo.guidance_weight = kOracleGuidanceWeight;
+        const auto to = std::chrono::steady_clock::now();
+        const SurfaceMap om = map_patches(src.patch, dst.patch, oo);
+        phi["oracle"] = om.phi;
+        reflected["oracle"] = om.reflected;
+        res.methods["oracle"].seconds = seconds_since(to);
+        res.methods["oracle"].iterations = om.iterations;
       }
 
       // Where each evaluated point lands, per method, then one heat solve per true vertex.

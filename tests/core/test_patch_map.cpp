@@ -1,0 +1,119 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "error.h"
+#include "geodesic_disk_patch.h"
+#include "patch_map.h"
+#include "test_meshes.h"
+
+using namespace mcon;
+using mcon::test_meshes::make_disk;
+
+namespace {
+
+// A flat disk: every geometric channel is constant or radially symmetric, so only the guidance
+// can tell which rotation is meant.
+Patch flat_patch() {
+  PatchOptions o;
+  o.center.vertex = 0;
+  o.radius = 0.9;
+  return extract_geodesic_disk(make_disk(12), o);
+}
+
+Eigen::MatrixXd planar(const Patch& p, double angle) {
+  const double c = std::cos(angle), s = std::sin(angle);
+  Eigen::MatrixXd g(p.mesh.num_vertices(), 2);
+  for (int v = 0; v < p.mesh.num_vertices(); ++v) {
+    const Vec3& q = p.mesh.positions[v];
+    g(v, 0) = c * q.x() - s * q.y();
+    g(v, 1) = s * q.x() + c * q.y();
+  }
+  return g;
+}
+
+PatchMapOptions quick_options() {
+  PatchMapOptions o;
+  o.map.alignment.samples = 2000;
+  o.map.alignment.seed = 5;
+  return o;
+}
+
+mcon_status map_status(const Patch& a, const Patch& b, const PatchMapOptions& o) {
+  try {
+    map_patches(a, b, o);
+  } catch (const Error& e) {
+    return e.status();
+  }
+  return MCON_OK;
+}
+
+}  // namespace
+
+// The guidance says target vertex w corresponds to the source point R^-1 p_w, i.e. the map is
+// the rotation p -> R p; two different rotations must both come out.
+TEST(PatchMap, GuidanceSelectsTheRotation) {
+  const Patch p = flat_patch();
+  for (double angle : {0.5 * M_PI, -2.0 * M_PI / 3}) {
+    const Eigen::MatrixXd gs = planar(p, 0.0), gt = planar(p, -angle);
+    PatchMapOptions o = quick_options();
+    o.source_guidance = &gs;
+    o.target_guidance = &gt;
+    o.guidance_weight = 3.0;
+    const SurfaceMap m = map_patches(p, p, o);
+    EXPECT_FALSE(m.reflected);
+    double err = 0;
+    int inside = 0;
+    for (int v = 0; v < p.mesh.num_vertices(); ++v) {
+      const BarycentricPoint& b = m.source_to_target[v];
+      if (b.triangle < 0) continue;
+      const Tri& t = p.mesh.triangles[b.triangle];
+      const Vec3 q = b.barycentric[0] * p.mesh.positions[t[0]] + b.barycentric[1] * p.mesh.positions[t[1]] +
+                     b.barycentric[2] * p.mesh.positions[t[2]];
+      const Vec3& s = p.mesh.positions[v];
+      const Vec3 want(std::cos(angle) * s.x() - std::sin(angle) * s.y(),
+                      std::sin(angle) * s.x() + std::cos(angle) * s.y(), s.z());
+      err += (q - want).norm();
+      ++inside;
+    }
+    ASSERT_GT(inside, p.mesh.num_vertices() * 9 / 10) << "angle " << angle;
+    EXPECT_LT(err / inside, 0.03) << "angle " << angle;
+  }
+}
+
+TEST(PatchMap, RejectsBadGuidance) {
+  const Patch p = flat_patch();
+  const Eigen::MatrixXd good = planar(p, 0.0);
+  PatchMapOptions o = quick_options();
+  o.source_guidance = &good;
+  EXPECT_EQ(map_status(p, p, o), MCON_ERROR_INVALID_ARGUMENT) << "only one side";
+
+  const Eigen::MatrixXd short_rows = good.topRows(good.rows() - 1);
+  o.target_guidance = &short_rows;
+  EXPECT_EQ(map_status(p, p, o), MCON_ERROR_INVALID_ARGUMENT) << "row count";
+
+  const Eigen::MatrixXd one_col = good.leftCols(1);
+  o.target_guidance = &one_col;
+  EXPECT_EQ(map_status(p, p, o), MCON_ERROR_INVALID_ARGUMENT) << "column count";
+
+  const Eigen::MatrixXd no_cols(good.rows(), 0);
+  o.source_guidance = &no_cols;
+  o.target_guidance = &no_cols;
+  EXPECT_EQ(map_status(p, p, o), MCON_ERROR_INVALID_ARGUMENT) << "no columns";
+
+  Eigen::MatrixXd nan = good;
+  nan(3, 1) = std::nan("");
+  o.source_guidance = &good;
+  o.target_guidance = &nan;
+  EXPECT_EQ(map_status(p, p, o), MCON_ERROR_NON_FINITE);
+
+  o.target_guidance = &good;
+  o.guidance_weight = -1;
+  EXPECT_EQ(map_status(p, p, o), MCON_ERROR_INVALID_ARGUMENT) << "negative weight";
+  o.guidance_weight = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(map_status(p, p, o), MCON_ERROR_INVALID_ARGUMENT) << "infinite weight";
+
+  o.guidance_weight = 1;
+  EXPECT_EQ(map_status(p, p, o), MCON_OK);
+}
