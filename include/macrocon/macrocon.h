@@ -560,6 +560,24 @@ typedef struct mcon_map_options {
    * explicit request and is obeyed. Typical use: a "flip" button that recomputes with the
    * orientation opposite to mcon_map_info.reflected. */
   uint32_t orientation;
+  /* Appended after orientation: optional guidance channels, extra per-vertex values that must
+   * agree between corresponding points (painted region ids, distances to landmarks the artist
+   * placed on both meshes, ...), for what the geometry alone cannot tell apart: which finger is
+   * which, the two sides of a forearm strip. guidance_dimension columns of doubles per vertex,
+   * source_vertex_count rows for the source and target_vertex_count rows for the target (patch
+   * vertex order, mcon_patch_get_*), rows `*_stride` bytes apart (0 = packed); copied during the
+   * call. Each column is normalized to standard deviation 1 over both patches and scaled by
+   * guidance_weight (default 1, finite, >= 0), like the built-in curvature channels.
+   * guidance_dimension 0 (default): no guidance, both pointers must be NULL. Errors:
+   * NULL_POINTER (guidance_dimension > 0 with a NULL array), INVALID_ARGUMENT (an array with
+   * guidance_dimension 0, guidance_dimension > 1024, a stride smaller than a row, a bad
+   * weight), NON_FINITE (a NaN or infinite value). */
+  const double* source_guidance;
+  size_t source_guidance_stride;
+  const double* target_guidance;
+  size_t target_guidance_stride;
+  uint32_t guidance_dimension;
+  double guidance_weight;
 } mcon_map_options;
 
 MCON_API mcon_status mcon_map_options_init(mcon_map_options* options);

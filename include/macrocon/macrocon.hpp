@@ -754,6 +754,12 @@ struct MapOptions {
   std::function<bool(double)> progress;
   // Automatic, or force one orientation (a "flip" recomputes with the one opposite to info().reflected).
   mcon_map_orientation orientation = MCON_MAP_ORIENTATION_AUTOMATIC;
+  // Optional guidance channels (see mcon_map_options): guidance_dimension doubles per vertex,
+  // packed, source_vertex_count rows in source_guidance and target_vertex_count in
+  // target_guidance; both empty: none.
+  std::uint32_t guidance_dimension = 0;
+  std::vector<double> source_guidance, target_guidance;
+  double guidance_weight = 1.0;
 };
 
 // The re-embedding map Phi of a source patch onto a target patch, and transfers through it.
@@ -767,6 +773,15 @@ class Map {
     c.allow_reflection = options.allow_reflection ? 1u : 0u;
     c.max_iterations = options.max_iterations;
     c.orientation = static_cast<std::uint32_t>(options.orientation);
+    c.guidance_dimension = options.guidance_dimension;
+    c.source_guidance = options.source_guidance.empty() ? nullptr : options.source_guidance.data();
+    c.target_guidance = options.target_guidance.empty() ? nullptr : options.target_guidance.data();
+    c.guidance_weight = options.guidance_weight;
+    if (options.guidance_dimension != 0 &&
+        (options.source_guidance.size() != source.vertex_count() * options.guidance_dimension ||
+         options.target_guidance.size() != target.vertex_count() * options.guidance_dimension))
+      throw Error(MCON_ERROR_INVALID_ARGUMENT,
+                  "MapOptions: guidance needs guidance_dimension values per source and per target vertex");
     Forward forward{&options.progress, nullptr};
     if (options.progress) {
       c.progress = &Forward::call;

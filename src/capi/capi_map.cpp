@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstring>
 
+#include "capi_library.h"
 #include "capi_map_handles.h"
 #include "mesh_topology.h"
 #include "patch_from_arrays.h"
@@ -43,6 +44,7 @@ mcon_map_options default_map_options() {
   o.allow_reflection = 1;
   o.max_iterations = 100;
   o.orientation = MCON_MAP_ORIENTATION_AUTOMATIC;
+  o.guidance_weight = 1.0;
   return o;
 }
 
@@ -147,6 +149,26 @@ mcon_status mcon_map_compute(mcon_patch source, mcon_patch target, const mcon_ma
                              : o.orientation == MCON_MAP_ORIENTATION_REVERSE ? MapOrientation::reverse
                                                                              : MapOrientation::automatic;
         po.map.newton.max_iterations = static_cast<int>(o.max_iterations);
+        Eigen::MatrixXd source_guidance, target_guidance;
+        if (o.guidance_dimension == 0) {
+          require(o.source_guidance == nullptr && o.target_guidance == nullptr, MCON_ERROR_INVALID_ARGUMENT,
+                  "guidance arrays given with guidance_dimension 0");
+        } else {
+          require(o.source_guidance != nullptr && o.target_guidance != nullptr, MCON_ERROR_NULL_POINTER,
+                  "guidance_dimension " + std::to_string(o.guidance_dimension) +
+                      " needs both source_guidance and target_guidance");
+          require(o.guidance_dimension <= 1024, MCON_ERROR_INVALID_ARGUMENT,
+                  "guidance_dimension must be in [0, 1024] (got " + std::to_string(o.guidance_dimension) + ")");
+          require(std::isfinite(o.guidance_weight) && o.guidance_weight >= 0, MCON_ERROR_INVALID_ARGUMENT,
+                  "guidance_weight must be finite and >= 0");
+          source_guidance = read_rows(o.source_guidance, source->patch.mesh.positions.size(), o.guidance_dimension,
+                                      o.source_guidance_stride, "source_guidance");
+          target_guidance = read_rows(o.target_guidance, target->patch.mesh.positions.size(), o.guidance_dimension,
+                                      o.target_guidance_stride, "target_guidance");
+          po.source_guidance = &source_guidance;
+          po.target_guidance = &target_guidance;
+          po.guidance_weight = o.guidance_weight;
+        }
         std::shared_ptr<const std::atomic<bool>> cancelled;
         po.map.progress = make_progress(o.progress, o.progress_user_data, &cancelled);
 

@@ -490,3 +490,88 @@ TEST_F(CapiMapArgs, CrossFieldAndRosyRejectBadArguments) {
   dir[4] = kNaN;
   EXPECT_EQ(mcon_patch_write_rosy(target_, dir.data(), ntt_, path.c_str()), MCON_ERROR_NON_FINITE);
 }
+
+TEST_F(CapiMapArgs, ComputeRejectsBadGuidance) {
+  std::vector<double> gs(2 * ns_, 0.5), gt(2 * nt_, 0.5);
+  for (size_t v = 0; v < ns_; ++v) gs[2 * v] = static_cast<double>(v);
+  for (size_t w = 0; w < nt_; ++w) gt[2 * w] = static_cast<double>(w);
+  auto status = [&](const mcon_map_options& x) {
+    mcon_map m = reinterpret_cast<mcon_map>(&m);
+    const mcon_status s = mcon_map_compute(source_, target_, &x, &m);
+    if (s == MCON_OK) {
+      mcon_map_release(m);
+    } else {
+      EXPECT_EQ(m, nullptr);
+    }
+    return s;
+  };
+  mcon_map_options o = fast_options();
+  EXPECT_EQ(o.guidance_dimension, 0u);
+  EXPECT_EQ(o.guidance_weight, 1.0);
+  o.source_guidance = gs.data();
+  EXPECT_EQ(status(o), MCON_ERROR_INVALID_ARGUMENT) << "an array with guidance_dimension 0";
+  EXPECT_TRUE(mentions("guidance_dimension 0")) << last_message();
+
+  o.guidance_dimension = 2;
+  EXPECT_EQ(status(o), MCON_ERROR_NULL_POINTER) << "no target array";
+  EXPECT_TRUE(mentions("target_guidance")) << last_message();
+  o.target_guidance = gt.data();
+  EXPECT_EQ(status(o), MCON_OK) << last_message();
+
+  mcon_map_options x = o;
+  x.source_guidance_stride = sizeof(double);  // smaller than a row of 2
+  EXPECT_EQ(status(x), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_TRUE(mentions("source_guidance: stride")) << last_message();
+  x = o;
+  x.guidance_dimension = 5000;
+  EXPECT_EQ(status(x), MCON_ERROR_INVALID_ARGUMENT);
+  for (double w : {-1.0, kNaN, std::numeric_limits<double>::infinity()}) {
+    x = o;
+    x.guidance_weight = w;
+    EXPECT_EQ(status(x), MCON_ERROR_INVALID_ARGUMENT) << w;
+    EXPECT_TRUE(mentions("guidance_weight")) << last_message();
+  }
+  std::vector<double> bad = gt;
+  bad[2 * (nt_ / 2) + 1] = kNaN;
+  x = o;
+  x.target_guidance = bad.data();
+  EXPECT_EQ(status(x), MCON_ERROR_NON_FINITE);
+  EXPECT_TRUE(mentions("target_guidance")) << last_message();
+
+  // A strided source array (rows of 3 doubles, the guidance in the first 2) is the packed one.
+  std::vector<double> wide(3 * ns_, -7.0);
+  for (size_t v = 0; v < ns_; ++v) {
+    wide[3 * v] = gs[2 * v];
+    wide[3 * v + 1] = gs[2 * v + 1];
+  }
+  x = o;
+  x.source_guidance = wide.data();
+  x.source_guidance_stride = 3 * sizeof(double);
+  mcon_map packed = nullptr, strided = nullptr;
+  ASSERT_EQ(mcon_map_compute(source_, target_, &o, &packed), MCON_OK) << last_message();
+  ASSERT_EQ(mcon_map_compute(source_, target_, &x, &strided), MCON_OK) << last_message();
+  const MapPtr p1(packed), p2(strided);
+  std::vector<double> phi1(2 * ns_), phi2(2 * ns_);
+  ASSERT_EQ(mcon_map_get_phi(packed, phi1.data(), phi1.size()), MCON_OK);
+  ASSERT_EQ(mcon_map_get_phi(strided, phi2.data(), phi2.size()), MCON_OK);
+  EXPECT_EQ(phi1, phi2);
+}
+
+TEST_F(CapiMapArgs, OptionsOfTheOrientationSizeIgnoreGuidanceBeyondIt) {
+  // A caller compiled before the guidance fields passes struct_size up to `orientation`: garbage
+  // beyond it (a dimension without arrays, which the full size rejects) is not read.
+  mcon_map_options old = fast_options();
+  old.struct_size = static_cast<uint32_t>(offsetof(mcon_map_options, source_guidance));
+  old.guidance_dimension = 3;
+  mcon_map m = nullptr;
+  ASSERT_EQ(mcon_map_compute(source_, target_, &old, &m), MCON_OK) << last_message();
+  const MapPtr map(m);
+  std::vector<double> phi(2 * ns_), reference(2 * ns_);
+  ASSERT_EQ(mcon_map_get_phi(m, phi.data(), phi.size()), MCON_OK);
+  ASSERT_EQ(mcon_map_get_phi(map_, reference.data(), reference.size()), MCON_OK);
+  EXPECT_EQ(phi, reference);
+  mcon_map_options full = fast_options();
+  full.guidance_dimension = 3;
+  mcon_map n = nullptr;
+  EXPECT_EQ(mcon_map_compute(source_, target_, &full, &n), MCON_ERROR_NULL_POINTER);
+}

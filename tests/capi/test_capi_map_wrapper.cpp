@@ -134,3 +134,50 @@ TEST(CppMap, OrientationOptionReachesTheCApi) {
     EXPECT_EQ(e.status(), MCON_ERROR_INVALID_ARGUMENT);
   }
 }
+
+TEST(CppMap, GuidanceChannelsDecideWhatTheGeometryCannot) {
+  // A flat disk onto itself: every geometric channel is radially symmetric, so any rotation fits.
+  // Guidance that pairs source point p with target point R p must make the map that rotation.
+  const macrocon::Context ctx;
+  const map_test::Arrays a = map_test::arrays_of(mcon::test_meshes::make_disk(10));
+  const macrocon::Patch disk = macrocon::patch_from_arrays(ctx, a.positions, a.indices, 0, {{1, 0, 0}});
+  const std::vector<double> xyz = disk.positions();
+  const std::size_t n = xyz.size() / 3;
+  const double angle = 2.0, c = std::cos(angle), s = std::sin(angle);
+  macrocon::MapOptions o = fast();
+  o.max_iterations = 100;
+  o.guidance_dimension = 2;
+  o.guidance_weight = 3;
+  for (std::size_t v = 0; v < n; ++v) {
+    const double x = xyz[3 * v], y = xyz[3 * v + 1];
+    o.source_guidance.insert(o.source_guidance.end(), {x, y});
+    o.target_guidance.insert(o.target_guidance.end(), {c * x + s * y, -s * x + c * y});  // R^-1 p
+  }
+  const macrocon::Map map = macrocon::Map::compute(disk, disk, o);
+  EXPECT_EQ(map.info().reflected, 0u);
+  const auto [tri, bary] = map.correspondences(MCON_MAP_SOURCE_TO_TARGET);
+  double err = 0;
+  std::size_t inside = 0;
+  for (std::size_t v = 0; v < n; ++v) {
+    if (tri[v] < 0) continue;
+    double q[2] = {0, 0};
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t w = a.indices[3 * static_cast<std::size_t>(tri[v]) + k];
+      q[0] += bary[3 * v + k] * xyz[3 * w];
+      q[1] += bary[3 * v + k] * xyz[3 * w + 1];
+    }
+    const double x = xyz[3 * v], y = xyz[3 * v + 1];
+    err += std::hypot(q[0] - (c * x - s * y), q[1] - (s * x + c * y));
+    ++inside;
+  }
+  ASSERT_GT(inside, n * 3 / 4);  // the rim ring may land just outside
+  EXPECT_LT(err / static_cast<double>(inside), 0.06);  // the plain map (no rotation) is at ~1.1
+
+  o.target_guidance.pop_back();  // one value short
+  try {
+    (void)macrocon::Map::compute(disk, disk, o);
+    ADD_FAILURE() << "short guidance was accepted";
+  } catch (const macrocon::Error& e) {
+    EXPECT_EQ(e.status(), MCON_ERROR_INVALID_ARGUMENT);
+  }
+}
