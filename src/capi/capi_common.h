@@ -133,6 +133,35 @@ std::int32_t enum_bits(const E& value) {
 
 void require_capacity(std::size_t capacity, std::size_t needed, const char* name);
 
+// A versioned struct with every field zero but struct_size (what an *_info_init writes).
+template <typename T>
+T zeroed_struct() {
+  T value{};
+  value.struct_size = sizeof(T);
+  return value;
+}
+
+// The whole body of an mcon_*_init function: `out` (called `name` in the message) must not be NULL
+// and receives `defaults`.
+template <typename T>
+mcon_status init_struct(const char* function, T* out, const char* name, const T& defaults) noexcept {
+  return guard(function, [&] {
+    require_pointer(out, name);
+    *out = defaults;
+  });
+}
+
+// Copies `rows` (fixed-size rows: positions, uv, index triples) row after row into the caller's
+// flat array `out` of N values per row, after the NULL check (`name`) and the capacity check
+// (`capacity_name` says in which unit, e.g. "out_xyz (capacity in doubles)").
+template <int N, typename Out, typename Rows>
+void write_rows(const Rows& rows, Out* out, std::size_t capacity, const char* name, const char* capacity_name) {
+  require_pointer(out, name);
+  require_capacity(capacity, N * rows.size(), capacity_name);
+  for (std::size_t r = 0; r < rows.size(); ++r)
+    for (int k = 0; k < N; ++k) out[N * r + k] = static_cast<Out>(rows[r][k]);
+}
+
 // Turns a C progress callback into the core's std::function (null when no callback). The
 // function serializes calls (the header promises never two at once), clamps the fraction to
 // [0, 1] and never lets it go backwards, and once the caller cancelled it keeps answering

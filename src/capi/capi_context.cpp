@@ -153,19 +153,14 @@ mcon_status mcon_shutdown(void) {
 }
 
 mcon_status mcon_context_options_init(mcon_context_options* options) {
-  return guard("mcon_context_options_init", [&] {
-    require_pointer(options, "options");
-    *options = mcon_context_options{};
-    options->struct_size = sizeof(mcon_context_options);
-  });
+  return init_struct("mcon_context_options_init", options, "options", zeroed_struct<mcon_context_options>());
 }
 
 mcon_status mcon_context_create(const mcon_context_options* options, mcon_context* out_context) {
   return guard("mcon_context_create", [&] {
     require_pointer(out_context, "out_context");
     *out_context = nullptr;
-    mcon_context_options defaults{};
-    defaults.struct_size = sizeof(mcon_context_options);
+    auto defaults = zeroed_struct<mcon_context_options>();
     const auto opts = read_options(options, sizeof(mcon_context_options), "mcon_context_options", defaults);
     require(opts.max_threads <= 4096, MCON_ERROR_INVALID_ARGUMENT,
             "max_threads " + std::to_string(opts.max_threads) + " is out of range (0 = all, at most 4096)");

@@ -12,8 +12,7 @@ using namespace mcon::capi;
 namespace {
 
 mcon_cross_field_options default_cross_field_options() {
-  mcon_cross_field_options o{};
-  o.struct_size = sizeof(mcon_cross_field_options);
+  auto o = zeroed_struct<mcon_cross_field_options>();
   o.alignment_weight = 10.0;
   o.align_to_boundary = 0;
   o.boundary_weight = 1.0;
@@ -25,10 +24,7 @@ mcon_cross_field_options default_cross_field_options() {
 extern "C" {
 
 mcon_status mcon_cross_field_options_init(mcon_cross_field_options* options) {
-  return guard("mcon_cross_field_options_init", [&] {
-    require_pointer(options, "options");
-    *options = default_cross_field_options();
-  });
+  return init_struct("mcon_cross_field_options_init", options, "options", default_cross_field_options());
 }
 
 mcon_status mcon_patch_compute_cross_field(mcon_patch patch, mcon_polyline_set guides,

@@ -64,4 +64,31 @@ mcon_status guard_object(const char* function, T* handle, const char* what, F&& 
       log_context);
 }
 
+// The context a handle's errors are logged to: a context is its own, every other object keeps
+// the one it was made in.
+inline mcon_context context_of(mcon_context context) { return context; }
+template <typename T>
+mcon_context context_of(const T* handle) {
+  return handle->context;
+}
+
+// guard() for a call that makes a new object: the output pointer must not be NULL and is cleared
+// first (so a failed call always leaves NULL there), then `handle`, the object it is made from,
+// is validated and any later error also goes to the log callback of that object's context.
+template <typename Out, typename T, typename F>
+mcon_status guard_create(const char* function, Out** out, const char* out_name, T* handle, const char* what,
+                         F&& body) noexcept {
+  mcon_context log_context = nullptr;
+  return guard(
+      function,
+      [&] {
+        require_pointer(out, out_name);
+        *out = nullptr;
+        check_handle(handle, what);
+        log_context = context_of(handle);
+        body();
+      },
+      log_context);
+}
+
 }  // namespace mcon::capi

@@ -41,8 +41,7 @@ Eigen::MatrixXd read_rows(const double* values, std::size_t rows, std::uint32_t 
 namespace {
 
 mcon_retrieval_options default_retrieval_options() {
-  mcon_retrieval_options o{};
-  o.struct_size = sizeof(mcon_retrieval_options);
+  auto o = zeroed_struct<mcon_retrieval_options>();
   o.descriptor = MCON_RETRIEVAL_DESCRIPTOR_CURV9;
   o.vocabulary_size = kDefaultVocabularySize;
   o.rings = kDefaultRetrievalRings;  // the measured best (src/retrieval_config.h)
@@ -120,18 +119,13 @@ mcon_status mcon_library_save_memory(mcon_library library, void* out_data, size_
 }
 
 mcon_status mcon_library_info_init(mcon_library_info* info) {
-  return guard("mcon_library_info_init", [&] {
-    require_pointer(info, "info");
-    *info = mcon_library_info{};
-    info->struct_size = sizeof(mcon_library_info);
-  });
+  return init_struct("mcon_library_info_init", info, "info", zeroed_struct<mcon_library_info>());
 }
 
 mcon_status mcon_library_get_info(mcon_library library, mcon_library_info* info) {
   return guard_object("mcon_library_get_info", library, "library", [&] {
     const RetrievalConfig& c = library->library.retrieval();
-    mcon_library_info v{};
-    v.struct_size = sizeof(mcon_library_info);
+    auto v = zeroed_struct<mcon_library_info>();
     v.entry_count = library->library.size();
     v.descriptor = descriptor_code(c.descriptor);
     v.descriptor_dimension = c.dimension;
@@ -200,10 +194,7 @@ mcon_status mcon_library_merge(mcon_library library, mcon_library other) {
 }
 
 mcon_status mcon_retrieval_options_init(mcon_retrieval_options* options) {
-  return guard("mcon_retrieval_options_init", [&] {
-    require_pointer(options, "options");
-    *options = default_retrieval_options();
-  });
+  return init_struct("mcon_retrieval_options_init", options, "options", default_retrieval_options());
 }
 
 mcon_status mcon_library_build_retrieval(mcon_library library, const mcon_retrieval_options* options) {

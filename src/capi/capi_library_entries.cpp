@@ -12,8 +12,7 @@ using namespace mcon::capi;
 namespace {
 
 mcon_library_entry_desc default_entry_desc() {
-  mcon_library_entry_desc d{};
-  d.struct_size = sizeof(mcon_library_entry_desc);
+  auto d = zeroed_struct<mcon_library_entry_desc>();
   return d;
 }
 
@@ -145,10 +144,7 @@ mcon_surface_point to_c(const SurfacePoint& p) {
 extern "C" {
 
 mcon_status mcon_library_entry_desc_init(mcon_library_entry_desc* desc) {
-  return guard("mcon_library_entry_desc_init", [&] {
-    require_pointer(desc, "desc");
-    *desc = default_entry_desc();
-  });
+  return init_struct("mcon_library_entry_desc_init", desc, "desc", default_entry_desc());
 }
 
 mcon_status mcon_library_add_entry(mcon_library library, const mcon_library_entry_desc* desc, uint64_t* out_id) {
@@ -198,19 +194,14 @@ mcon_status mcon_library_find_entry(mcon_library library, uint64_t id, size_t* o
 }
 
 mcon_status mcon_library_entry_info_init(mcon_library_entry_info* info) {
-  return guard("mcon_library_entry_info_init", [&] {
-    require_pointer(info, "info");
-    *info = mcon_library_entry_info{};
-    info->struct_size = sizeof(mcon_library_entry_info);
-  });
+  return init_struct("mcon_library_entry_info_init", info, "info", zeroed_struct<mcon_library_entry_info>());
 }
 
 mcon_status mcon_library_get_entry_info(mcon_library library, size_t index, mcon_library_entry_info* info) {
   return guard_object("mcon_library_get_entry_info", library, "library", [&] {
     require_pointer(info, "info");
     const MacroConstraint& e = entry_at(library, index);
-    mcon_library_entry_info v{};
-    v.struct_size = sizeof(mcon_library_entry_info);
+    auto v = zeroed_struct<mcon_library_entry_info>();
     v.id = e.id;
     v.vertex_count = e.vertex_count();
     v.triangle_count = e.triangle_count();

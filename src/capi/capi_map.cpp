@@ -28,8 +28,7 @@ constexpr std::size_t kMapOptionsMinSize = offsetof(mcon_map_options, orientatio
 constexpr std::size_t kMapInfoMinSize = offsetof(mcon_map_info, alignment_score_unreflected);
 
 mcon_patch_frame default_frame() {
-  mcon_patch_frame f{};
-  f.struct_size = sizeof(mcon_patch_frame);
+  auto f = zeroed_struct<mcon_patch_frame>();
   f.center_triangle = MCON_INVALID_INDEX;
   f.center_barycentric[0] = f.center_barycentric[1] = f.center_barycentric[2] = 1.0 / 3.0;
   f.scale = 1.0;
@@ -37,8 +36,7 @@ mcon_patch_frame default_frame() {
 }
 
 mcon_map_options default_map_options() {
-  mcon_map_options o{};
-  o.struct_size = sizeof(mcon_map_options);
+  auto o = zeroed_struct<mcon_map_options>();
   o.seed = 0;
   o.alignment_samples = 10000;
   o.allow_reflection = 1;
@@ -63,131 +61,109 @@ std::uint32_t stop_reason_code(StopReason r) {
 extern "C" {
 
 mcon_status mcon_patch_frame_init(mcon_patch_frame* frame) {
-  return guard("mcon_patch_frame_init", [&] {
-    require_pointer(frame, "frame");
-    *frame = default_frame();
-  });
+  return init_struct("mcon_patch_frame_init", frame, "frame", default_frame());
 }
 
 mcon_status mcon_patch_create_from_arrays(mcon_context context, const mcon_mesh_desc* mesh,
                                           const mcon_patch_frame* frame, mcon_patch* out_patch) {
-  mcon_context log_context = nullptr;
-  return guard(
-      "mcon_patch_create_from_arrays",
-      [&] {
-        require_pointer(out_patch, "out_patch");
-        *out_patch = nullptr;
-        check_handle(context, "context");
-        log_context = context;
-        require_pointer(mesh, "mesh");
-        require_pointer(frame, "frame");
-        const auto f = read_options(frame, sizeof(mcon_patch_frame), "mcon_patch_frame", default_frame());
-        // The mesh goes through mcon_mesh_create: the same copy and validation, the same errors.
-        mcon_mesh m = nullptr;
-        const mcon_status s = mcon_mesh_create(context, mesh, &m);
-        if (s != MCON_OK) throw Error(s, thread_last_error().message);
-        TriMesh tri = std::move(m->mesh);
-        mcon_mesh_release(m);
+  return guard_create("mcon_patch_create_from_arrays", out_patch, "out_patch", context, "context", [&] {
+    require_pointer(mesh, "mesh");
+    require_pointer(frame, "frame");
+    const auto f = read_options(frame, sizeof(mcon_patch_frame), "mcon_patch_frame", default_frame());
+    // The mesh goes through mcon_mesh_create: the same copy and validation, the same errors.
+    mcon_mesh m = nullptr;
+    const mcon_status s = mcon_mesh_create(context, mesh, &m);
+    if (s != MCON_OK) throw Error(s, thread_last_error().message);
+    TriMesh tri = std::move(m->mesh);
+    mcon_mesh_release(m);
 
-        require(f.center_triangle != MCON_INVALID_INDEX, MCON_ERROR_INVALID_ARGUMENT,
-                "frame.center_triangle is not set (the center is required)");
-        require(f.center_triangle < tri.triangles.size(), MCON_ERROR_INVALID_ARGUMENT,
-                "frame.center_triangle " + std::to_string(f.center_triangle) + " is out of range (the mesh has " +
-                    std::to_string(tri.triangles.size()) + " triangles)");
-        PatchFrame pf;
-        pf.center_triangle = static_cast<int>(f.center_triangle);
-        pf.center_barycentric = Vec3(f.center_barycentric[0], f.center_barycentric[1], f.center_barycentric[2]);
-        pf.origin = Vec3(f.origin[0], f.origin[1], f.origin[2]);
-        pf.scale = f.scale;
+    require(f.center_triangle != MCON_INVALID_INDEX, MCON_ERROR_INVALID_ARGUMENT,
+            "frame.center_triangle is not set (the center is required)");
+    require(f.center_triangle < tri.triangles.size(), MCON_ERROR_INVALID_ARGUMENT,
+            "frame.center_triangle " + std::to_string(f.center_triangle) + " is out of range (the mesh has " +
+                std::to_string(tri.triangles.size()) + " triangles)");
+    PatchFrame pf;
+    pf.center_triangle = static_cast<int>(f.center_triangle);
+    pf.center_barycentric = Vec3(f.center_barycentric[0], f.center_barycentric[1], f.center_barycentric[2]);
+    pf.origin = Vec3(f.origin[0], f.origin[1], f.origin[2]);
+    pf.scale = f.scale;
 
-        auto patch = std::make_unique<mcon_patch_t>();
-        patch->patch = run_in_arena(context, [&] { return patch_from_mesh(std::move(tri), pf); });
-        const MeshTopology topology = build_topology(patch->patch.mesh);
-        patch->boundary_loops = static_cast<std::uint32_t>(topology.boundary_loops.size());
-        patch->euler_characteristic = euler_characteristic(patch->patch.mesh, topology);
-        retain(context, "context");
-        patch->context = context;
-        *out_patch = patch.release();
-      },
-      log_context);
+    auto patch = std::make_unique<mcon_patch_t>();
+    patch->patch = run_in_arena(context, [&] { return patch_from_mesh(std::move(tri), pf); });
+    const MeshTopology topology = build_topology(patch->patch.mesh);
+    patch->boundary_loops = static_cast<std::uint32_t>(topology.boundary_loops.size());
+    patch->euler_characteristic = euler_characteristic(patch->patch.mesh, topology);
+    retain(context, "context");
+    patch->context = context;
+    *out_patch = patch.release();
+  });
 }
 
 mcon_status mcon_map_options_init(mcon_map_options* options) {
-  return guard("mcon_map_options_init", [&] {
-    require_pointer(options, "options");
-    *options = default_map_options();
-  });
+  return init_struct("mcon_map_options_init", options, "options", default_map_options());
 }
 
 mcon_status mcon_map_compute(mcon_patch source, mcon_patch target, const mcon_map_options* options,
                              mcon_map* out_map) {
-  mcon_context log_context = nullptr;
-  return guard(
-      "mcon_map_compute",
-      [&] {
-        require_pointer(out_map, "out_map");
-        *out_map = nullptr;
-        check_handle(source, "patch");
-        log_context = source->context;
-        check_handle(target, "patch");
-        const auto o = options ? read_options(options, kMapOptionsMinSize, "mcon_map_options",
-                                              default_map_options())
-                               : default_map_options();
-        require(o.alignment_samples >= 1 && o.alignment_samples <= 100000000u, MCON_ERROR_INVALID_ARGUMENT,
-                "alignment_samples must be in [1, 1e8] (got " + std::to_string(o.alignment_samples) + ")");
-        require(o.max_iterations >= 1 && o.max_iterations <= 1000000u, MCON_ERROR_INVALID_ARGUMENT,
-                "max_iterations must be in [1, 1e6] (got " + std::to_string(o.max_iterations) + ")");
-        require(o.orientation <= MCON_MAP_ORIENTATION_REVERSE, MCON_ERROR_INVALID_ARGUMENT,
-                "orientation " + std::to_string(o.orientation) +
-                    " is not an mcon_map_orientation (0 automatic, 1 preserve, 2 reverse)");
+  return guard_create("mcon_map_compute", out_map, "out_map", source, "patch", [&] {
+    check_handle(target, "patch");
+    const auto o = options ? read_options(options, kMapOptionsMinSize, "mcon_map_options",
+                                          default_map_options())
+                           : default_map_options();
+    require(o.alignment_samples >= 1 && o.alignment_samples <= 100000000u, MCON_ERROR_INVALID_ARGUMENT,
+            "alignment_samples must be in [1, 1e8] (got " + std::to_string(o.alignment_samples) + ")");
+    require(o.max_iterations >= 1 && o.max_iterations <= 1000000u, MCON_ERROR_INVALID_ARGUMENT,
+            "max_iterations must be in [1, 1e6] (got " + std::to_string(o.max_iterations) + ")");
+    require(o.orientation <= MCON_MAP_ORIENTATION_REVERSE, MCON_ERROR_INVALID_ARGUMENT,
+            "orientation " + std::to_string(o.orientation) +
+                " is not an mcon_map_orientation (0 automatic, 1 preserve, 2 reverse)");
 
-        PatchMapOptions po;
-        po.map.alignment.samples = static_cast<int>(o.alignment_samples);
-        po.map.alignment.seed = o.seed;
-        po.map.alignment.allow_reflection = o.allow_reflection != 0;
-        po.map.orientation = o.orientation == MCON_MAP_ORIENTATION_PRESERVE  ? MapOrientation::preserve
-                             : o.orientation == MCON_MAP_ORIENTATION_REVERSE ? MapOrientation::reverse
-                                                                             : MapOrientation::automatic;
-        po.map.newton.max_iterations = static_cast<int>(o.max_iterations);
-        Eigen::MatrixXd source_guidance, target_guidance;
-        if (o.guidance_dimension == 0) {
-          require(o.source_guidance == nullptr && o.target_guidance == nullptr, MCON_ERROR_INVALID_ARGUMENT,
-                  "guidance arrays given with guidance_dimension 0");
-        } else {
-          require(o.source_guidance != nullptr && o.target_guidance != nullptr, MCON_ERROR_NULL_POINTER,
-                  "guidance_dimension " + std::to_string(o.guidance_dimension) +
-                      " needs both source_guidance and target_guidance");
-          require(o.guidance_dimension <= 1024, MCON_ERROR_INVALID_ARGUMENT,
-                  "guidance_dimension must be in [0, 1024] (got " + std::to_string(o.guidance_dimension) + ")");
-          require(std::isfinite(o.guidance_weight) && o.guidance_weight >= 0, MCON_ERROR_INVALID_ARGUMENT,
-                  "guidance_weight must be finite and >= 0");
-          source_guidance = read_rows(o.source_guidance, source->patch.mesh.positions.size(), o.guidance_dimension,
-                                      o.source_guidance_stride, "source_guidance");
-          target_guidance = read_rows(o.target_guidance, target->patch.mesh.positions.size(), o.guidance_dimension,
-                                      o.target_guidance_stride, "target_guidance");
-          po.source_guidance = &source_guidance;
-          po.target_guidance = &target_guidance;
-          po.guidance_weight = o.guidance_weight;
-        }
-        std::shared_ptr<const std::atomic<bool>> cancelled;
-        po.map.progress = make_progress(o.progress, o.progress_user_data, &cancelled);
+    PatchMapOptions po;
+    po.map.alignment.samples = static_cast<int>(o.alignment_samples);
+    po.map.alignment.seed = o.seed;
+    po.map.alignment.allow_reflection = o.allow_reflection != 0;
+    po.map.orientation = o.orientation == MCON_MAP_ORIENTATION_PRESERVE  ? MapOrientation::preserve
+                         : o.orientation == MCON_MAP_ORIENTATION_REVERSE ? MapOrientation::reverse
+                                                                         : MapOrientation::automatic;
+    po.map.newton.max_iterations = static_cast<int>(o.max_iterations);
+    Eigen::MatrixXd source_guidance, target_guidance;
+    if (o.guidance_dimension == 0) {
+      require(o.source_guidance == nullptr && o.target_guidance == nullptr, MCON_ERROR_INVALID_ARGUMENT,
+              "guidance arrays given with guidance_dimension 0");
+    } else {
+      require(o.source_guidance != nullptr && o.target_guidance != nullptr, MCON_ERROR_NULL_POINTER,
+              "guidance_dimension " + std::to_string(o.guidance_dimension) +
+                  " needs both source_guidance and target_guidance");
+      require(o.guidance_dimension <= 1024, MCON_ERROR_INVALID_ARGUMENT,
+              "guidance_dimension must be in [0, 1024] (got " + std::to_string(o.guidance_dimension) + ")");
+      require(std::isfinite(o.guidance_weight) && o.guidance_weight >= 0, MCON_ERROR_INVALID_ARGUMENT,
+              "guidance_weight must be finite and >= 0");
+      source_guidance = read_rows(o.source_guidance, source->patch.mesh.positions.size(), o.guidance_dimension,
+                                  o.source_guidance_stride, "source_guidance");
+      target_guidance = read_rows(o.target_guidance, target->patch.mesh.positions.size(), o.guidance_dimension,
+                                  o.target_guidance_stride, "target_guidance");
+      po.source_guidance = &source_guidance;
+      po.target_guidance = &target_guidance;
+      po.guidance_weight = o.guidance_weight;
+    }
+    std::shared_ptr<const std::atomic<bool>> cancelled;
+    po.map.progress = make_progress(o.progress, o.progress_user_data, &cancelled);
 
-        auto map = std::make_unique<mcon_map_t>();
-        map->map = run_in_arena(source->context, [&] { return map_patches(source->patch, target->patch, po); });
-        require(!(cancelled && cancelled->load()), MCON_ERROR_CANCELLED, "cancelled by the progress callback");
-        // Local injectivity is the map's promise (thesis §4.1.3): count again before handing it out.
-        const int flips = count_phi_flips(source->patch.mesh, map->map.phi, map->map.reflected);
-        require(flips == 0, MCON_ERROR_NUMERICAL,
-                "the map has " + std::to_string(flips) + " inverted triangles (a locally injective map has none)");
-        map->flipped_triangles = 0;
-        retain(source, "patch");
-        map->source = source;
-        retain(target, "patch");
-        map->target = target;
-        map->context = source->context;
-        *out_map = map.release();
-      },
-      log_context);
+    auto map = std::make_unique<mcon_map_t>();
+    map->map = run_in_arena(source->context, [&] { return map_patches(source->patch, target->patch, po); });
+    require(!(cancelled && cancelled->load()), MCON_ERROR_CANCELLED, "cancelled by the progress callback");
+    // Local injectivity is the map's promise (thesis §4.1.3): count again before handing it out.
+    const int flips = count_phi_flips(source->patch.mesh, map->map.phi, map->map.reflected);
+    require(flips == 0, MCON_ERROR_NUMERICAL,
+            "the map has " + std::to_string(flips) + " inverted triangles (a locally injective map has none)");
+    map->flipped_triangles = 0;
+    retain(source, "patch");
+    map->source = source;
+    retain(target, "patch");
+    map->target = target;
+    map->context = source->context;
+    *out_map = map.release();
+  });
 }
 
 mcon_status mcon_map_retain(mcon_map map) {
@@ -199,18 +175,13 @@ mcon_status mcon_map_release(mcon_map map) {
 }
 
 mcon_status mcon_map_info_init(mcon_map_info* info) {
-  return guard("mcon_map_info_init", [&] {
-    require_pointer(info, "info");
-    *info = mcon_map_info{};
-    info->struct_size = sizeof(mcon_map_info);
-  });
+  return init_struct("mcon_map_info_init", info, "info", zeroed_struct<mcon_map_info>());
 }
 
 mcon_status mcon_map_get_info(mcon_map map, mcon_map_info* info) {
   return guard_object("mcon_map_get_info", map, "map", [&] {
     const SurfaceMap& m = map->map;
-    mcon_map_info v{};
-    v.struct_size = sizeof(mcon_map_info);
+    auto v = zeroed_struct<mcon_map_info>();
     v.source_vertex_count = m.source_to_target.size();
     v.target_vertex_count = m.target_to_source.size();
     for (const BarycentricPoint& p : m.source_to_target) v.source_vertices_inside += p.triangle >= 0 ? 1 : 0;
@@ -259,13 +230,7 @@ mcon_status mcon_map_get_correspondences(mcon_map map, mcon_map_direction direct
 
 mcon_status mcon_map_get_phi(mcon_map map, double* out_xy, size_t capacity) {
   return guard_object("mcon_map_get_phi", map, "map", [&] {
-    require_pointer(out_xy, "out_xy");
-    const auto& phi = map->map.phi;
-    require_capacity(capacity, 2 * phi.size(), "out_xy (capacity in doubles)");
-    for (std::size_t v = 0; v < phi.size(); ++v) {
-      out_xy[2 * v] = phi[v].x();
-      out_xy[2 * v + 1] = phi[v].y();
-    }
+    write_rows<2>(map->map.phi, out_xy, capacity, "out_xy", "out_xy (capacity in doubles)");
   });
 }
 

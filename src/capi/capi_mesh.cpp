@@ -23,52 +23,39 @@ void require_addressable(std::size_t count, std::size_t stride, std::size_t elem
 extern "C" {
 
 mcon_status mcon_mesh_desc_init(mcon_mesh_desc* desc) {
-  return guard("mcon_mesh_desc_init", [&] {
-    require_pointer(desc, "desc");
-    *desc = mcon_mesh_desc{};
-    desc->struct_size = sizeof(mcon_mesh_desc);
-    // position_type stays 0: the caller must say whether positions are floats or doubles.
-  });
+  // position_type stays 0: the caller must say whether positions are floats or doubles.
+  return init_struct("mcon_mesh_desc_init", desc, "desc", zeroed_struct<mcon_mesh_desc>());
 }
 
 mcon_status mcon_mesh_create(mcon_context context, const mcon_mesh_desc* desc, mcon_mesh* out_mesh) {
-  mcon_context log_context = nullptr;
-  return guard(
-      "mcon_mesh_create",
-      [&] {
-        require_pointer(out_mesh, "out_mesh");
-        *out_mesh = nullptr;
-        check_handle(context, "context");
-        log_context = context;
-        require_pointer(desc, "desc");
-        mcon_mesh_desc defaults{};
-        defaults.struct_size = sizeof(mcon_mesh_desc);
-        const auto d = read_options(desc, sizeof(mcon_mesh_desc), "mcon_mesh_desc", defaults);
-        require(d.position_type == MCON_SCALAR_FLOAT32 || d.position_type == MCON_SCALAR_FLOAT64,
-                MCON_ERROR_INVALID_ARGUMENT,
-                "position_type " + std::to_string(d.position_type) +
-                    " is not an mcon_scalar_type (set MCON_SCALAR_FLOAT32 = 1 or MCON_SCALAR_FLOAT64 = 2)");
+  return guard_create("mcon_mesh_create", out_mesh, "out_mesh", context, "context", [&] {
+    require_pointer(desc, "desc");
+    auto defaults = zeroed_struct<mcon_mesh_desc>();
+    const auto d = read_options(desc, sizeof(mcon_mesh_desc), "mcon_mesh_desc", defaults);
+    require(d.position_type == MCON_SCALAR_FLOAT32 || d.position_type == MCON_SCALAR_FLOAT64,
+            MCON_ERROR_INVALID_ARGUMENT,
+            "position_type " + std::to_string(d.position_type) +
+                " is not an mcon_scalar_type (set MCON_SCALAR_FLOAT32 = 1 or MCON_SCALAR_FLOAT64 = 2)");
 
-        MeshArrays arrays;
-        arrays.positions = d.positions;
-        arrays.positions_are_double = d.position_type == MCON_SCALAR_FLOAT64;
-        arrays.position_stride = d.position_stride;
-        arrays.vertex_count = d.vertex_count;
-        arrays.indices = d.indices;
-        arrays.index_stride = d.index_stride;
-        arrays.triangle_count = d.triangle_count;
-        const std::size_t scalar = arrays.positions_are_double ? sizeof(double) : sizeof(float);
-        require_addressable(d.vertex_count, d.position_stride ? d.position_stride : 3 * scalar, 3 * scalar,
-                            "positions");
-        require_addressable(d.triangle_count, d.index_stride ? d.index_stride : 12, 12, "indices");
+    MeshArrays arrays;
+    arrays.positions = d.positions;
+    arrays.positions_are_double = d.position_type == MCON_SCALAR_FLOAT64;
+    arrays.position_stride = d.position_stride;
+    arrays.vertex_count = d.vertex_count;
+    arrays.indices = d.indices;
+    arrays.index_stride = d.index_stride;
+    arrays.triangle_count = d.triangle_count;
+    const std::size_t scalar = arrays.positions_are_double ? sizeof(double) : sizeof(float);
+    require_addressable(d.vertex_count, d.position_stride ? d.position_stride : 3 * scalar, 3 * scalar,
+                        "positions");
+    require_addressable(d.triangle_count, d.index_stride ? d.index_stride : 12, 12, "indices");
 
-        auto mesh = std::make_unique<mcon_mesh_t>();
-        mesh->mesh = run_in_arena(context, [&] { return mesh_from_arrays(arrays); });
-        retain(context, "context");
-        mesh->context = context;
-        *out_mesh = mesh.release();
-      },
-      log_context);
+    auto mesh = std::make_unique<mcon_mesh_t>();
+    mesh->mesh = run_in_arena(context, [&] { return mesh_from_arrays(arrays); });
+    retain(context, "context");
+    mesh->context = context;
+    *out_mesh = mesh.release();
+  });
 }
 
 mcon_status mcon_mesh_retain(mcon_mesh mesh) {

@@ -13,8 +13,7 @@ mcon_patch_t::~mcon_patch_t() { release_owned(context); }
 namespace {
 
 mcon_patch_options default_patch_options() {
-  mcon_patch_options o{};
-  o.struct_size = sizeof(mcon_patch_options);
+  auto o = zeroed_struct<mcon_patch_options>();
   o.center_vertex = MCON_INVALID_INDEX;
   o.center_triangle = MCON_INVALID_INDEX;
   o.center_barycentric[0] = o.center_barycentric[1] = o.center_barycentric[2] = 1.0 / 3.0;
@@ -76,46 +75,35 @@ std::uint32_t to_index(int i) { return i < 0 ? MCON_INVALID_INDEX : static_cast<
 extern "C" {
 
 mcon_status mcon_patch_options_init(mcon_patch_options* options) {
-  return guard("mcon_patch_options_init", [&] {
-    require_pointer(options, "options");
-    *options = default_patch_options();
-  });
+  return init_struct("mcon_patch_options_init", options, "options", default_patch_options());
 }
 
 mcon_status mcon_patch_extract(mcon_mesh host, const mcon_patch_options* options, mcon_patch* out_patch) {
-  mcon_context log_context = nullptr;
-  return guard(
-      "mcon_patch_extract",
-      [&] {
-        require_pointer(out_patch, "out_patch");
-        *out_patch = nullptr;
-        check_handle(host, "mesh");
-        log_context = host->context;
-        require_pointer(options, "options");
-        const auto o = read_options(options, sizeof(mcon_patch_options), "mcon_patch_options", default_patch_options());
-        PatchOptions po = to_core_options(o, host->mesh);
-        std::shared_ptr<const std::atomic<bool>> cancelled;
-        po.progress = make_progress(o.progress, o.progress_user_data, &cancelled);
+  return guard_create("mcon_patch_extract", out_patch, "out_patch", host, "mesh", [&] {
+    require_pointer(options, "options");
+    const auto o = read_options(options, sizeof(mcon_patch_options), "mcon_patch_options", default_patch_options());
+    PatchOptions po = to_core_options(o, host->mesh);
+    std::shared_ptr<const std::atomic<bool>> cancelled;
+    po.progress = make_progress(o.progress, o.progress_user_data, &cancelled);
 
-        auto patch = std::make_unique<mcon_patch_t>();
-        patch->patch = run_in_arena(host->context, [&] { return extract_geodesic_disk(host->mesh, po); });
-        // Even if the core finished anyway, a "cancel" answer means the call is cancelled.
-        require(!(cancelled && cancelled->load()), MCON_ERROR_CANCELLED, "cancelled by the progress callback");
+    auto patch = std::make_unique<mcon_patch_t>();
+    patch->patch = run_in_arena(host->context, [&] { return extract_geodesic_disk(host->mesh, po); });
+    // Even if the core finished anyway, a "cancel" answer means the call is cancelled.
+    require(!(cancelled && cancelled->load()), MCON_ERROR_CANCELLED, "cancelled by the progress callback");
 
-        const MeshTopology topology = build_topology(patch->patch.mesh);
-        patch->boundary_loops = static_cast<std::uint32_t>(topology.boundary_loops.size());
-        patch->euler_characteristic = euler_characteristic(patch->patch.mesh, topology);
-        // The core promises a disk; a patch that is not one must never reach the caller.
-        require(patch->boundary_loops == 1 && patch->euler_characteristic == 1, MCON_ERROR_NOT_A_DISK,
-                "the extracted patch has " + std::to_string(patch->boundary_loops) +
-                    " boundary loops and Euler characteristic " + std::to_string(patch->euler_characteristic) +
-                    " (a disk has 1 and 1)");
+    const MeshTopology topology = build_topology(patch->patch.mesh);
+    patch->boundary_loops = static_cast<std::uint32_t>(topology.boundary_loops.size());
+    patch->euler_characteristic = euler_characteristic(patch->patch.mesh, topology);
+    // The core promises a disk; a patch that is not one must never reach the caller.
+    require(patch->boundary_loops == 1 && patch->euler_characteristic == 1, MCON_ERROR_NOT_A_DISK,
+            "the extracted patch has " + std::to_string(patch->boundary_loops) +
+                " boundary loops and Euler characteristic " + std::to_string(patch->euler_characteristic) +
+                " (a disk has 1 and 1)");
 
-        retain(host->context, "context");
-        patch->context = host->context;
-        *out_patch = patch.release();
-      },
-      log_context);
+    retain(host->context, "context");
+    patch->context = host->context;
+    *out_patch = patch.release();
+  });
 }
 
 mcon_status mcon_patch_retain(mcon_patch patch) {
@@ -127,18 +115,13 @@ mcon_status mcon_patch_release(mcon_patch patch) {
 }
 
 mcon_status mcon_patch_info_init(mcon_patch_info* info) {
-  return guard("mcon_patch_info_init", [&] {
-    require_pointer(info, "info");
-    *info = mcon_patch_info{};
-    info->struct_size = sizeof(mcon_patch_info);
-  });
+  return init_struct("mcon_patch_info_init", info, "info", zeroed_struct<mcon_patch_info>());
 }
 
 mcon_status mcon_patch_get_info(mcon_patch patch, mcon_patch_info* info) {
   return guard_object("mcon_patch_get_info", patch, "patch", [&] {
     const Patch& p = patch->patch;
-    mcon_patch_info v{};
-    v.struct_size = sizeof(mcon_patch_info);
+    auto v = zeroed_struct<mcon_patch_info>();
     v.vertex_count = p.mesh.positions.size();
     v.triangle_count = p.mesh.triangles.size();
     v.filled_triangle_count = static_cast<std::size_t>(p.filled_triangles());
@@ -158,36 +141,25 @@ mcon_status mcon_patch_get_info(mcon_patch patch, mcon_patch_info* info) {
 
 mcon_status mcon_patch_get_positions(mcon_patch patch, double* out_xyz, size_t capacity) {
   return guard_object("mcon_patch_get_positions", patch, "patch", [&] {
-    require_pointer(out_xyz, "out_xyz");
-    const auto& positions = patch->patch.mesh.positions;
-    require_capacity(capacity, 3 * positions.size(), "out_xyz (capacity in doubles)");
-    for (std::size_t v = 0; v < positions.size(); ++v)
-      for (int k = 0; k < 3; ++k) out_xyz[3 * v + k] = positions[v][k];
+    write_rows<3>(patch->patch.mesh.positions, out_xyz, capacity, "out_xyz", "out_xyz (capacity in doubles)");
   });
 }
 
 mcon_status mcon_patch_get_triangles(mcon_patch patch, uint32_t* out_indices, size_t capacity) {
   return guard_object("mcon_patch_get_triangles", patch, "patch", [&] {
-    require_pointer(out_indices, "out_indices");
-    const auto& triangles = patch->patch.mesh.triangles;
-    require_capacity(capacity, 3 * triangles.size(), "out_indices (capacity in indices)");
-    for (std::size_t t = 0; t < triangles.size(); ++t)
-      for (int k = 0; k < 3; ++k) out_indices[3 * t + k] = static_cast<std::uint32_t>(triangles[t][k]);
+    write_rows<3>(patch->patch.mesh.triangles, out_indices, capacity, "out_indices",
+                  "out_indices (capacity in indices)");
   });
 }
 
 mcon_status mcon_patch_get_uv(mcon_patch patch, double* out_uv, size_t capacity) {
   return guard_object("mcon_patch_get_uv", patch, "patch", [&] {
-    require_pointer(out_uv, "out_uv");
     const auto& uv = patch->patch.uv;
+    // An internal invariant (never a caller's mistake), checked before the caller's arguments.
     require(uv.size() == patch->patch.mesh.positions.size(), MCON_ERROR_UNKNOWN,
             "the patch has " + std::to_string(uv.size()) + " uv values for " +
                 std::to_string(patch->patch.mesh.positions.size()) + " vertices");
-    require_capacity(capacity, 2 * uv.size(), "out_uv (capacity in doubles)");
-    for (std::size_t v = 0; v < uv.size(); ++v) {
-      out_uv[2 * v] = uv[v].x();
-      out_uv[2 * v + 1] = uv[v].y();
-    }
+    write_rows<2>(uv, out_uv, capacity, "out_uv", "out_uv (capacity in doubles)");
   });
 }
 

@@ -36,6 +36,23 @@ std::vector<SurfacePointOnMesh> read_points(const Patch& source, const uint32_t*
   return points;
 }
 
+struct VertexCounts {
+  std::size_t source, target;
+};
+
+// The array sizes of a per-vertex transfer (values or labels, `dimension` per vertex): the input
+// holds exactly source vertices x dimension items (`count`, named `count_name` in the message) and
+// the output room for target vertices x dimension (`capacity`, described by `capacity_name`).
+VertexCounts require_vertex_array_sizes(const mcon_map_t& map, std::uint32_t dimension, std::size_t count,
+                                        const char* count_name, std::size_t capacity, const char* capacity_name) {
+  const VertexCounts n{map.map.source_to_target.size(), map.map.target_to_source.size()};
+  require(count == n.source * dimension, MCON_ERROR_INVALID_ARGUMENT,
+          std::string(count_name) + " is " + std::to_string(count) +
+              ", expected source vertices x dimension = " + std::to_string(n.source * dimension));
+  require_capacity(capacity, n.target * dimension, capacity_name);
+  return n;
+}
+
 }  // namespace
 
 extern "C" {
@@ -174,11 +191,8 @@ mcon_status mcon_map_transfer_field(mcon_map map, mcon_field_kind kind, uint32_t
               "this field kind has dimension " + std::to_string(needed_dim) + ", not " + std::to_string(dimension));
     require_pointer(source_values, "source_values");
     require_pointer(out_values, "out_values");
-    const std::size_t ns = map->map.source_to_target.size(), nt = map->map.target_to_source.size();
-    require(value_count == ns * dimension, MCON_ERROR_INVALID_ARGUMENT,
-            "value_count is " + std::to_string(value_count) + ", expected source vertices x dimension = " +
-                std::to_string(ns * dimension));
-    require_capacity(capacity, nt * dimension, "out_values (capacity in doubles)");
+    const auto [ns, nt] = require_vertex_array_sizes(*map, dimension, value_count, "value_count", capacity,
+                                                     "out_values (capacity in doubles)");
     for (std::size_t i = 0; i < value_count; ++i)
       require(std::isfinite(source_values[i]), MCON_ERROR_NON_FINITE,
               "source_values[" + std::to_string(i) + "] is not finite");
@@ -208,11 +222,8 @@ mcon_status mcon_map_transfer_labels(mcon_map map, uint32_t dimension, const int
             "dimension must be in [1, 65536] (got " + std::to_string(dimension) + ")");
     require_pointer(source_labels, "source_labels");
     require_pointer(out_labels, "out_labels");
-    const std::size_t ns = map->map.source_to_target.size(), nt = map->map.target_to_source.size();
-    require(label_count == ns * dimension, MCON_ERROR_INVALID_ARGUMENT,
-            "label_count is " + std::to_string(label_count) + ", expected source vertices x dimension = " +
-                std::to_string(ns * dimension));
-    require_capacity(capacity, nt * dimension, "out_labels (capacity in labels)");
+    require_vertex_array_sizes(*map, dimension, label_count, "label_count", capacity,
+                               "out_labels (capacity in labels)");
     const std::vector<std::int32_t> in(source_labels, source_labels + label_count);
     const std::vector<std::int32_t> out = transfer_labels(map->view(), static_cast<int>(dimension), in, outside_label);
     std::copy(out.begin(), out.end(), out_labels);

@@ -3,7 +3,6 @@
 // calls mcon_shutdown and exits. Checks that shutdown really joined every worker thread (the
 // process is back to one thread) and that the library works again afterwards. Exit status 0 =
 // clean; ctest runs it several times (design-notes §5: exits with live TBB workers crashed).
-#include <dirent.h>
 
 #include <atomic>
 #include <cstdio>
@@ -14,25 +13,18 @@
 #include <oneapi/tbb/task_arena.h>
 
 #include "macrocon/macrocon.h"
+#include "process_threads.h"
 #include "test_meshes.h"
 
-namespace {
+using mcon::test::process_thread_count;
 
-int thread_count() {
-  int n = 0;
-  if (DIR* d = opendir("/proc/self/task")) {
-    while (dirent* e = readdir(d))
-      if (e->d_name[0] != '.') ++n;
-    closedir(d);
-  }
-  return n;
-}
+namespace {
 
 std::atomic<int> failures{0};
 std::atomic<int> peak_threads{0};
 
 void note_threads() {
-  const int n = thread_count();
+  const int n = process_thread_count();
   int seen = peak_threads.load();
   while (n > seen && !peak_threads.compare_exchange_weak(seen, n)) {
   }
@@ -110,7 +102,7 @@ void host_parallel_work() {
 }  // namespace
 
 int main() {
-  const int baseline = thread_count();
+  const int baseline = process_thread_count();
   std::vector<std::thread> host_threads;
   for (uint32_t t : {0u, 1u, 2u, 3u}) host_threads.emplace_back([t] { library_work(t, 2); });
   host_parallel_work();
@@ -120,7 +112,7 @@ int main() {
     ok(MCON_ERROR_UNKNOWN, "mcon_shutdown");
     return 1;
   }
-  const int after = thread_count();
+  const int after = process_thread_count();
   std::printf("threads: %d at start, %d at peak, %d after mcon_shutdown\n", baseline, peak_threads.load(), after);
   if (peak_threads.load() <= baseline) {
     std::fprintf(stderr, "no worker thread ever ran: the test proves nothing\n");
@@ -133,8 +125,8 @@ int main() {
   // The library works after shutdown, and a second shutdown is clean as well.
   library_work(0, 1);
   host_parallel_work();
-  if (failures || mcon_shutdown() != MCON_OK || thread_count() != baseline) {
-    std::fprintf(stderr, "second round failed (%d threads)\n", thread_count());
+  if (failures || mcon_shutdown() != MCON_OK || process_thread_count() != baseline) {
+    std::fprintf(stderr, "second round failed (%d threads)\n", process_thread_count());
     return 1;
   }
   return 0;

@@ -1,5 +1,4 @@
 // Version, status names, the per-thread last error, contexts and their log callback.
-#include <dirent.h>
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -14,8 +13,10 @@
 #include <oneapi/tbb/task_arena.h>
 
 #include "capi/capi_test_util.h"
+#include "process_threads.h"
 
 using namespace capi_test;
+using mcon::test::process_thread_count;
 
 TEST(CapiVersion, MatchesHeaderMacrosAndAcceptsNullPointers) {
   uint32_t major = 99, minor = 99, patch = 99;
@@ -242,16 +243,6 @@ TEST(CapiContext, LogCallbackReceivesErrorsOfItsObjects) {
 
 namespace {
 
-int thread_count() {
-  int n = 0;
-  if (DIR* d = opendir("/proc/self/task")) {
-    while (dirent* e = readdir(d))
-      if (e->d_name[0] != '.') ++n;
-    closedir(d);
-  }
-  return n;
-}
-
 // Parallel work in the process's TBB scheduler (the one the library shares), so workers exist.
 void spin_up_workers() {
   tbb::task_arena arena;
@@ -269,23 +260,23 @@ TEST(CapiShutdown, RefusesWhileObjectsLiveThenJoinsEveryWorker) {
   ContextPtr ctx = make_context();
   MeshPtr mesh = make_mesh(ctx.get(), arrays_of(mcon::test_meshes::make_grid(4)));
   spin_up_workers();
-  EXPECT_GT(thread_count(), 1) << "no TBB worker started: the test below proves nothing";
+  EXPECT_GT(process_thread_count(), 1) << "no TBB worker started: the test below proves nothing";
   EXPECT_EQ(mcon_shutdown(), MCON_ERROR_INVALID_ARGUMENT);
   EXPECT_NE(last_message().find("1 context(s) still alive"), std::string::npos) << last_message();
   ctx.reset();  // the mesh still holds the context
   EXPECT_EQ(mcon_shutdown(), MCON_ERROR_INVALID_ARGUMENT);
   mesh.reset();
   ASSERT_EQ(mcon_shutdown(), MCON_OK) << last_message();
-  EXPECT_EQ(thread_count(), 1) << "mcon_shutdown returned before the workers exited";
+  EXPECT_EQ(process_thread_count(), 1) << "mcon_shutdown returned before the workers exited";
   EXPECT_EQ(mcon_shutdown(), MCON_OK);  // again: nothing to do
   // The library works again, and the next shutdown waits again.
   ctx = make_context(2);
   EXPECT_NE(make_mesh(ctx.get(), arrays_of(mcon::test_meshes::make_grid(4))), nullptr);
   ctx.reset();
   spin_up_workers();
-  EXPECT_GT(thread_count(), 1);
+  EXPECT_GT(process_thread_count(), 1);
   ASSERT_EQ(mcon_shutdown(), MCON_OK) << last_message();
-  EXPECT_EQ(thread_count(), 1);
+  EXPECT_EQ(process_thread_count(), 1);
 }
 
 TEST(CapiShutdown, FailsWhileTbbIsBusyAndStillWaitsWhenCalledAgain) {
@@ -311,5 +302,5 @@ TEST(CapiShutdown, FailsWhileTbbIsBusyAndStillWaitsWhenCalledAgain) {
   EXPECT_NE(message.find("still in use"), std::string::npos) << message;
   // The failed call must not have dropped the scheduler reference: this one still joins workers.
   ASSERT_EQ(mcon_shutdown(), MCON_OK) << last_message();
-  EXPECT_EQ(thread_count(), 1) << "the second mcon_shutdown did not wait for the workers";
+  EXPECT_EQ(process_thread_count(), 1) << "the second mcon_shutdown did not wait for the workers";
 }

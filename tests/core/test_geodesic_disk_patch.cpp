@@ -6,18 +6,22 @@
 #include "geodesic_disk_patch.h"
 #include "mesh_topology.h"
 #include "test_meshes.h"
+#include "test_status.h"
 
 using namespace mcon;
+using mcon::test::status_of;
 
 namespace {
 
 mcon_status extraction_status(const TriMesh& host, const PatchOptions& o) {
-  try {
-    extract_geodesic_disk(host, o);
-  } catch (const Error& e) {
-    return e.status();
-  }
-  return MCON_OK;
+  return status_of([&] { extract_geodesic_disk(host, o); });
+}
+
+PatchOptions at_vertex(int vertex, double radius) {
+  PatchOptions o;
+  o.center.vertex = vertex;
+  o.radius = radius;
+  return o;
 }
 
 Vec3 host_point(const TriMesh& host, const HostPoint& h) {
@@ -48,16 +52,19 @@ void expect_valid_disk(const TriMesh& host, const Patch& p) {
   EXPECT_NO_THROW(validate_mesh(p.mesh));
 }
 
+// Extracts the patch and checks the invariants above.
+Patch extract_valid_disk(const TriMesh& host, const PatchOptions& o) {
+  Patch p = extract_geodesic_disk(host, o);
+  expect_valid_disk(host, p);
+  return p;
+}
+
 }  // namespace
 
 
 TEST(GeodesicDiskPatch, PlaneDiskIsRoundAndNormalized) {
   const TriMesh host = test_meshes::make_grid(61, 1.0, 0.3);
-  PatchOptions o;
-  o.center.vertex = 30 * 61 + 30;
-  o.radius = 0.3;
-  const Patch p = extract_geodesic_disk(host, o);
-  expect_valid_disk(host, p);
+  const Patch p = extract_valid_disk(host, at_vertex(30 * 61 + 30, 0.3));
   EXPECT_EQ(p.filled_triangles(), 0);
   // Boundary vertices lie on the geodesic (here: Euclidean) circle of radius 1 after normalization.
   double max_dev = 0;
@@ -70,11 +77,7 @@ TEST(GeodesicDiskPatch, PlaneDiskIsRoundAndNormalized) {
 
 TEST(GeodesicDiskPatch, SphereCapHasTheSphericalCapArea) {
   const TriMesh host = test_meshes::make_icosphere(5, 2.0);
-  PatchOptions o;
-  o.center.vertex = 0;
-  o.radius = 1.5;  // geodesic radius on a sphere of radius 2
-  const Patch p = extract_geodesic_disk(host, o);
-  expect_valid_disk(host, p);
+  const Patch p = extract_valid_disk(host, at_vertex(0, 1.5));  // geodesic radius on a sphere of radius 2
   const double cap = 2 * M_PI * 4.0 * (1 - std::cos(1.5 / 2.0));
   EXPECT_NEAR(total_area(p.mesh) * 1.5 * 1.5, cap, 0.03 * cap);
 }
@@ -98,11 +101,8 @@ TEST(GeodesicDiskPatch, PointCenterInsideATriangle) {
 
 TEST(GeodesicDiskPatch, DiskReachingTheHostBoundaryIsStillADisk) {
   const TriMesh host = test_meshes::make_grid(41, 1.0);
-  PatchOptions o;
-  o.center.vertex = 20 * 41 + 3;  // near the left border: the disk is cut off by it
-  o.radius = 0.3;
-  const Patch p = extract_geodesic_disk(host, o);
-  expect_valid_disk(host, p);
+  // Near the left border: the disk is cut off by it.
+  const Patch p = extract_valid_disk(host, at_vertex(20 * 41 + 3, 0.3));
 }
 
 TEST(GeodesicDiskPatch, HostHoleInsideTheDiskIsCappedAndFlagged) {
@@ -114,11 +114,8 @@ TEST(GeodesicDiskPatch, HostHoleInsideTheDiskIsCappedAndFlagged) {
     if (t[0] != hole && t[1] != hole && t[2] != hole) kept.push_back(t);
   host.triangles = kept;
   remove_unreferenced_vertices(host);
-  PatchOptions o;
-  o.center.vertex = 20 * 41 + 18;
-  o.radius = 0.3;
-  const Patch p = extract_geodesic_disk(host, o);
-  expect_valid_disk(host, p);
+  PatchOptions o = at_vertex(20 * 41 + 18, 0.3);
+  const Patch p = extract_valid_disk(host, o);
   EXPECT_GT(p.filled_triangles(), 0);
   int fill_vertices = 0;
   for (const HostPoint& h : p.host_vertex) fill_vertices += h.v0 < 0;
@@ -130,11 +127,8 @@ TEST(GeodesicDiskPatch, HostHoleInsideTheDiskIsCappedAndFlagged) {
 
 TEST(GeodesicDiskPatch, DiskWrappingAroundACylinderIsAnAnnulus) {
   const TriMesh host = test_meshes::make_cylinder(1.0, 12.0, 48, 97);
-  PatchOptions o;
-  o.center.vertex = 48 * 48;  // middle ring
-  o.radius = 2.0;             // < half the circumference (pi): a disk
-  const Patch p = extract_geodesic_disk(host, o);
-  expect_valid_disk(host, p);
+  PatchOptions o = at_vertex(48 * 48, 2.0);  // middle ring; radius < half the circumference (pi): a disk
+  const Patch p = extract_valid_disk(host, o);
   o.radius = 4.0;  // > pi: the disk closes around the cylinder
   try {
     extract_geodesic_disk(host, o);
@@ -147,9 +141,7 @@ TEST(GeodesicDiskPatch, DiskWrappingAroundACylinderIsAnAnnulus) {
 
 TEST(GeodesicDiskPatch, WholeClosedSurfaceIsNotADisk) {
   const TriMesh host = test_meshes::make_icosphere(3, 1.0);
-  PatchOptions o;
-  o.center.vertex = 0;
-  o.radius = 10.0;
+  PatchOptions o = at_vertex(0, 10.0);
   EXPECT_EQ(extraction_status(host, o), MCON_ERROR_NOT_A_DISK);
 }
 
@@ -169,9 +161,7 @@ TEST(GeodesicDiskPatch, NoSliversAfterSnapping) {
 
 TEST(GeodesicDiskPatch, BadOptionsAreRejected) {
   const TriMesh host = test_meshes::make_grid(11);
-  PatchOptions o;
-  o.center.vertex = 60;
-  o.radius = std::nan("");
+  PatchOptions o = at_vertex(60, std::nan(""));
   EXPECT_EQ(extraction_status(host, o), MCON_ERROR_INVALID_ARGUMENT);
   o.radius = -1;
   EXPECT_EQ(extraction_status(host, o), MCON_ERROR_INVALID_ARGUMENT);
@@ -191,9 +181,7 @@ TEST(GeodesicDiskPatch, BadOptionsAreRejected) {
 
 TEST(GeodesicDiskPatch, ProgressCanCancel) {
   const TriMesh host = test_meshes::make_grid(31);
-  PatchOptions o;
-  o.center.vertex = 15 * 31 + 15;
-  o.radius = 0.3;
+  PatchOptions o = at_vertex(15 * 31 + 15, 0.3);
   int calls = 0;
   o.progress = [&](double f) {
     EXPECT_GE(f, 0.0);

@@ -10,8 +10,10 @@
 #include "map_energy.h"
 #include "surface_map.h"
 #include "synthetic_maps.h"
+#include "test_status.h"
 
 using namespace mcon;
+using mcon::test::status_of;
 
 namespace {
 
@@ -22,17 +24,16 @@ synthetic::Problem problem(const synthetic::GroundTruth& truth, double mismatch 
   return synthetic::make_problem(12, 11, truth, 2, {0.2, 0.1, 0.0}, mismatch);
 }
 
-SurfaceMap run(const synthetic::Problem& pr, const SurfaceMapOptions& o = {}) {
-  return compute_surface_map({pr.source, pr.source_uv, pr.source_levels}, {pr.target, pr.target_uv, pr.target_levels}, o);
+// The common case: the truth is a rotation by `angle` plus a warp of amplitude `warp`.
+synthetic::Problem problem(double angle, double warp, double mismatch = 0) {
+  synthetic::GroundTruth truth;
+  truth.angle = angle;
+  truth.warp = warp;
+  return problem(truth, mismatch);
 }
 
-mcon_status status_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.status();
-  }
-  return MCON_OK;
+SurfaceMap run(const synthetic::Problem& pr, const SurfaceMapOptions& o = {}) {
+  return compute_surface_map({pr.source, pr.source_uv, pr.source_levels}, {pr.target, pr.target_uv, pr.target_levels}, o);
 }
 
 // Mean error of the rigid start, to show the non-rigid stage improves on it.
@@ -94,9 +95,7 @@ void expect_monotone_per_level(const SurfaceMap& m) {
 }  // namespace
 
 TEST(SurfaceMap, RecoversARotation) {
-  synthetic::GroundTruth truth;
-  truth.angle = 70 * kPi / 180;
-  const synthetic::Problem pr = problem(truth);
+  const synthetic::Problem pr = problem(70 * kPi / 180, 0);
   const SurfaceMap m = run(pr);
   EXPECT_FALSE(m.reflected);
   EXPECT_EQ(inverted(pr, m), 0);
@@ -194,10 +193,7 @@ TEST(SurfaceMap, OrientationsComparedThroughEveryLevel) {
 TEST(SurfaceMap, ProgressWindowStopsAtTheFirstSlowWindow) {
   // The windowed rule (NewtonOptions::progress_window) ends a level exactly when the last w
   // iterations gained at most progress_fraction of the level's decrease so far, never earlier.
-  synthetic::GroundTruth truth;
-  truth.angle = 0.9;
-  truth.warp = 0.08;
-  const synthetic::Problem pr = problem(truth);
+  const synthetic::Problem pr = problem(0.9, 0.08);
   SurfaceMapOptions off;
   off.newton.progress_window = 0;
   off.newton.relative_decrease = 1e-12;  // let the tail run
@@ -245,10 +241,7 @@ TEST(SurfaceMap, ForcedOrientationIsObeyed) {
 }
 
 TEST(SurfaceMap, ToleratesDescriptorMismatch) {
-  synthetic::GroundTruth truth;
-  truth.angle = -2.0;
-  truth.warp = 0.05;
-  const synthetic::Problem pr = problem(truth, 0.1);
+  const synthetic::Problem pr = problem(-2.0, 0.05, 0.1);
   const SurfaceMap m = run(pr);
   EXPECT_EQ(inverted(pr, m), 0);
   // Measured 0.041 (rigid start 0.051): the map must not run after the mismatch.
@@ -282,10 +275,7 @@ TEST(SurfaceMap, BitIdenticalOnAnyThreadCount) {
 }
 
 TEST(SurfaceMap, ProgressIsMonotoneAndCanCancel) {
-  synthetic::GroundTruth truth;
-  truth.angle = 0.5;
-  truth.warp = 0.05;
-  const synthetic::Problem pr = problem(truth);
+  const synthetic::Problem pr = problem(0.5, 0.05);
   SurfaceMapOptions o;
   o.alignment.samples = 2000;
   std::vector<double> seen;
@@ -307,8 +297,7 @@ TEST(SurfaceMap, ProgressIsMonotoneAndCanCancel) {
 }
 
 TEST(SurfaceMap, RejectsBadInput) {
-  synthetic::GroundTruth truth;
-  const synthetic::Problem pr = problem(truth);
+  const synthetic::Problem pr = problem(synthetic::GroundTruth{});
   const MapDomain src{pr.source, pr.source_uv, pr.source_levels};
   const MapDomain dst{pr.target, pr.target_uv, pr.target_levels};
   SurfaceMapOptions o;

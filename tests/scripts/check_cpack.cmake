@@ -1,10 +1,7 @@
+include(${CMAKE_CURRENT_LIST_DIR}/run_checked.cmake)
 set(out ${BUILD}/cpack-test)
 file(REMOVE_RECURSE ${out})
-execute_process(COMMAND cpack -G "TGZ;DEB" -B ${out} WORKING_DIRECTORY ${BUILD}
-  RESULT_VARIABLE rc OUTPUT_VARIABLE log ERROR_VARIABLE err)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "cpack failed: ${log} ${err}")
-endif()
+run_checked(WHAT "cpack" OUTPUT_VARIABLE log WORKING_DIRECTORY ${BUILD} COMMAND cpack -G "TGZ;DEB" -B ${out})
 file(GLOB tgz ${out}/macrocon-${VERSION}-*.tar.gz)
 file(GLOB deb ${out}/*.deb)
 if(NOT tgz OR NOT deb)

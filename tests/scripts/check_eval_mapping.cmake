@@ -1,11 +1,8 @@
 # Driven by eval_mapping.tests.cmake: CLI = the macrocon executable, SHARED = the benchmark data.
-execute_process(
+include(${CMAKE_CURRENT_LIST_DIR}/run_checked.cmake)
+run_checked(WHAT "eval-mapping" OUTPUT_VARIABLE out
   COMMAND ${CLI} eval-mapping --shared ${SHARED} --classes arm --pairs 2 --samples 300 --thesis-iterations 200
-          --eval-vertices 40 --json --quiet
-  OUTPUT_VARIABLE out ERROR_VARIABLE err RESULT_VARIABLE rc)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "eval-mapping failed (${rc}): ${err}")
-endif()
+          --eval-vertices 40 --json --quiet)
 string(JSON pairs GET "${out}" pairs)
 if(NOT pairs EQUAL 2)
   message(FATAL_ERROR "expected 2 pairs, got ${pairs}: ${out}")
@@ -47,22 +44,15 @@ message(STATUS "eval-mapping: ${out}")
 
 # Bad options: a clear message and a non-zero status.
 foreach(bad "--classes;elbow" "--method;newton" "--pairs;0" "--samples;-3")
-  execute_process(COMMAND ${CLI} eval-mapping --shared ${SHARED} ${bad} --quiet
-                  OUTPUT_VARIABLE o ERROR_VARIABLE e RESULT_VARIABLE r)
-  if(r EQUAL 0 OR NOT e MATCHES "error")
-    message(FATAL_ERROR "eval-mapping ${bad} should fail with a message (status ${r}): ${e}")
-  endif()
+  run_checked(WHAT "eval-mapping ${bad}" EXPECT_FAILURE "error"
+    COMMAND ${CLI} eval-mapping --shared ${SHARED} ${bad} --quiet)
 endforeach()
 
 # The oracle diagnostic (ground-truth guidance channels): asked for explicitly, it must run, keep
 # the map flip-free, and on the featureless forearm strip, where the descriptors leave the map
 # sliding (macrocon ~7.3 mean eps x 100 on these two pairs, oracle ~4.0), land clearly closer.
-execute_process(
-  COMMAND ${CLI} eval-mapping --shared ${SHARED} --classes arm --pairs 2 --method macrocon,oracle --json --quiet
-  OUTPUT_VARIABLE oracle_out ERROR_VARIABLE oracle_err RESULT_VARIABLE oracle_rc)
-if(NOT oracle_rc EQUAL 0)
-  message(FATAL_ERROR "eval-mapping --method macrocon,oracle failed (${oracle_rc}): ${oracle_err}")
-endif()
+run_checked(WHAT "eval-mapping --method macrocon,oracle" OUTPUT_VARIABLE oracle_out
+  COMMAND ${CLI} eval-mapping --shared ${SHARED} --classes arm --pairs 2 --method macrocon,oracle --json --quiet)
 string(JSON oracle_eps GET "${oracle_out}" methods oracle overall mean_eps100)
 string(JSON plain_eps GET "${oracle_out}" methods macrocon overall mean_eps100)
 string(JSON oracle_flips GET "${oracle_out}" methods oracle overall flipped_triangles)

@@ -1,15 +1,8 @@
-function(run)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL 0)
-    string(REPLACE ";" " " cmd "${ARGN}")
-    message(FATAL_ERROR "failed (${rc}): ${cmd}\n${out}\n${err}")
-  endif()
-  set(last_output "${out}" PARENT_SCOPE)
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/run_checked.cmake)
 
 file(REMOVE_RECURSE ${WORK})
 set(prefix ${WORK}/prefix)
-run(${CMAKE_COMMAND} --install ${BUILD} --prefix ${prefix})
+run_checked(COMMAND ${CMAKE_COMMAND} --install ${BUILD} --prefix ${prefix})
 foreach(f include/macrocon/macrocon.h include/macrocon/macrocon.hpp lib/pkgconfig/macrocon.pc
           lib/cmake/macrocon/macrocon-config.cmake lib/cmake/macrocon/macrocon-config-version.cmake)
   if(NOT EXISTS ${prefix}/${f})
@@ -22,25 +15,23 @@ if(NOT sonames)
 endif()
 
 # 1. CMake package.
-run(${CMAKE_COMMAND} -S ${SRC}/packaging/consumer -B ${WORK}/cmake-build -G ${GENERATOR}
-    -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_BUILD_TYPE=Release)
-run(${CMAKE_COMMAND} --build ${WORK}/cmake-build)
+run_checked(COMMAND ${CMAKE_COMMAND} -S ${SRC}/packaging/consumer -B ${WORK}/cmake-build -G ${GENERATOR}
+            -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_BUILD_TYPE=Release)
+run_checked(COMMAND ${CMAKE_COMMAND} --build ${WORK}/cmake-build)
 foreach(exe consumer_c consumer_cpp)
-  run(${CMAKE_COMMAND} -E env LD_LIBRARY_PATH=${prefix}/lib ${WORK}/cmake-build/${exe})
-  message(STATUS "${exe} (CMake): ${last_output}")
+  run_checked(OUTPUT_VARIABLE out COMMAND ${CMAKE_COMMAND} -E env LD_LIBRARY_PATH=${prefix}/lib ${WORK}/cmake-build/${exe})
+  message(STATUS "${exe} (CMake): ${out}")
 endforeach()
 
 # 2. pkg-config.
 file(MAKE_DIRECTORY ${WORK}/pc-build)
-execute_process(COMMAND ${CMAKE_COMMAND} -E env PKG_CONFIG_PATH=${prefix}/lib/pkgconfig pkg-config --cflags --libs macrocon
-  OUTPUT_VARIABLE flags RESULT_VARIABLE rc OUTPUT_STRIP_TRAILING_WHITESPACE)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "pkg-config cannot find macrocon")
-endif()
+run_checked(WHAT "pkg-config cannot find macrocon" OUTPUT_VARIABLE flags
+  COMMAND ${CMAKE_COMMAND} -E env PKG_CONFIG_PATH=${prefix}/lib/pkgconfig pkg-config --cflags --libs macrocon)
+string(STRIP "${flags}" flags)
 separate_arguments(flags UNIX_COMMAND "${flags}")
-run(cc -std=c99 -Wall -Wextra -Werror -pedantic ${SRC}/packaging/consumer/consumer.c ${flags} -o ${WORK}/pc-build/consumer_c)
-run(c++ -std=c++17 -Wall -Wextra -Werror ${SRC}/packaging/consumer/consumer.cpp ${flags} -o ${WORK}/pc-build/consumer_cpp)
+run_checked(COMMAND cc -std=c99 -Wall -Wextra -Werror -pedantic ${SRC}/packaging/consumer/consumer.c ${flags} -o ${WORK}/pc-build/consumer_c)
+run_checked(COMMAND c++ -std=c++17 -Wall -Wextra -Werror ${SRC}/packaging/consumer/consumer.cpp ${flags} -o ${WORK}/pc-build/consumer_cpp)
 foreach(exe consumer_c consumer_cpp)
-  run(${CMAKE_COMMAND} -E env LD_LIBRARY_PATH=${prefix}/lib ${WORK}/pc-build/${exe})
-  message(STATUS "${exe} (pkg-config): ${last_output}")
+  run_checked(OUTPUT_VARIABLE out COMMAND ${CMAKE_COMMAND} -E env LD_LIBRARY_PATH=${prefix}/lib ${WORK}/pc-build/${exe})
+  message(STATUS "${exe} (pkg-config): ${out}")
 endforeach()

@@ -1,26 +1,11 @@
 # Driven by library_cli.tests.cmake: CLI, MESH (the MakeHuman sample body), WORK (scratch folder).
+include(${CMAKE_CURRENT_LIST_DIR}/run_checked.cmake)
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
 set(LIB ${WORK}/body.mclb)
 set(RANGE 0:13378)  # the body group of the sample OBJ
 # name|class|center|radius; one side only (the base mesh is mirror-symmetric).
 set(entries "eye_l|eye|8021|0.6" "nose|nose|297|0.5" "mouth|mouth|537|0.65" "ear_l|ear|12222|0.5" "hand_l|hand|9865|1.3")
-
-function(run_cli out_var)
-  execute_process(COMMAND ${CLI} ${ARGN} OUTPUT_VARIABLE out ERROR_VARIABLE err RESULT_VARIABLE rc)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "macrocon ${ARGN} failed (${rc}): ${err}")
-  endif()
-  set(${out_var} "${out}" PARENT_SCOPE)
-endfunction()
-
-function(expect_failure pattern)
-  execute_process(COMMAND ${CLI} ${ARGN} OUTPUT_VARIABLE out ERROR_VARIABLE err RESULT_VARIABLE rc)
-  if(rc EQUAL 0 OR NOT err MATCHES "${pattern}")
-    message(FATAL_ERROR "macrocon ${ARGN}: expected a failure matching '${pattern}', got (${rc}) ${out} ${err}")
-  endif()
-  message(STATUS "refused as expected: ${err}")
-endfunction()
 
 # Sets name, class, center, radius from "name|class|center|radius".
 macro(split_entry entry)
@@ -37,7 +22,7 @@ foreach(e IN LISTS entries)
   split_entry("${e}")
   list(APPEND args --center-vertex ${center} --radius ${radius} --class ${class} --name ${name})
 endforeach()
-run_cli(out ${args})
+run_checked(OUTPUT_VARIABLE out COMMAND ${CLI} ${args})
 message(STATUS "build: ${out}")
 string(JSON n GET "${out}" entries)
 string(JSON rings GET "${out}" rings)
@@ -49,7 +34,8 @@ endif()
 # 2. each entry's own region finds it first, at distance 0.
 foreach(e IN LISTS entries)
   split_entry("${e}")
-  run_cli(out query --library ${LIB} --mesh ${MESH} --face-range ${RANGE} --center-vertex ${center} --radius ${radius} --top 3 --json)
+  run_checked(OUTPUT_VARIABLE out COMMAND ${CLI} query
+    --library ${LIB} --mesh ${MESH} --face-range ${RANGE} --center-vertex ${center} --radius ${radius} --top 3 --json)
   string(JSON hits LENGTH "${out}" hits)
   string(JSON first GET "${out}" hits 0 name)
   string(JSON d0 GET "${out}" hits 0 distance)
@@ -61,7 +47,7 @@ foreach(e IN LISTS entries)
 endforeach()
 
 # 3. info --json describes the library and every entry.
-run_cli(out library info --library ${LIB} --json)
+run_checked(OUTPUT_VARIABLE out COMMAND ${CLI} library info --library ${LIB} --json)
 string(JSON n GET "${out}" entries)
 string(JSON listed LENGTH "${out}" entry_list)
 string(JSON d GET "${out}" descriptor)
@@ -74,14 +60,16 @@ if(NOT n EQUAL 5 OR NOT listed EQUAL 5 OR NOT d STREQUAL "curv9" OR NOT name2 ST
 endif()
 
 # 4. add an entry with the existing vocabulary: found at once; the file stays valid.
-run_cli(out library add --library ${LIB} --mesh ${MESH} --face-range ${RANGE} --center-vertex 131 --radius 1.05
-        --class face --name face --author "Test Vendor" --licence CC0 --tag front --json)
+run_checked(OUTPUT_VARIABLE out COMMAND ${CLI} library add
+  --library ${LIB} --mesh ${MESH} --face-range ${RANGE} --center-vertex 131 --radius 1.05
+  --class face --name face --author "Test Vendor" --licence CC0 --tag front --json)
 string(JSON has GET "${out}" has_histogram)
 string(JSON n GET "${out}" entries)
 if(NOT has OR NOT n EQUAL 6)
   message(FATAL_ERROR "library add: ${out}")
 endif()
-run_cli(out query --library ${LIB} --mesh ${MESH} --face-range ${RANGE} --center-vertex 131 --radius 1.05 --top 1 --json)
+run_checked(OUTPUT_VARIABLE out COMMAND ${CLI} query
+  --library ${LIB} --mesh ${MESH} --face-range ${RANGE} --center-vertex 131 --radius 1.05 --top 1 --json)
 string(JSON first GET "${out}" hits 0 name)
 if(NOT first STREQUAL "face")
   message(FATAL_ERROR "query of the added entry: ${out}")
@@ -97,9 +85,10 @@ foreach(e IN LISTS entries)
 endforeach()
 string(APPEND spec "]}")
 file(WRITE ${WORK}/spec.json "${spec}")
-run_cli(out library build --out ${WORK}/from_spec.mclb --spec ${WORK}/spec.json --vocabulary 32 --seed 3)
+run_checked(OUTPUT_VARIABLE out COMMAND ${CLI} library build
+  --out ${WORK}/from_spec.mclb --spec ${WORK}/spec.json --vocabulary 32 --seed 3)
 list(REMOVE_AT args 0 1 2 3)  # "library build --out LIB"
-run_cli(out library build --out ${WORK}/again.mclb ${args})
+run_checked(OUTPUT_VARIABLE out COMMAND ${CLI} library build --out ${WORK}/again.mclb ${args})
 file(SHA256 ${WORK}/from_spec.mclb h1)
 file(SHA256 ${WORK}/again.mclb h2)
 if(NOT h1 STREQUAL h2)
@@ -107,11 +96,14 @@ if(NOT h1 STREQUAL h2)
 endif()
 
 # 6. errors: non-zero exit and a message on stderr.
-expect_failure("INVALID_LIBRARY" library info --library ${MESH})
-expect_failure("MCON_ERROR_IO" query --library ${WORK}/missing.mclb --mesh ${MESH} --center-vertex 1 --radius 0.5)
-expect_failure("unknown option" library build --out ${WORK}/x.mclb --bogus 1)
-expect_failure("needs --class" library build --out ${WORK}/x.mclb --mesh ${MESH} --face-range ${RANGE} --center-vertex 297 --radius 0.5)
-expect_failure("not a vertex" query --library ${LIB} --mesh ${MESH} --face-range ${RANGE} --center-vertex 99999999 --radius 0.5)
+run_checked(EXPECT_FAILURE "INVALID_LIBRARY" COMMAND ${CLI} library info --library ${MESH})
+run_checked(EXPECT_FAILURE "MCON_ERROR_IO" COMMAND ${CLI} query
+  --library ${WORK}/missing.mclb --mesh ${MESH} --center-vertex 1 --radius 0.5)
+run_checked(EXPECT_FAILURE "unknown option" COMMAND ${CLI} library build --out ${WORK}/x.mclb --bogus 1)
+run_checked(EXPECT_FAILURE "needs --class" COMMAND ${CLI} library build
+  --out ${WORK}/x.mclb --mesh ${MESH} --face-range ${RANGE} --center-vertex 297 --radius 0.5)
+run_checked(EXPECT_FAILURE "not a vertex" COMMAND ${CLI} query
+  --library ${LIB} --mesh ${MESH} --face-range ${RANGE} --center-vertex 99999999 --radius 0.5)
 if(EXISTS ${WORK}/x.mclb)
   message(FATAL_ERROR "a failed build left a file behind")
 endif()

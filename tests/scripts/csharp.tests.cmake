@@ -28,7 +28,7 @@ if((NOT MACROCON_SANITIZE OR MACROCON_SANITIZER_ENV) AND MACROCON_MCS AND MACROC
   foreach(mode library map)
     add_test(NAME csharp.exit_clean_after_${mode}
       COMMAND ${CMAKE_COMMAND} -DRUNS=3 -DEXE=${MACROCON_MONO} "-DARGS=${cs_dir}/CleanExit.exe ${mode}"
-              "-DEXPECT=exit_status Ok" -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/run_expect_output.cmake)
+              "-DEXPECT=exit_status Ok" -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/run_repeatedly.cmake)
     set_tests_properties(csharp.exit_clean_after_${mode} PROPERTIES
       ENVIRONMENT "LD_LIBRARY_PATH=$<TARGET_FILE_DIR:macrocon>;${MACROCON_SANITIZER_ENV}" TIMEOUT 1800)
   endforeach()

@@ -1,4 +1,5 @@
 # Runs `macrocon embed` twice (cut source, and source from a patch file) and checks the outputs.
+include(${CMAKE_CURRENT_LIST_DIR}/run_checked.cmake)
 file(REMOVE_RECURSE ${OUT})
 file(MAKE_DIRECTORY ${OUT})
 
@@ -40,13 +41,9 @@ function(check_run dir)
   endforeach()
 endfunction()
 
-execute_process(
+run_checked(WHAT "macrocon embed" OUTPUT_VARIABLE out
   COMMAND ${CLI} embed --source ${MESH} --target ${MESH} --center-vertex 297 --radius 0.55
-          --source-center-vertex 297 --source-radius 0.45 --samples 500 --seed 1 --out ${OUT}/cut --json
-  OUTPUT_VARIABLE out ERROR_VARIABLE err RESULT_VARIABLE rc)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "macrocon embed failed (${rc}): ${err}")
-endif()
+          --source-center-vertex 297 --source-radius 0.45 --samples 500 --seed 1 --out ${OUT}/cut --json)
 string(JSON stdout_flips GET "${out}" flips)
 if(NOT stdout_flips EQUAL 0)
   message(FATAL_ERROR "--json printed flips ${stdout_flips}")
@@ -79,14 +76,10 @@ if(auto_reflected)
 else()
   set(flip reverse)
 endif()
-execute_process(
+run_checked(WHAT "macrocon embed --orientation ${flip}" OUTPUT_VARIABLE out
   COMMAND ${CLI} embed --source ${MESH} --target ${MESH} --center-vertex 297 --radius 0.55
           --source-center-vertex 297 --source-radius 0.45 --samples 500 --seed 1 --orientation ${flip}
-          --out ${OUT}/flip --json
-  OUTPUT_VARIABLE out ERROR_VARIABLE err RESULT_VARIABLE rc)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "macrocon embed --orientation ${flip} failed (${rc}): ${err}")
-endif()
+          --out ${OUT}/flip --json)
 string(JSON flip_reflected GET "${out}" reflected)
 string(JSON flip_compared GET "${out}" orientation_compared)
 string(JSON flip_flips GET "${out}" flips)
@@ -100,29 +93,18 @@ endif()
 if(NOT flip_unreflected_score STREQUAL auto_unreflected_score)
   message(FATAL_ERROR "the same seed scored the rigid candidates differently: ${flip_unreflected_score} vs ${auto_unreflected_score}")
 endif()
-execute_process(COMMAND ${CLI} embed --source ${MESH} --target ${MESH} --center-vertex 297 --radius 0.5
-                --orientation sideways --out ${OUT}/bad RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_QUIET)
-if(rc EQUAL 0 OR NOT err MATCHES "--orientation must be auto, preserve or reverse")
-  message(FATAL_ERROR "a bad --orientation was accepted (${rc}): ${err}")
-endif()
+run_checked(WHAT "a bad --orientation" EXPECT_FAILURE "--orientation must be auto, preserve or reverse"
+  COMMAND ${CLI} embed --source ${MESH} --target ${MESH} --center-vertex 297 --radius 0.5
+          --orientation sideways --out ${OUT}/bad)
 
-execute_process(COMMAND ${CLI} patch --mesh ${MESH} --center-vertex 297 --radius 0.45 --out ${OUT}/nose.ply
-                RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_QUIET)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "macrocon patch failed (${rc}): ${err}")
-endif()
-execute_process(
+run_checked(WHAT "macrocon patch"
+  COMMAND ${CLI} patch --mesh ${MESH} --center-vertex 297 --radius 0.45 --out ${OUT}/nose.ply)
+run_checked(WHAT "macrocon embed with a patch file"
   COMMAND ${CLI} embed --source ${OUT}/nose.ply --target ${MESH} --center-vertex 297 --radius 0.55 --samples 500
-          --out ${OUT}/entry
-  RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_QUIET)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "macrocon embed with a patch file failed (${rc}): ${err}")
-endif()
+          --out ${OUT}/entry)
 check_run(${OUT}/entry)
 
 # Bad input fails with a message, not a crash.
-execute_process(COMMAND ${CLI} embed --source ${MESH} --target ${MESH} --center-vertex 99999999 --radius 0.5
-                --out ${OUT}/bad RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_QUIET)
-if(rc EQUAL 0 OR NOT err MATCHES "not a vertex")
-  message(FATAL_ERROR "a bad --center-vertex was accepted (${rc}): ${err}")
-endif()
+run_checked(WHAT "a bad --center-vertex" EXPECT_FAILURE "not a vertex"
+  COMMAND ${CLI} embed --source ${MESH} --target ${MESH} --center-vertex 99999999 --radius 0.5
+          --out ${OUT}/bad)

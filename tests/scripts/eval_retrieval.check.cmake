@@ -1,4 +1,5 @@
 # Runs a tiny `macrocon eval-retrieval` and checks its output (see eval_retrieval.tests.cmake).
+include(${CMAKE_CURRENT_LIST_DIR}/run_checked.cmake)
 file(REMOVE_RECURSE ${OUT})
 file(MAKE_DIRECTORY ${OUT})
 set(failures 0)
@@ -11,12 +12,8 @@ macro(check condition message)
   endif()
 endmacro()
 
-execute_process(
-  COMMAND ${CLI} eval-retrieval --shared ${SHARED} --people 1 --faces 1 --seed 3 --json --plot ${OUT}/plots
-  OUTPUT_VARIABLE out ERROR_VARIABLE err RESULT_VARIABLE rc)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "eval-retrieval failed (${rc}): ${err}")
-endif()
+run_checked(WHAT "eval-retrieval" OUTPUT_VARIABLE out
+  COMMAND ${CLI} eval-retrieval --shared ${SHARED} --people 1 --faces 1 --seed 3 --json --plot ${OUT}/plots)
 
 # Keys and their types / ranges.
 string(JSON patches GET "${out}" patches)

@@ -1,10 +1,8 @@
 # Runs `macrocon demo --out OUT` and requires exit status 0 and every result file, non-empty.
+include(${CMAKE_CURRENT_LIST_DIR}/run_checked.cmake)
 file(REMOVE_RECURSE ${OUT})
-execute_process(COMMAND ${CLI} demo --out ${OUT} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+run_checked(WHAT "macrocon demo" OUTPUT_VARIABLE out ERROR_VARIABLE err COMMAND ${CLI} demo --out ${OUT})
 message(STATUS "${out}${err}")
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "macrocon demo failed (${rc})")
-endif()
 foreach(region eye_l mouth nose hand_r)
   foreach(file ${region}.ply ${region}.obj ${region}.rosy ${region}_guides.obj)
     if(NOT EXISTS ${OUT}/${file})

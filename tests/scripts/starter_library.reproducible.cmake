@@ -1,10 +1,8 @@
 # Generates the starter library again into WORK and requires the same bytes as EXPECTED.
+include(${CMAKE_CURRENT_LIST_DIR}/run_checked.cmake)
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
-execute_process(COMMAND ${GENERATOR} ${ENTRIES} ${DATA} ${WORK}/starter.mclb RESULT_VARIABLE rc OUTPUT_QUIET)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "build_starter_library failed (${rc})")
-endif()
+run_checked(WHAT "build_starter_library" COMMAND ${GENERATOR} ${ENTRIES} ${DATA} ${WORK}/starter.mclb)
 execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files ${WORK}/starter.mclb ${EXPECTED} RESULT_VARIABLE diff)
 if(NOT diff EQUAL 0)
   message(FATAL_ERROR "a second generation of the starter library differs from ${EXPECTED}")

@@ -19,8 +19,8 @@
 #include <vector>
 
 
+#include "json/json.h"
 #include "macrocon/macrocon.h"
-#include "mini_json.h"
 #include "procedural.h"
 #include "sample_mesh.h"
 
@@ -124,14 +124,14 @@ mcon_singularity singularity(const starter::SurfacePoint& p, int index) {
 }
 
 Constraints example_constraints(const starter::Geometry& g, const std::vector<double>& d,
-                                const starter::JsonValue& spec, const std::string& name) {
+                                const mcon::tools::Json& spec, const std::string& name) {
   Constraints c;
   if (const auto* loops = spec.find("edge_loops")) {
     std::vector<starter::Polyline> rings;
     // "edge_loop_front": "+z" picks, per level, the closed loop lying furthest along +z (on the
     // face rather than inside the eye socket or the mouth cavity the patch also contains);
     // otherwise the longest closed loop (small loops are noise).
-    const std::string front = spec.find("edge_loop_front") ? spec.at("edge_loop_front").string : "";
+    const std::string front = spec.find("edge_loop_front") ? spec.at("edge_loop_front").as_string() : "";
     const int axis = front == "+x" ? 0 : front == "+y" ? 1 : front == "+z" ? 2 : -1;
     auto score = [&](const starter::Polyline& l) {
       if (axis < 0) return starter::length(g, l);
@@ -139,12 +139,12 @@ Constraints example_constraints(const starter::Geometry& g, const std::vector<do
       for (const auto& sp : l.points) s += starter::point_position(g, sp)[static_cast<std::size_t>(axis)];
       return s / static_cast<double>(l.points.size());
     };
-    for (const auto& level : loops->array) {
-      const auto lines = starter::iso_lines(g, d, level.number);
+    for (const auto& level : loops->elements()) {
+      const auto lines = starter::iso_lines(g, d, level.as_number());
       const starter::Polyline* best = nullptr;
       for (const auto& l : lines)
         if (l.closed && l.points.size() >= 6 && (best == nullptr || score(l) > score(*best))) best = &l;
-      if (best == nullptr) throw std::runtime_error(name + ": no closed edge loop at level " + std::to_string(level.number));
+      if (best == nullptr) throw std::runtime_error(name + ": no closed edge loop at level " + std::to_string(level.as_number()));
       rings.push_back(*best);
     }
     if (spec.find("corner_singularities") != nullptr && !rings.empty()) {
@@ -161,12 +161,13 @@ Constraints example_constraints(const starter::Geometry& g, const std::vector<do
     c.guides.insert(c.guides.end(), rings.begin(), rings.end());
   }
   if (const auto* fingers = spec.find("finger_flow_lines")) {
-    const auto tips = starter::distance_maxima(g, d, fingers->num("min_distance"), fingers->num("separation"),
-                                               static_cast<std::size_t>(fingers->num("count")));
+    const auto tips = starter::distance_maxima(g, d, fingers->at("min_distance").as_number(),
+                                               fingers->at("separation").as_number(),
+                                               static_cast<std::size_t>(fingers->at("count").as_number()));
     if (tips.empty()) throw std::runtime_error(name + ": no finger tips found");
     const auto vf = starter::vertex_faces(g);
     for (std::uint32_t tip : tips) {
-      const auto path = starter::descend(g, d, tip, fingers->num("stop"));
+      const auto path = starter::descend(g, d, tip, fingers->at("stop").as_number());
       if (path.size() < 2) continue;
       starter::Polyline pl;
       for (std::uint32_t v : path) pl.points.push_back(starter::vertex_point(g, vf, v));
@@ -175,7 +176,7 @@ Constraints example_constraints(const starter::Geometry& g, const std::vector<do
     }
   }
   if (const auto* section = spec.find("feature_section")) {
-    const int axis = section->string == "sagittal" ? 0 : section->string == "transverse" ? 1 : -1;
+    const int axis = section->as_string() == "sagittal" ? 0 : section->as_string() == "transverse" ? 1 : -1;
     if (axis < 0) throw std::runtime_error(name + ": feature_section must be 'sagittal' or 'transverse'");
     std::vector<double> f(g.nv());
     for (std::size_t v = 0; v < g.nv(); ++v) f[v] = g.p[3 * v + static_cast<std::size_t>(axis)];
@@ -192,8 +193,8 @@ int run(int argc, char** argv) {
     return 2;
   }
   const std::string entries_path = argv[1], model_dir = argv[2], out_path = argv[3];
-  const starter::JsonValue root = starter::JsonParser(read_text(entries_path)).parse();
-  const std::string model = model_dir + "/" + root.str("model");
+  const mcon::tools::Json root = mcon::tools::parse_json(read_text(entries_path));
+  const std::string model = model_dir + "/" + root.at("model").as_string();
 
   sample_mesh body;
   char error[512];
@@ -215,13 +216,13 @@ int run(int argc, char** argv) {
     check(mcon_mesh_create(ctx, &desc, &mesh), "mcon_mesh_create(" + model + ")");
     check(mcon_library_create(ctx, &library), "mcon_library_create");
 
-    const std::string author = root.str("author"), licence = root.str("licence");
-    for (const auto& e : root.at("entries").array) {
-      const std::string name = e.str("name"), klass = e.str("class");
+    const std::string author = root.at("author").as_string(), licence = root.at("licence").as_string();
+    for (const auto& e : root.at("entries").elements()) {
+      const std::string name = e.at("name").as_string(), klass = e.at("class").as_string();
       mcon_patch_options po;
       check(mcon_patch_options_init(&po), "mcon_patch_options_init");
-      po.center_vertex = static_cast<std::uint32_t>(e.num("center_vertex"));
-      po.radius = e.num("radius");
+      po.center_vertex = static_cast<std::uint32_t>(e.at("center_vertex").as_number());
+      po.radius = e.at("radius").as_number();
       mcon_patch patch = nullptr;
       check(mcon_patch_extract(mesh, &po, &patch), name + ": mcon_patch_extract");
       try {
@@ -279,7 +280,7 @@ int run(int argc, char** argv) {
         }
         std::vector<std::string> tags{"example", "makehuman", klass};
         if (const auto* extra = e.find("tags"))
-          for (const auto& t : extra->array) tags.push_back(t.string);
+          for (const auto& t : extra->elements()) tags.push_back(t.as_string());
         std::vector<const char*> ctags;
         for (const auto& t : tags) ctags.push_back(t.c_str());
         const std::string entry_name = name + " (MakeHuman body, procedural example constraints)";
@@ -287,7 +288,7 @@ int run(int argc, char** argv) {
         mcon_library_entry_desc ed;
         check(mcon_library_entry_desc_init(&ed), "mcon_library_entry_desc_init");
         ed.patch = patch;
-        ed.id = static_cast<std::uint64_t>(e.num("id"));
+        ed.id = static_cast<std::uint64_t>(e.at("id").as_number());
         ed.name = entry_name.c_str();
         ed.class_label = klass.c_str();
         ed.tags = ctags.data();
