@@ -15,7 +15,8 @@ namespace Macrocon
     }
 
     /// <summary>A named per-vertex field: Values (real kinds) or Labels (IntegerLabel), vertex-major,
-    /// Dimension channels per vertex.</summary>
+    /// Dimension channels per vertex; or, for a field that lives inside interleaved per-vertex
+    /// records, Records (see <see cref="FromRecords"/>).</summary>
     public sealed class Field
     {
         public string Name;
@@ -23,6 +24,17 @@ namespace Macrocon
         public int Dimension = 1;
         public double[] Values;
         public int[] Labels;
+        /// <summary>Instead of Values/Labels: an array of a blittable type (byte[], double[], a vendor's
+        /// vertex struct array) in which vertex v's Dimension doubles (int32 for IntegerLabel) start
+        /// at byte RecordOffset + v * RecordStride. AddEntry pins it and passes the stride to the
+        /// library (mcon_vertex_field.stride): read in place, no copy in the binding.</summary>
+        public Array Records;
+        public int RecordOffset, RecordStride;
+
+        /// <summary>A field inside interleaved records (e.g. <c>Marshal.OffsetOf(typeof(Vertex), "Weights")</c>
+        /// and <c>Marshal.SizeOf(typeof(Vertex))</c>); the layout is checked by AddEntry (ArgumentException).</summary>
+        public static Field FromRecords(string name, FieldKind kind, int dimension, Array records, int offset, int stride) =>
+            new Field { Name = name, Kind = kind, Dimension = dimension, Records = records, RecordOffset = offset, RecordStride = stride };
     }
 
     /// <summary>What an entry carries besides its patch (all optional).</summary>
@@ -37,6 +49,11 @@ namespace Macrocon
         /// <summary>Caller-supplied descriptors (a Custom library): VertexCount * DescriptorDimension values.</summary>
         public double[] Descriptors;
         public int DescriptorDimension;
+        /// <summary>Instead of Descriptors: rows inside interleaved records (a blittable array, as
+        /// Field.Records), DescriptorDimension doubles per vertex at byte DescriptorOffset + v *
+        /// DescriptorStride; passed in place with descriptor_stride.</summary>
+        public Array DescriptorRecords;
+        public int DescriptorOffset, DescriptorStride;
     }
 
     /// <summary>Retrieval settings; null members keep the library's defaults.</summary>
@@ -191,6 +208,23 @@ namespace Macrocon
                         var f = e.Fields[i] ?? throw new ArgumentNullException("Fields[" + i + "]");
                         if (f.Dimension < 1) throw new ArgumentException("Fields[" + i + "].Dimension must be >= 1");
                         bool labels = f.Kind == FieldKind.IntegerLabel;
+                        if (f.Records != null)
+                        {
+                            if (f.Values != null || f.Labels != null)
+                                throw new ArgumentException("Fields[" + i + "]: give Records or " + (labels ? "Labels" : "Values") + ", not both");
+                            int scalar = labels ? 4 : 8;
+                            string what = "Fields[" + i + "].Records";
+                            IntPtr records = pins.Pin(f.Records);  // ArgumentException for a non-blittable element type
+                            Interleaved.Check(what, Interleaved.ByteLength(f.Records), f.RecordOffset, f.RecordStride,
+                                              patch.VertexCount, scalar * f.Dimension, scalar);
+                            IntPtr start = Interleaved.Start(what, records, f.RecordOffset, scalar);
+                            fields[i].name = pins.Utf8(f.Name);
+                            fields[i].kind = (uint)f.Kind;
+                            fields[i].dimension = (uint)f.Dimension;
+                            if (labels) fields[i].labels = start; else fields[i].values = start;
+                            fields[i].stride = (UIntPtr)f.RecordStride;
+                            continue;
+                        }
                         int length = labels ? (f.Labels?.Length ?? -1) : (f.Values?.Length ?? -1);
                         if (length < 0)
                             throw new ArgumentException("Fields[" + i + "] needs " + (labels ? "Labels" : "Values") + " for kind " + f.Kind);
@@ -203,7 +237,18 @@ namespace Macrocon
                     }
                     desc.fields = pins.Pin(fields);
                     desc.field_count = (UIntPtr)e.Fields.Count;
-                    if (e.Descriptors != null)
+                    if (e.DescriptorRecords != null)
+                    {
+                        if (e.Descriptors != null) throw new ArgumentException("give Descriptors or DescriptorRecords, not both");
+                        if (e.DescriptorDimension < 1) throw new ArgumentException("DescriptorDimension must be >= 1");
+                        IntPtr records = pins.Pin(e.DescriptorRecords);
+                        Interleaved.Check("DescriptorRecords", Interleaved.ByteLength(e.DescriptorRecords), e.DescriptorOffset,
+                                          e.DescriptorStride, patch.VertexCount, 8 * e.DescriptorDimension, 8);
+                        desc.descriptors = Interleaved.Start("DescriptorRecords", records, e.DescriptorOffset, 8);
+                        desc.descriptor_dimension = (uint)e.DescriptorDimension;
+                        desc.descriptor_stride = (UIntPtr)e.DescriptorStride;
+                    }
+                    else if (e.Descriptors != null)
                     {
                         if (e.DescriptorDimension < 1 || e.Descriptors.Length != e.DescriptorDimension * patch.VertexCount)
                             throw new ArgumentException("Descriptors must hold DescriptorDimension values per patch vertex");
@@ -266,6 +311,24 @@ namespace Macrocon
             int k = (int)count;
             Array.Resize(ref r.Ids, k); Array.Resize(ref r.Indices, k); Array.Resize(ref r.Distances, k);
             return r;
+        }
+
+        /// <summary>QueryDescriptors with the descriptors inside interleaved per-vertex rows: vertex v's
+        /// `dimension` doubles start at byte offset + v * stride of rowBytes; passed in place with that
+        /// stride (mcon_library_query_descriptors takes one). ArgumentException for a layout that does
+        /// not fit (stride &gt; 0, offset + row inside the stride, multiples of 8, VertexCount rows).</summary>
+        public unsafe QueryResult QueryDescriptors(Patch patch, ReadOnlySpan<byte> rowBytes, int offset, int stride, int dimension, int n = 5)
+        {
+            if (patch == null) throw new ArgumentNullException(nameof(patch));
+            if (dimension < 1) throw new ArgumentException($"dimension {dimension} must be >= 1");
+            Interleaved.Check("rowBytes", rowBytes.Length, offset, stride, patch.VertexCount, 8 * dimension, 8);
+            var r = Results(n);
+            UIntPtr count;
+            fixed (byte* d = &MemoryMarshal.GetReference(rowBytes))
+                Native.Check(Native.mcon_library_query_descriptors(Handle, patch.Handle, Interleaved.Start("rowBytes", (IntPtr)d, offset, 8),
+                                                                   (uint)dimension, (UIntPtr)stride, (UIntPtr)n, r.Ids, r.Indices,
+                                                                   r.Distances, (UIntPtr)r.Ids.Length, out count));
+            return Trim(r, count);
         }
 
         /// <summary>The n entries nearest to `patch`, best first (the library computes its descriptor).</summary>

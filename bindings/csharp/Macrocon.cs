@@ -113,6 +113,50 @@ namespace Macrocon
         public NotFoundException(string message) : base(Status.NotFound, message) { }
     }
 
+    /// <summary>Checks of an interleaved (strided) input before any native call: `count` rows of
+    /// `rowBytes` bytes, row i at byte `offset + i * stride` of a `length`-byte buffer. The C API
+    /// takes pointer + byte stride + count for per-vertex inputs (macrocon.h), so the rows are passed
+    /// in place; these checks keep every byte the library reads inside the caller's buffer.</summary>
+    internal static class Interleaved
+    {
+        /// <summary>Throws ArgumentException (naming `what`) unless the layout is valid: stride &gt; 0,
+        /// offset &gt;= 0, offset + rowBytes &lt;= stride (a row fits in its record), offset and stride
+        /// multiples of `alignment` (the scalar size, as in a C struct), count &gt;= 0 and the last row
+        /// inside the buffer.</summary>
+        internal static void Check(string what, int length, int offset, int stride, int count, int rowBytes, int alignment)
+        {
+            if (stride <= 0) throw new ArgumentException($"{what}: stride {stride} must be > 0 bytes");
+            if (offset < 0) throw new ArgumentException($"{what}: offset {offset} must be >= 0");
+            if (count < 0) throw new ArgumentException($"{what}: count {count} must be >= 0");
+            if ((long)offset + rowBytes > stride)
+                throw new ArgumentException($"{what}: offset {offset} + {rowBytes} bytes of a row do not fit in the stride of {stride} bytes");
+            if (offset % alignment != 0 || stride % alignment != 0)
+                throw new ArgumentException($"{what}: offset {offset} and stride {stride} must be multiples of {alignment} bytes");
+            long needed = count == 0 ? 0 : (long)(count - 1) * stride + offset + rowBytes;
+            if (needed > length)
+                throw new ArgumentException($"{what}: {count} rows {stride} bytes apart from offset {offset} need {needed} bytes, the buffer holds {length}");
+        }
+
+        /// <summary>The rows' start address, checked for the scalar alignment the C side declares.</summary>
+        internal static IntPtr Start(string what, IntPtr buffer, int offset, int alignment)
+        {
+            IntPtr p = buffer + offset;
+            if ((ulong)p.ToInt64() % (ulong)alignment != 0)
+                throw new ArgumentException($"{what}: the rows start at an address that is not {alignment}-byte aligned");
+            return p;
+        }
+
+        /// <summary>The size in bytes of a pinned array of a blittable element type (byte[], double[],
+        /// a vendor's vertex struct array).</summary>
+        internal static int ByteLength(Array array)
+        {
+            var element = array.GetType().GetElementType();
+            long size = element.IsPrimitive ? Buffer.ByteLength(array) : (long)Marshal.SizeOf(element) * array.LongLength;
+            if (size > int.MaxValue) throw new ArgumentException("interleaved records larger than 2 GiB are not supported");
+            return (int)size;
+        }
+    }
+
     internal static class Native
     {
         internal const string Lib = "macrocon";
@@ -609,6 +653,36 @@ namespace Macrocon
 
         public Mesh(Context context, ReadOnlySpan<float> positions, ReadOnlySpan<uint> triangles)
             : this(context, MemoryMarshal.AsBytes(positions), 1, triangles) { }
+
+        /// <summary>A mesh from an interleaved vertex buffer, read in place (no copy in the binding):
+        /// vertex i's 3 coordinates (doubles if doublePrecision, else floats) start at byte
+        /// positionOffset + i * vertexStride of vertexBytes, e.g.
+        /// <c>MemoryMarshal.AsBytes(vertices.AsSpan())</c> of a vendor's vertex struct array with
+        /// <c>Marshal.OffsetOf</c> of its position and <c>Marshal.SizeOf</c> as the stride.
+        /// ArgumentException before the call unless vertexStride &gt; 0, the position fits inside the
+        /// stride, offset and stride are multiples of the scalar size and vertexCount vertices fit in
+        /// the buffer.</summary>
+        public unsafe Mesh(Context context, ReadOnlySpan<byte> vertexBytes, int positionOffset, int vertexStride, int vertexCount,
+                           bool doublePrecision, ReadOnlySpan<uint> triangles)
+        {
+            if (context == null) throw new ArgumentNullException(nameof(context));
+            int scalar = doublePrecision ? 8 : 4;
+            Interleaved.Check("vertexBytes", vertexBytes.Length, positionOffset, vertexStride, vertexCount, 3 * scalar, scalar);
+            if (triangles.Length % 3 != 0) throw new ArgumentException("triangles must hold 3 indices per triangle");
+            var desc = new Native.MeshDesc();
+            Native.Check(Native.mcon_mesh_desc_init(ref desc));
+            fixed (byte* p = &MemoryMarshal.GetReference(vertexBytes))
+            fixed (uint* t = &MemoryMarshal.GetReference(triangles))
+            {
+                desc.positions = vertexCount == 0 ? (IntPtr)p : Interleaved.Start("vertexBytes", (IntPtr)p, positionOffset, scalar);
+                desc.position_type = doublePrecision ? 2u : 1u;
+                desc.position_stride = (UIntPtr)vertexStride;
+                desc.vertex_count = (UIntPtr)vertexCount;
+                desc.indices = (IntPtr)t;
+                desc.triangle_count = (UIntPtr)(triangles.Length / 3);
+                Native.Check(Native.mcon_mesh_create(context.Handle, ref desc, out Handle));
+            }
+        }
 
         private unsafe Mesh(Context context, ReadOnlySpan<byte> positionBytes, uint type, ReadOnlySpan<uint> triangles)
         {

@@ -173,6 +173,36 @@ namespace Macrocon
             return o;
         }
 
+        /// <summary>A field that lives inside interleaved per-source-vertex records: vertex v's
+        /// `dimension` doubles start at byte fieldOffset + v * recordStride of recordBytes (e.g.
+        /// <c>MemoryMarshal.AsBytes(records.AsSpan())</c>). mcon_map_transfer_field takes packed rows
+        /// (no stride), so the binding packs the field once (dimension * source vertices doubles)
+        /// and transfers that; the result equals TransferField of the packed values bit for bit.
+        /// ArgumentException for a layout that does not fit (see the Mesh interleaved constructor).</summary>
+        public double[] TransferField(FieldKind kind, int dimension, ReadOnlySpan<byte> recordBytes, int fieldOffset, int recordStride)
+        {
+            if (dimension < 1) throw new ArgumentException($"dimension {dimension} must be >= 1");
+            Interleaved.Check("recordBytes", recordBytes.Length, fieldOffset, recordStride, sourceVertices, 8 * dimension, 8);
+            var packed = new double[dimension * sourceVertices];
+            var rows = MemoryMarshal.AsBytes(new Span<double>(packed));
+            for (int v = 0; v < sourceVertices; ++v)
+                recordBytes.Slice(fieldOffset + v * recordStride, 8 * dimension).CopyTo(rows.Slice(8 * dimension * v));
+            return TransferField(kind, dimension, packed);
+        }
+
+        /// <summary>Integer labels inside interleaved records (int32, `dimension` per vertex at byte
+        /// fieldOffset + v * recordStride), packed once like the TransferField overload.</summary>
+        public int[] TransferLabels(int dimension, ReadOnlySpan<byte> recordBytes, int fieldOffset, int recordStride, int outsideLabel = -1)
+        {
+            if (dimension < 1) throw new ArgumentException($"dimension {dimension} must be >= 1");
+            Interleaved.Check("recordBytes", recordBytes.Length, fieldOffset, recordStride, sourceVertices, 4 * dimension, 4);
+            var packed = new int[dimension * sourceVertices];
+            var rows = MemoryMarshal.AsBytes(new Span<int>(packed));
+            for (int v = 0; v < sourceVertices; ++v)
+                recordBytes.Slice(fieldOffset + v * recordStride, 4 * dimension).CopyTo(rows.Slice(4 * dimension * v));
+            return TransferLabels(dimension, packed, outsideLabel);
+        }
+
         /// <summary>Integer labels, never blended; target vertices outside the overlap get outsideLabel.</summary>
         public unsafe int[] TransferLabels(int dimension, ReadOnlySpan<int> labels, int outsideLabel = -1)
         {

@@ -614,7 +614,7 @@ static class Tests
     // No tuple deconstruction (`var (a, b) = ...`) anywhere here: mcs 6.8 silently drops a lambda that
     // contains one (which hid most of this runner's tests before) or crashes when a lambda captures
     // a deconstructed variable. The runner also checks how many tests ran.
-    const int ExpectedTests = 15;
+    const int ExpectedTests = 17;
 
     // The log callback receives the status and the message of the exception (mesh and patch
     // errors of the context); other contexts do not log; a disposed context drops late messages.
@@ -675,6 +675,204 @@ static class Tests
         }
     }
 
+    // A vendor's interleaved vertex record (Sequential: the layout of the equivalent C struct).
+    [StructLayout(LayoutKind.Sequential)]
+    struct Vertex
+    {
+        public uint Id; public double X, Y, Z; public float Nx, Ny, Nz; public int Label0, Label1; public double W0, W1;
+    }
+
+    static readonly int VertexSize = Marshal.SizeOf(typeof(Vertex));
+    static int OffsetOf(string field) => Marshal.OffsetOf(typeof(Vertex), field).ToInt32();
+    // Spans cannot be captured by the Expect lambdas: each makes its own view of the array.
+    static ReadOnlySpan<byte> Bytes(Vertex[] r) => MemoryMarshal.AsBytes(new ReadOnlySpan<Vertex>(r));
+    static ReadOnlySpan<byte> Bytes(double[] d) => MemoryMarshal.AsBytes(new ReadOnlySpan<double>(d));
+
+    // Records around packed xyz (3 per vertex); everything else is junk that must never be read as
+    // a coordinate (NaN would fail the mesh, a label pattern would change the results).
+    static Vertex[] Records(double[] xyz)
+    {
+        var r = new Vertex[xyz.Length / 3];
+        for (int v = 0; v < r.Length; ++v)
+            r[v] = new Vertex { Id = 0xFFFFFFFFu, X = xyz[3 * v], Y = xyz[3 * v + 1], Z = xyz[3 * v + 2], Nx = float.NaN, Ny = float.NaN,
+                                Nz = float.NaN, Label0 = v % 3, Label1 = v % 5, W0 = xyz[3 * v] * xyz[3 * v], W1 = 1 - xyz[3 * v + 1] };
+        return r;
+    }
+
+    static bool SameBits(double[] a, double[] b)
+    {
+        if (a.Length != b.Length) return false;
+        for (int i = 0; i < a.Length; ++i) if (BitConverter.DoubleToInt64Bits(a[i]) != BitConverter.DoubleToInt64Bits(b[i])) return false;
+        return true;
+    }
+
+    static bool Same<T>(T[] a, T[] b) where T : IEquatable<T>
+    {
+        if (a.Length != b.Length) return false;
+        for (int i = 0; i < a.Length; ++i) if (!a[i].Equals(b[i])) return false;
+        return true;
+    }
+
+    static void SamePatch(Patch a, Patch b, string what)
+    {
+        Check(SameBits(a.Positions(), b.Positions()) && SameBits(a.Uv(), b.Uv()) && Same(a.Triangles(), b.Triangles()), what + ": mesh");
+        var ha = a.HostVertices(); var hb = b.HostVertices();
+        Check(Same(ha.V0, hb.V0) && Same(ha.V1, hb.V1) && SameBits(ha.T, hb.T) && Same(a.HostTriangles(), b.HostTriangles()), what + ": host");
+        Check(SameBits(a.Descriptors(Descriptor.Curv9), b.Descriptors(Descriptor.Curv9)), what + ": descriptors");
+    }
+
+    // interleaved vertex buffers: meshes equal the packed ones bit for bit; bad layouts throw
+    static void TestInterleavedMesh()
+    {
+        var r = Bumpy(41); var p = r.Item1; var t = r.Item2;
+        int n = p.Length / 3, x = OffsetOf("X");
+        var recs = Records(p);
+        Check(VertexSize == 72 && x == 8 && Bytes(recs).Length == 72 * n, "record layout");
+        // floats: 5 per vertex, the position after the first
+        var pf = Array.ConvertAll(p, v => (float)v);
+        var f5 = new float[5 * n];
+        for (int v = 0; v < n; ++v) { f5[5 * v] = float.NaN; f5[5 * v + 4] = float.NaN; for (int k = 0; k < 3; ++k) f5[5 * v + 1 + k] = pf[3 * v + k]; }
+        using (var ctx = new Context(2))
+        using (var packed = new Mesh(ctx, p, t))
+        using (var strided = new Mesh(ctx, Bytes(recs), x, VertexSize, n, true, t))
+        using (var packedF = new Mesh(ctx, new ReadOnlySpan<float>(pf), t))
+        using (var stridedF = new Mesh(ctx, MemoryMarshal.AsBytes(new ReadOnlySpan<float>(f5)), 4, 20, n, false, t))
+        {
+            Check(strided.Counts.Equals(packed.Counts) && stridedF.Counts.Equals(packed.Counts), "counts");
+            foreach (var c in new[] { 20 * 41 + 20, 14 * 41 + 28 })
+            {
+                using (var a = Patch.Extract(packed, (uint)c, 0.22))
+                using (var b = Patch.Extract(strided, (uint)c, 0.22)) SamePatch(a, b, "double records");
+                using (var a = Patch.Extract(packedF, (uint)c, 0.22))
+                using (var b = Patch.Extract(stridedF, (uint)c, 0.22)) SamePatch(a, b, "float records");
+            }
+            // Bad layouts: ArgumentException before the call, nothing reaches the library.
+            Expect<ArgumentException>(() => new Mesh(ctx, Bytes(recs), x, 0, n, true, t));              // stride 0
+            Expect<ArgumentException>(() => new Mesh(ctx, Bytes(recs), x, -72, n, true, t));            // negative stride
+            Expect<ArgumentException>(() => new Mesh(ctx, Bytes(recs), -8, VertexSize, n, true, t));    // negative offset
+            Expect<ArgumentException>(() => new Mesh(ctx, Bytes(recs), 56, VertexSize, n, true, t));    // 56 + 24 > 72
+            Expect<ArgumentException>(() => new Mesh(ctx, Bytes(recs), x, 16, n, true, t));             // stride < a position
+            Expect<ArgumentException>(() => new Mesh(ctx, Bytes(recs), 4, VertexSize, n, true, t));     // offset not a multiple of 8
+            Expect<ArgumentException>(() => new Mesh(ctx, Bytes(recs), x, 36, n, true, t).Dispose());   // stride not a multiple of 8
+            Expect<ArgumentException>(() => new Mesh(ctx, Bytes(recs), x, VertexSize, n + 1, true, t)); // past the buffer
+            Expect<ArgumentException>(() => new Mesh(ctx, Bytes(recs), x, VertexSize, -1, true, t));
+            Expect<ArgumentException>(() => new Mesh(ctx, Bytes(recs).Slice(1), x, VertexSize, n - 1, true, t)); // misaligned start
+            Expect<ArgumentException>(() => new Mesh(ctx, Bytes(recs), x, VertexSize, n, true, new uint[] { 0, 1 }));
+            var e = Expect<ArgumentException>(() => new Mesh(ctx, Bytes(recs), 56, VertexSize, n, true, t));
+            Check(e.Message.Contains("offset 56") && e.Message.Contains("stride of 72"), "message names offset and stride: " + e.Message);
+            // A valid layout with bad content still gets the library's status (NaN junk read as x).
+            Check(Expect<InvalidMeshException>(() => new Mesh(ctx, MemoryMarshal.AsBytes(new ReadOnlySpan<float>(f5)), 0, 20, n, false, t))
+                  .Status == Status.NonFinite, "junk is read only when asked for");
+        }
+    }
+
+    // interleaved fields and descriptors: library, query and transfer equal the packed ones
+    static void TestInterleavedFields()
+    {
+        var r = Bumpy(41); var p = r.Item1; var t = r.Item2;
+        int w0 = OffsetOf("W0"), l0 = OffsetOf("Label0");
+        using (var ctx = new Context(2))
+        using (var m = new Mesh(ctx, p, t))
+        {
+            var ps = Patches(m);
+            // Descriptors (mean curvature at 3 scales) in column 2..4 of a 6-column double table.
+            Func<Patch, double[]> packedDesc = q =>
+            {
+                var c9 = q.Descriptors(Descriptor.Curv9); var d = new double[3 * q.VertexCount];
+                for (int v = 0; v < q.VertexCount; ++v) for (int k = 0; k < 3; ++k) d[3 * v + k] = c9[9 * v + 1 + 3 * k];
+                return d;
+            };
+            Func<Patch, double[]> table = q =>
+            {
+                var d = packedDesc(q); var tb = new double[6 * q.VertexCount];
+                for (int v = 0; v < q.VertexCount; ++v) { tb[6 * v] = double.NaN; tb[6 * v + 1] = -1; tb[6 * v + 5] = double.NaN; for (int k = 0; k < 3; ++k) tb[6 * v + 2 + k] = d[3 * v + k]; }
+                return tb;
+            };
+            Func<bool, ConstraintLibrary> build = strided =>
+            {
+                var lib = new ConstraintLibrary(ctx);
+                foreach (var q in ps)
+                {
+                    var rec = Records(q.Positions()); int n = rec.Length;
+                    var weights = new double[2 * n]; var labels = new int[2 * n];
+                    for (int v = 0; v < n; ++v) { weights[2 * v] = rec[v].W0; weights[2 * v + 1] = rec[v].W1; labels[2 * v] = rec[v].Label0; labels[2 * v + 1] = rec[v].Label1; }
+                    var e = strided
+                        ? new EntryDesc { Name = "e", Fields = new[] {
+                              Field.FromRecords("weights", FieldKind.Scalar, 2, rec, w0, VertexSize),
+                              Field.FromRecords("part", FieldKind.IntegerLabel, 2, rec, l0, VertexSize) },
+                              DescriptorRecords = table(q), DescriptorOffset = 16, DescriptorStride = 48, DescriptorDimension = 3 }
+                        : new EntryDesc { Name = "e", Fields = new[] {
+                              new Field { Name = "weights", Kind = FieldKind.Scalar, Dimension = 2, Values = weights },
+                              new Field { Name = "part", Kind = FieldKind.IntegerLabel, Dimension = 2, Labels = labels } },
+                              Descriptors = packedDesc(q), DescriptorDimension = 3 };
+                    lib.AddEntry(q, e);
+                }
+                lib.BuildRetrieval(new RetrievalSettings { Descriptor = RetrievalDescriptor.Custom, VocabularySize = 8, Seed = 5 });
+                return lib;
+            };
+            using (var packed = build(false))
+            using (var strided = build(true))
+            {
+                Check(Same(packed.SaveMemory(), strided.SaveMemory()), "library bytes equal");
+                var f = strided.GetEntryField(1, 1);
+                Check(f.Kind == FieldKind.IntegerLabel && f.Labels[2 * 7] == 7 % 3 && f.Labels[2 * 7 + 1] == 7 % 5, "labels read in place");
+                for (int k = 0; k < ps.Length; ++k)
+                {
+                    var a = packed.QueryDescriptors(ps[k], packedDesc(ps[k]), 3, 3);
+                    var tb = table(ps[k]);
+                    var b = packed.QueryDescriptors(ps[k], MemoryMarshal.AsBytes(new ReadOnlySpan<double>(tb)), 16, 48, 3, 3);
+                    Check(a.Indices[0] == k && Same(a.Ids, b.Ids) && Same(a.Indices, b.Indices) && SameBits(a.Distances, b.Distances), "query " + k);
+                }
+                var tb0 = table(ps[0]);
+                Expect<ArgumentException>(() => packed.QueryDescriptors(ps[0], Bytes(tb0), 32, 48, 3, 3));  // 32 + 24 > 48
+                Expect<ArgumentException>(() => packed.QueryDescriptors(ps[0], Bytes(tb0), 16, 0, 3, 3));
+                Expect<ArgumentException>(() => packed.QueryDescriptors(ps[0], Bytes(tb0), 12, 48, 3, 3)); // not a multiple of 8
+                Expect<ArgumentException>(() => packed.QueryDescriptors(ps[0], Bytes(tb0).Slice(0, 8 * tb0.Length - 16), 16, 48, 3, 3)); // last row cut
+            }
+            // Bad field layouts throw ArgumentException before the call; the library stays empty.
+            using (var lib = new ConstraintLibrary(ctx))
+            {
+                var q = ps[0]; var rec = Records(q.Positions());
+                Action<Field> add = fld => lib.AddEntry(q, new EntryDesc { Fields = new[] { fld } });
+                Expect<ArgumentException>(() => add(Field.FromRecords("w", FieldKind.Scalar, 2, rec, 64, VertexSize)));   // 64 + 16 > 72
+                Expect<ArgumentException>(() => add(Field.FromRecords("w", FieldKind.Scalar, 2, rec, w0, 0)));
+                Expect<ArgumentException>(() => add(Field.FromRecords("w", FieldKind.Scalar, 2, rec, w0, -VertexSize)));
+                Expect<ArgumentException>(() => add(Field.FromRecords("w", FieldKind.Scalar, 2, rec, 4, VertexSize)));    // misaligned double
+                Expect<ArgumentException>(() => add(Field.FromRecords("w", FieldKind.Scalar, 2, new Vertex[rec.Length - 1], w0, VertexSize)));
+                Expect<ArgumentException>(() => add(Field.FromRecords("w", FieldKind.Scalar, 1, new string[3 * rec.Length], 0, 8))); // not blittable
+                var both = Field.FromRecords("w", FieldKind.Scalar, 2, rec, w0, VertexSize); both.Values = new double[2 * rec.Length];
+                Expect<ArgumentException>(() => add(both));
+                Expect<ArgumentException>(() => lib.AddEntry(q, new EntryDesc { DescriptorRecords = table(q), DescriptorOffset = 32,
+                                                                                DescriptorStride = 48, DescriptorDimension = 3 }));
+                Check(lib.Count == 0, "nothing was added");
+            }
+            foreach (var q in ps) q.Dispose();
+        }
+        // Field transfer: records in, the same doubles and labels out as from packed arrays.
+        using (var ctx = new Context(2))
+        using (var m = new Mesh(ctx, p, t))
+        using (var target = Patch.Extract(m, 21 * 41 + 20, 0.25))
+        using (var source = Patch.FromArrays(ctx, target.Positions(), target.Triangles(), target.CenterPatchTriangle,
+                                             target.CenterBarycentric, target.Center, target.Radius))
+        using (var map = Map.Compute(source, target, new MapSettings { Seed = 3, AlignmentSamples = 400, MaxIterations = 30 }))
+        {
+            var spos = source.Positions();
+            var rec = Records(spos); int n = rec.Length;
+            var labels = new int[2 * n]; var weights = new double[2 * n];
+            for (int v = 0; v < n; ++v) { labels[2 * v] = rec[v].Label0; labels[2 * v + 1] = rec[v].Label1; weights[2 * v] = rec[v].W0; weights[2 * v + 1] = rec[v].W1; }
+            Check(SameBits(map.TransferField(FieldKind.Vector3, 3, Bytes(rec), OffsetOf("X"), VertexSize), map.TransferField(FieldKind.Vector3, 3, spos)),
+                  "vector field from records");
+            Check(SameBits(map.TransferField(FieldKind.Scalar, 2, Bytes(rec), w0, VertexSize), map.TransferField(FieldKind.Scalar, 2, weights)),
+                  "scalar field from records");
+            Check(Same(map.TransferLabels(2, Bytes(rec), l0, VertexSize, -3), map.TransferLabels(2, labels, -3)), "labels from records");
+            Expect<ArgumentException>(() => map.TransferField(FieldKind.Vector3, 3, Bytes(rec), 56, VertexSize));  // 56 + 24 > 72
+            Expect<ArgumentException>(() => map.TransferField(FieldKind.Vector3, 3, Bytes(rec), OffsetOf("X"), 0));
+            Expect<ArgumentException>(() => map.TransferField(FieldKind.Vector3, 3, Bytes(rec).Slice(0, Bytes(rec).Length - 72), OffsetOf("X"), VertexSize));
+            Expect<ArgumentException>(() => map.TransferLabels(2, Bytes(rec), l0, 6));
+            Expect<ArgumentException>(() => map.TransferLabels(2, Bytes(rec), 2, VertexSize));  // not a multiple of 4
+        }
+    }
+
     static int Main()
     {
         Run("version and ABI", Test0);
@@ -691,6 +889,8 @@ static class Tests
         Run("struct layouts match macrocon.h", TestLayout);
         Run("log callback gets status and message of errors", TestLog);
         Run("throwing log callback: error surfaces, nothing crosses into native code", TestLogThrows);
+        Run("interleaved vertex buffers: meshes equal packed; bad offset/stride throw", TestInterleavedMesh);
+        Run("interleaved fields and descriptors: library, query, transfer equal packed", TestInterleavedFields);
         Run("heavy parallel work then shutdown", Test10);
         GC.Collect();
         GC.WaitForPendingFinalizers();

@@ -12,6 +12,7 @@ from typing import Callable, Optional
 import numpy as np
 
 from . import _native
+from ._arrays import strided_rows
 from .errors import CancelledError, Error, check
 
 ProgressCallback = Callable[[float], bool]
@@ -235,24 +236,36 @@ def _as_array(name: str, array, dtypes: tuple, columns: int) -> np.ndarray:
     return a
 
 
+def _mesh_desc(positions, triangles) -> tuple:
+    """An mcon_mesh_desc over the caller's arrays, and the arrays it points into (keep them alive
+    until the call returns). Both may be row-strided (mcon_mesh_desc has position_stride and
+    index_stride): e.g. ``vertices[:, 0:3]`` of a wider (n, k) vertex buffer or ``rec["pos"]`` of an
+    aligned structured array are read in place, see ``_arrays.strided_rows``."""
+    p, p_stride = strided_rows("positions", positions, (np.float32, np.float64), 3)
+    t, t_stride = strided_rows("triangles", triangles, np.uint32, 3)
+    desc = _native.MeshDesc()
+    check(_native.lib.mcon_mesh_desc_init(ctypes.byref(desc)))
+    desc.positions, desc.position_type = p.ctypes.data, 1 if p.dtype == np.float32 else 2
+    desc.position_stride, desc.vertex_count = p_stride, p.shape[0]
+    desc.indices, desc.index_stride, desc.triangle_count = t.ctypes.data, t_stride, t.shape[0]
+    return desc, (p, t)
+
+
 class Mesh(_Handle):
-    """A validated triangle mesh. ``positions``: (n, 3) float32/float64, ``triangles``: (m, 3) uint32."""
+    """A validated triangle mesh. ``positions``: (n, 3) float32/float64, ``triangles``: (m, 3) uint32.
+
+    Both may be row-strided views (interleaved vertex records, column slices, structured array
+    fields) as long as each row's 3 values are contiguous and aligned; they are read in place.
+    """
 
     _release = _native.lib.mcon_mesh_release
 
     def __init__(self, context: Context, positions, triangles):
         require_type(context, Context, "context")
-        p = _as_array("positions", positions, (np.float32, np.float64), 3)
-        t = _as_array("triangles", triangles, (np.uint32,), 3)
-        desc = _native.MeshDesc()
-        check(_native.lib.mcon_mesh_desc_init(ctypes.byref(desc)))
-        desc.positions = p.ctypes.data
-        desc.position_type = 1 if p.dtype == np.float32 else 2
-        desc.vertex_count = p.shape[0]
-        desc.indices = t.ctypes.data
-        desc.triangle_count = t.shape[0]
+        desc, keep = _mesh_desc(positions, triangles)
         handle = ctypes.c_void_p()
         check(_native.lib.mcon_mesh_create(context.handle, ctypes.byref(desc), ctypes.byref(handle)))
+        del keep  # the borrowed arrays lived through the call (the library copied them)
         super().__init__(handle)
         self.context = context  # keep the Python object alive as long as the mesh
 
@@ -327,12 +340,7 @@ class Patch(_Handle):
         3D outputs of transfers onto this patch are expressed.
         """
         require_type(context, Context, "context")
-        p = _as_array("positions", positions, (np.float32, np.float64), 3)
-        t = _as_array("triangles", triangles, (np.uint32,), 3)
-        desc = _native.MeshDesc()
-        check(_native.lib.mcon_mesh_desc_init(ctypes.byref(desc)))
-        desc.positions, desc.position_type, desc.vertex_count = p.ctypes.data, 1 if p.dtype == np.float32 else 2, p.shape[0]
-        desc.indices, desc.triangle_count = t.ctypes.data, t.shape[0]
+        desc, keep = _mesh_desc(positions, triangles)
         frame = _native.PatchFrame()
         check(_native.lib.mcon_patch_frame_init(ctypes.byref(frame)))
         frame.center_triangle = int(center_triangle)
@@ -345,6 +353,7 @@ class Patch(_Handle):
         handle = ctypes.c_void_p()
         check(_native.lib.mcon_patch_create_from_arrays(context.handle, ctypes.byref(desc), ctypes.byref(frame),
                                                         ctypes.byref(handle)))
+        del keep
         patch = cls(handle)
         patch.context = context
         return patch

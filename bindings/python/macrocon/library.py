@@ -10,7 +10,7 @@ from typing import Dict, Iterator, List, Optional, Sequence, Union
 import numpy as np
 
 from . import _native
-from ._arrays import SINGULARITY, SURFACE_POINT, checked, ptr, rows
+from ._arrays import SINGULARITY, SURFACE_POINT, checked, ptr, strided_rows
 from .core import Context, Patch, ProgressCallback, _Handle, _Progress, require_type
 from .errors import check
 
@@ -77,7 +77,11 @@ class Singularities:
 
 @dataclass
 class Field:
-    """A named per-vertex field: ``values`` (n, dimension), float64 (int32 for INTEGER_LABEL)."""
+    """A named per-vertex field: ``values`` (n, dimension), float64 (int32 for INTEGER_LABEL).
+
+    ``values`` may be row-strided (a column slice of a wider array, a field of an aligned
+    structured array): ``Library.add_entry`` passes its row stride to the C side.
+    """
 
     name: str
     kind: FieldKind
@@ -343,10 +347,13 @@ class Library(_Handle):
             require_type(f, Field, "fields[i]")
             kind = FieldKind(f.kind)
             labels = kind == FieldKind.INTEGER_LABEL
-            values = rows(f"fields[{i}].values", f.values, np.int32 if labels else np.float64)
+            # mcon_vertex_field.stride: a field inside interleaved per-vertex records is read in place.
+            values, stride = strided_rows(f"fields[{i}].values", f.values, np.int32 if labels else np.float64,
+                                          vector=True)
             fname = _utf8(f"fields[{i}].name", f.name)
             keep += [values, fname]
             c_fields[i].name, c_fields[i].kind, c_fields[i].dimension = fname, int(kind), values.shape[1]
+            c_fields[i].stride = stride
             if labels:
                 c_fields[i].labels = ptr(values)
             else:
@@ -356,9 +363,9 @@ class Library(_Handle):
         keep.append(c_fields)
         desc.fields, desc.field_count = ctypes.cast(c_fields, ctypes.POINTER(_native.VertexField)), len(fields)
         if descriptors is not None:
-            d = rows("descriptors", descriptors, np.float64)
+            d, stride = strided_rows("descriptors", descriptors, np.float64, vector=True)
             keep.append(d)
-            desc.descriptors, desc.descriptor_dimension = ptr(d), d.shape[1]
+            desc.descriptors, desc.descriptor_dimension, desc.descriptor_stride = ptr(d), d.shape[1], stride
         out_id = ctypes.c_uint64()
         check(_native.lib.mcon_library_add_entry(self.handle, ctypes.byref(desc), ctypes.byref(out_id)))
         del keep
@@ -419,13 +426,17 @@ class Library(_Handle):
         return QueryResult(ids[:k], idx[:k], dist[:k])
 
     def query_descriptors(self, patch: Patch, descriptors: np.ndarray, n: int = 5) -> QueryResult:
-        """The same with the caller's (vertex_count, dimension) float64 descriptors of ``patch``."""
+        """The same with the caller's (vertex_count, dimension) float64 descriptors of ``patch``.
+
+        The rows may be strided (e.g. a column slice of a wider per-vertex table): they are read in
+        place with their byte stride, see ``_arrays.strided_rows``.
+        """
         require_type(patch, Patch, "patch")
-        d = rows("descriptors", descriptors, np.float64)
+        d, stride = strided_rows("descriptors", descriptors, np.float64, vector=True)
         if d.shape[0] != patch.vertex_count:
             raise ValueError(f"descriptors has {d.shape[0]} rows, the patch {patch.vertex_count} vertices")
         ids, idx, dist, count = self._results(n)
-        check(_native.lib.mcon_library_query_descriptors(self.handle, patch.handle, ptr(d), d.shape[1], 0, int(n),
+        check(_native.lib.mcon_library_query_descriptors(self.handle, patch.handle, ptr(d), d.shape[1], stride, int(n),
                                                          ptr(ids), ptr(idx), ptr(dist), ids.size, ctypes.byref(count)))
         k = count.value
         return QueryResult(ids[:k], idx[:k], dist[:k])

@@ -107,6 +107,19 @@ class PolylineSet(_Handle):
                 for a, b, c in zip(starts[:-1], starts[1:], closed)]
 
 
+def _unstrided_rows(name: str, array, dtype, copy: bool) -> np.ndarray:
+    """Per-vertex input of a C function that takes no stride (mcon_map_transfer_field and
+    _labels read vertex-major packed rows): a row-strided array cannot be passed in place, so it is
+    a ValueError unless the caller asked for ``copy=True``, which packs it once."""
+    a = np.asarray(array)
+    if copy:
+        a = np.ascontiguousarray(a)
+    elif not a.flags.c_contiguous:
+        raise ValueError(f"{name} must be C-contiguous: the C function takes no row stride (pass copy=True to pack "
+                         "a strided array, or use numpy.ascontiguousarray)")
+    return rows(name, a, dtype)
+
+
 def _points(name: str, triangles, barycentric) -> Tuple[np.ndarray, np.ndarray]:
     t = checked(f"{name} triangles", triangles, np.uint32, (None,))
     b = checked(f"{name} barycentric", barycentric, np.float64, (t.shape[0], 3))
@@ -215,21 +228,29 @@ class Map(_Handle):
                                                       ctypes.byref(handle)))
         return PolylineSet(handle)
 
-    def transfer_field(self, values, kind: FieldKind = FieldKind.SCALAR) -> np.ndarray:
-        """A per-source-vertex float64 field (n,) or (n, d) -> (target vertices, d); outside gets 0."""
+    def transfer_field(self, values, kind: FieldKind = FieldKind.SCALAR, copy: bool = False) -> np.ndarray:
+        """A per-source-vertex float64 field (n,) or (n, d) -> (target vertices, d); outside gets 0.
+
+        ``values`` must be C-contiguous: mcon_map_transfer_field has no stride. ``copy=True`` packs
+        a strided array (a field inside interleaved records) once before the call instead of
+        raising ValueError.
+        """
         k = FieldKind(kind)
         if k == FieldKind.INTEGER_LABEL:
             raise ValueError("integer labels go through transfer_labels (never blended)")
-        v = rows("values", values, np.float64)
+        v = _unstrided_rows("values", values, np.float64, copy)
         if v.shape[0] != self.source.vertex_count:
             raise ValueError(f"values has {v.shape[0]} rows, the source {self.source.vertex_count} vertices")
         out = np.zeros((self.target.vertex_count, v.shape[1]))
         check(_native.lib.mcon_map_transfer_field(self.handle, int(k), v.shape[1], ptr(v), v.size, ptr(out), out.size))
         return out
 
-    def transfer_labels(self, labels, outside_label: int = -1) -> np.ndarray:
-        """Per-source-vertex int32 labels (n,) or (n, d) -> (target vertices, d), never blended."""
-        v = rows("labels", labels, np.int32)
+    def transfer_labels(self, labels, outside_label: int = -1, copy: bool = False) -> np.ndarray:
+        """Per-source-vertex int32 labels (n,) or (n, d) -> (target vertices, d), never blended.
+
+        C-contiguous only (no stride in mcon_map_transfer_labels); ``copy=True`` as in transfer_field.
+        """
+        v = _unstrided_rows("labels", labels, np.int32, copy)
         if v.shape[0] != self.source.vertex_count:
             raise ValueError(f"labels has {v.shape[0]} rows, the source {self.source.vertex_count} vertices")
         out = np.zeros((self.target.vertex_count, v.shape[1]), np.int32)

@@ -140,6 +140,39 @@ def test_transfer_points_fields_and_labels(phi, source, target):
         phi.transfer_points(faces[:1], np.array([[0.5, 0.5, 0.5]]))
 
 
+def test_transfer_of_a_strided_field_equals_the_packed_one(context, phi, source, target):
+    """mcon_map_transfer_field/_labels take no stride: a field inside interleaved records is refused
+    in place (ValueError) and packed once with copy=True; stored in a library entry (whose
+    mcon_vertex_field has a stride) it is read in place, and both transfers equal the packed one."""
+    rec_t = np.dtype([("tag", "<u4"), ("colour", "<f8", (3,)), ("part", "<i4"), ("w", "<f8")], align=True)
+    n = source.vertex_count
+    rec = np.zeros(n, rec_t)
+    rec["colour"], rec["part"], rec["w"] = np.abs(source.positions), np.arange(n) % 4, source.uv[:, 0]
+    packed, strided = np.ascontiguousarray(rec["colour"]), rec["colour"]
+    ref = phi.transfer_field(packed, macrocon.FieldKind.VECTOR3)
+    with pytest.raises(ValueError, match="copy=True"):
+        phi.transfer_field(strided, macrocon.FieldKind.VECTOR3)
+    assert np.array_equal(phi.transfer_field(strided, macrocon.FieldKind.VECTOR3, copy=True), ref)
+    assert np.array_equal(phi.transfer_field(rec["w"], copy=True), phi.transfer_field(rec["w"].copy()))
+    ref_labels = phi.transfer_labels(rec["part"].copy())
+    with pytest.raises(ValueError, match="copy=True"):
+        phi.transfer_labels(rec["part"])
+    assert np.array_equal(phi.transfer_labels(rec["part"], copy=True), ref_labels)
+    with pytest.raises(TypeError):  # copy never converts the dtype
+        phi.transfer_labels(rec["tag"], copy=True)
+    # Through a library entry: the strided field is stored (float32) and transferred from there.
+    with macrocon.Library(context) as a, macrocon.Library(context) as b:
+        a.add_entry(source, fields=[macrocon.Field("colour", macrocon.FieldKind.VECTOR3, packed),
+                                    macrocon.Field("part", macrocon.FieldKind.INTEGER_LABEL, rec["part"].copy())])
+        b.add_entry(source, fields=[macrocon.Field("colour", macrocon.FieldKind.VECTOR3, strided),
+                                    macrocon.Field("part", macrocon.FieldKind.INTEGER_LABEL, rec["part"])])
+        fa, fb = a[0].fields, b[0].fields
+        assert np.array_equal(fa["colour"].values, fb["colour"].values)
+        assert np.array_equal(phi.transfer_field(fb["colour"].values, macrocon.FieldKind.VECTOR3),
+                              phi.transfer_field(fa["colour"].values, macrocon.FieldKind.VECTOR3))
+        assert np.array_equal(phi.transfer_labels(fb["part"].values), ref_labels)
+
+
 def test_transfer_polylines_and_cross_field(phi, source, target, tmp_path):
     # A guide along a row of source triangles through the middle of the patch.
     uv = source.uv
