@@ -192,6 +192,12 @@ class MapOptions(ctypes.Structure):
         ("progress", PROGRESS_CALLBACK),
         ("progress_user_data", ctypes.c_void_p),
         ("orientation", ctypes.c_uint32),
+        ("source_guidance", ctypes.c_void_p),
+        ("source_guidance_stride", c_size),
+        ("target_guidance", ctypes.c_void_p),
+        ("target_guidance_stride", c_size),
+        ("guidance_dimension", ctypes.c_uint32),
+        ("guidance_weight", ctypes.c_double),
     ]
 
 

@@ -9,7 +9,7 @@ from typing import List, Optional, Sequence, Tuple
 import numpy as np
 
 from . import _native
-from ._arrays import checked, ptr, rows
+from ._arrays import checked, ptr, rows, strided_rows
 from .core import Patch, ProgressCallback, _Handle, _Progress, require_type
 from .errors import check
 from .library import FieldKind, Polyline
@@ -146,10 +146,19 @@ class Map(_Handle):
         max_iterations: Optional[int] = None,
         progress: Optional[ProgressCallback] = None,
         orientation: str = "automatic",
+        source_guidance=None,
+        target_guidance=None,
+        guidance_weight: float = 1.0,
     ) -> "Map":
         """orientation: "automatic" (the descriptors decide; allow_reflection restricts it),
         "preserve" or "reverse" (forced, e.g. a "flip" that recomputes with the orientation
-        opposite to info.reflected)."""
+        opposite to info.reflected).
+
+        source_guidance / target_guidance: optional float64 arrays, (source vertices, d) and
+        (target vertices, d) (or (n,) for d = 1; rows may be strided), of per-vertex values that
+        must agree between corresponding points (painted region ids, landmark distances), for
+        what the geometry cannot tell apart; each column is normalized over both patches and
+        scaled by guidance_weight. Give both or neither."""
         require_type(source, Patch, "source")
         require_type(target, Patch, "target")
         if not isinstance(orientation, str) or orientation not in _ORIENTATIONS:
@@ -163,6 +172,23 @@ class Map(_Handle):
         if max_iterations is not None:
             o.max_iterations = int(max_iterations)
         o.orientation = int(_ORIENTATIONS[orientation])
+        keep = []  # the guidance arrays stay alive until mcon_map_compute returns
+        if (source_guidance is None) != (target_guidance is None):
+            raise ValueError("source_guidance and target_guidance must be given together")
+        if source_guidance is not None:
+            gs, ss = strided_rows("source_guidance", source_guidance, np.float64, vector=True)
+            gt, st = strided_rows("target_guidance", target_guidance, np.float64, vector=True)
+            if gs.shape[1] != gt.shape[1]:
+                raise ValueError(f"source_guidance and target_guidance need the same number of columns, got "
+                                 f"{gs.shape[1]} and {gt.shape[1]}")
+            if gs.shape[0] != source.vertex_count or gt.shape[0] != target.vertex_count:
+                raise ValueError(f"guidance needs one row per patch vertex: source {source.vertex_count}, target "
+                                 f"{target.vertex_count}, got {gs.shape[0]} and {gt.shape[0]}")
+            keep += [gs, gt]
+            o.source_guidance, o.source_guidance_stride = ptr(gs), ss
+            o.target_guidance, o.target_guidance_stride = ptr(gt), st
+            o.guidance_dimension = gs.shape[1]
+            o.guidance_weight = float(guidance_weight)
         cb = _Progress(progress)
         o.progress = cb.c_fn
         handle = ctypes.c_void_p()

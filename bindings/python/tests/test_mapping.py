@@ -336,3 +336,45 @@ def test_forced_orientation_and_its_evidence(source, target):
     for bad in ("flip", "AUTOMATIC", 1, None):
         with pytest.raises(ValueError, match="orientation"):
             macrocon.Map.compute(source, target, orientation=bad, **FAST)
+
+
+def test_guidance_decides_what_the_geometry_cannot(context):
+    """A flat disk onto itself fits any rotation; guidance pairing p with R p makes it that rotation."""
+    from conftest import grid
+
+    p, t = grid(41)
+    with macrocon.Mesh(context, p, t) as mesh, \
+            macrocon.Patch.extract(mesh, radius=0.3, center_vertex=center(41, 20, 20)) as disk:
+        xyz = disk.positions
+        angle = 2.0
+        c, s = np.cos(angle), np.sin(angle)
+        # Guidance as a column slice of a wider array: rows are strided, passed without a copy.
+        wide = np.zeros((len(xyz), 4))
+        wide[:, 1:3] = xyz[:, :2]
+        target_g = np.stack([c * xyz[:, 0] + s * xyz[:, 1], -s * xyz[:, 0] + c * xyz[:, 1]], axis=1)  # R^-1 p
+        with macrocon.Map.compute(disk, disk, seed=3, alignment_samples=400, source_guidance=wide[:, 1:3],
+                                  target_guidance=target_g, guidance_weight=10.0) as m:
+            assert m.info.reflected is False
+            tri, bary = m.correspondences()
+            inside = tri >= 0
+            assert inside.mean() > 0.75
+            q = np.einsum("vk,vkd->vd", bary[inside], xyz[disk.triangles[tri[inside]]])
+            want = np.stack([c * xyz[:, 0] - s * xyz[:, 1], s * xyz[:, 0] + c * xyz[:, 1]], axis=1)[inside]
+            # The grid's heat distances from the center have a 4-fold bias that pulls toward 90
+            # degrees: weight 3 stops ~10 degrees short (0.10), weight 10 lands within 0.013; no
+            # rotation at all would be ~1.1.
+            assert np.linalg.norm(q[:, :2] - want, axis=1).mean() < 0.05
+        with pytest.raises(ValueError, match="together"):
+            macrocon.Map.compute(disk, disk, source_guidance=target_g)
+        with pytest.raises(ValueError, match="one row per patch vertex"):
+            macrocon.Map.compute(disk, disk, source_guidance=target_g[1:], target_guidance=target_g[1:])
+        with pytest.raises(ValueError, match="same number of columns"):
+            macrocon.Map.compute(disk, disk, source_guidance=target_g, target_guidance=target_g[:, 0])
+        with pytest.raises(TypeError):
+            macrocon.Map.compute(disk, disk, source_guidance=target_g.astype(np.float32), target_guidance=target_g)
+        bad = target_g.copy()
+        bad[5, 1] = np.nan
+        with pytest.raises(macrocon.Error) as e:
+            macrocon.Map.compute(disk, disk, source_guidance=target_g, target_guidance=bad)
+        assert e.value.status == 10  # MCON_ERROR_NON_FINITE
+        assert "target_guidance" in e.value.message
