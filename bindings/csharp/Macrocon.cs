@@ -296,6 +296,9 @@ namespace Macrocon
             public uint struct_size; public ulong seed; public uint alignment_samples; public uint allow_reflection;
             public uint max_iterations; public IntPtr progress; public IntPtr progress_user_data;
             public uint orientation;
+            public IntPtr source_guidance; public UIntPtr source_guidance_stride;
+            public IntPtr target_guidance; public UIntPtr target_guidance_stride;
+            public uint guidance_dimension; public double guidance_weight;
         }
 
         [StructLayout(LayoutKind.Sequential)]

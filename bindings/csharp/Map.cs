@@ -13,6 +13,13 @@ namespace Macrocon
         public bool AllowReflection = true;  // restricts Automatic only
         /// <summary>Automatic, or force one (a "flip" recomputes with the one opposite to Info.Reflected).</summary>
         public MapOrientation Orientation = MapOrientation.Automatic;
+        /// <summary>Optional guidance channels: GuidanceDimension values per vertex (packed), for every
+        /// source vertex in SourceGuidance and every target vertex in TargetGuidance, that must agree
+        /// between corresponding points (painted region ids, landmark distances); each column is
+        /// normalized over both patches and scaled by GuidanceWeight. Both null: none.</summary>
+        public double[] SourceGuidance, TargetGuidance;
+        public int GuidanceDimension;
+        public double GuidanceWeight = 1.0;
     }
 
     /// <summary>Polylines re-traced on a target patch (every segment inside one target triangle).</summary>
@@ -78,13 +85,34 @@ namespace Macrocon
             if (settings.MaxIterations.HasValue) o.max_iterations = settings.MaxIterations.Value;
             o.allow_reflection = settings.AllowReflection ? 1u : 0u;
             o.orientation = (uint)settings.Orientation;
-            using (var scope = new Native.ProgressScope(progress))
+            if ((settings.SourceGuidance == null) != (settings.TargetGuidance == null))
+                throw new ArgumentException("SourceGuidance and TargetGuidance must be given together");
+            if (settings.SourceGuidance != null)
             {
-                o.progress = scope.Function;
-                o.progress_user_data = scope.UserData;
-                Status s = Native.mcon_map_compute(source.Handle, target.Handle, ref o, out MapHandle h);
-                scope.Finish(s);
-                return new Map(h);
+                int d = settings.GuidanceDimension;
+                if (d < 1 || settings.SourceGuidance.Length != (long)d * source.VertexCount ||
+                    settings.TargetGuidance.Length != (long)d * target.VertexCount)
+                    throw new ArgumentException("guidance needs GuidanceDimension >= 1 values per source and per target vertex (" +
+                                                source.VertexCount + " and " + target.VertexCount + " vertices)");
+                o.guidance_dimension = (uint)d;
+                o.guidance_weight = settings.GuidanceWeight;
+            }
+            else if (settings.GuidanceDimension != 0)
+                throw new ArgumentException("GuidanceDimension without SourceGuidance / TargetGuidance");
+            unsafe
+            {
+                fixed (double* gs = settings.SourceGuidance)
+                fixed (double* gt = settings.TargetGuidance)
+                using (var scope = new Native.ProgressScope(progress))
+                {
+                    o.source_guidance = (IntPtr)gs;
+                    o.target_guidance = (IntPtr)gt;
+                    o.progress = scope.Function;
+                    o.progress_user_data = scope.UserData;
+                    Status s = Native.mcon_map_compute(source.Handle, target.Handle, ref o, out MapHandle h);
+                    scope.Finish(s);
+                    return new Map(h);
+                }
             }
         }
 

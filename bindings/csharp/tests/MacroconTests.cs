@@ -540,6 +540,63 @@ static class Tests
         }
     }
 
+    // A flat disk onto itself fits any rotation: guidance pairing p with R p must make it that rotation.
+    static void TestGuidance()
+    {
+        var r = Grid(41); var p = r.P; var t = r.T;
+        using (var ctx = new Context())
+        using (var m = new Mesh(ctx, p, t))
+        using (var disk = Patch.Extract(m, 20 * 41 + 20, 0.3))
+        {
+            double[] xyz = disk.Positions();
+            int n = xyz.Length / 3;
+            double angle = 2.0, c = Math.Cos(angle), s = Math.Sin(angle);
+            var gs = new double[2 * n]; var gt = new double[2 * n];
+            for (int v = 0; v < n; ++v)
+            {
+                double x = xyz[3 * v], y = xyz[3 * v + 1];
+                gs[2 * v] = x; gs[2 * v + 1] = y;
+                gt[2 * v] = c * x + s * y; gt[2 * v + 1] = -s * x + c * y;  // R^-1 p
+            }
+            var settings = new MapSettings { Seed = 3, AlignmentSamples = 400, SourceGuidance = gs, TargetGuidance = gt,
+                                             GuidanceDimension = 2, GuidanceWeight = 10 };
+            using (var map = Map.Compute(disk, disk, settings))
+            {
+                Check(map.Info.Reflected == 0, "guided map keeps the orientation");
+                var corr = map.Correspondences(MapDirection.SourceToTarget);
+                uint[] tris = disk.Triangles();
+                double err = 0; int inside = 0;
+                for (int v = 0; v < n; ++v)
+                {
+                    int f = corr.Triangles[v];
+                    if (f < 0) continue;
+                    double qx = 0, qy = 0;
+                    for (int k = 0; k < 3; ++k)
+                    {
+                        uint w = tris[3 * f + k];
+                        qx += corr.Barycentric[3 * v + k] * xyz[3 * w];
+                        qy += corr.Barycentric[3 * v + k] * xyz[3 * w + 1];
+                    }
+                    double x = xyz[3 * v], y = xyz[3 * v + 1];
+                    err += Math.Sqrt(Math.Pow(qx - (c * x - s * y), 2) + Math.Pow(qy - (s * x + c * y), 2));
+                    ++inside;
+                }
+                Check(inside > n * 3 / 4, "inside " + inside + " of " + n);
+                Check(err / inside < 0.05, "mean error " + err / inside + " (no rotation would be ~1.1)");
+            }
+            settings.TargetGuidance = null;
+            Expect<ArgumentException>(() => Map.Compute(disk, disk, settings));
+            settings.TargetGuidance = new double[2 * n - 1];
+            Expect<ArgumentException>(() => Map.Compute(disk, disk, settings));
+            var bad = (double[])gt.Clone(); bad[7] = double.NaN;
+            settings.TargetGuidance = bad;
+            Check(Expect<MacroconException>(() => Map.Compute(disk, disk, settings)).Status == Status.NonFinite, "NaN guidance");
+            settings.TargetGuidance = gt; settings.GuidanceWeight = -1;
+            Check(Expect<MacroconException>(() => Map.Compute(disk, disk, settings)).Status == Status.InvalidArgument,
+                  "negative guidance weight");
+        }
+    }
+
     // heavy parallel work then shutdown
     static void Test10()
     {
@@ -614,7 +671,7 @@ static class Tests
     // No tuple deconstruction (`var (a, b) = ...`) anywhere here: mcs 6.8 silently drops a lambda that
     // contains one (which hid most of this runner's tests before) or crashes when a lambda captures
     // a deconstructed variable. The runner also checks how many tests ran.
-    const int ExpectedTests = 17;
+    const int ExpectedTests = 18;
 
     // The log callback receives the status and the message of the exception (mesh and patch
     // errors of the context); other contexts do not log; a disposed context drops late messages.
@@ -886,6 +943,7 @@ static class Tests
         Run("library: bad input, forged bytes, disposed handles", Test8);
         Run("map: from arrays, compute, correspondences, transfer, cross field", Test9);
         Run("map: forced orientation and the evidence of the automatic call", TestOrientation);
+        Run("map: guidance channels decide what the geometry cannot", TestGuidance);
         Run("struct layouts match macrocon.h", TestLayout);
         Run("log callback gets status and message of errors", TestLog);
         Run("throwing log callback: error surfaces, nothing crosses into native code", TestLogThrows);
