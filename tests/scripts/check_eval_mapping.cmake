@@ -43,7 +43,7 @@ endif()
 message(STATUS "eval-mapping: ${out}")
 
 # Bad options: a clear message and a non-zero status.
-foreach(bad "--classes;elbow" "--method;newton" "--pairs;0" "--samples;-3")
+foreach(bad "--classes;elbow" "--method;newton" "--pairs;0" "--samples;-3" "--landmarks;0")
   run_checked(WHAT "eval-mapping ${bad}" EXPECT_FAILURE "error"
     COMMAND ${CLI} eval-mapping --shared ${SHARED} ${bad} --quiet)
 endforeach()
@@ -51,8 +51,8 @@ endforeach()
 # The oracle diagnostic (ground-truth guidance channels): asked for explicitly, it must run, keep
 # the map flip-free, and on the featureless forearm strip, where the descriptors leave the map
 # sliding (macrocon ~7.3 mean eps x 100 on these two pairs, oracle ~4.0), land clearly closer.
-run_checked(WHAT "eval-mapping --method macrocon,oracle" OUTPUT_VARIABLE oracle_out
-  COMMAND ${CLI} eval-mapping --shared ${SHARED} --classes arm --pairs 2 --method macrocon,oracle --json --quiet)
+run_checked(WHAT "eval-mapping --method macrocon,oracle,landmarks" OUTPUT_VARIABLE oracle_out
+  COMMAND ${CLI} eval-mapping --shared ${SHARED} --classes arm --pairs 2 --method macrocon,oracle,landmarks --json --quiet)
 string(JSON oracle_eps GET "${oracle_out}" methods oracle overall mean_eps100)
 string(JSON plain_eps GET "${oracle_out}" methods macrocon overall mean_eps100)
 string(JSON oracle_flips GET "${oracle_out}" methods oracle overall flipped_triangles)
@@ -60,3 +60,14 @@ if(NOT oracle_flips EQUAL 0 OR NOT oracle_eps LESS plain_eps OR NOT oracle_eps L
   message(FATAL_ERROR "oracle: expected 0 flips and a lower mean eps x 100 than macrocon (and < 6): ${oracle_out}")
 endif()
 message(STATUS "eval-mapping oracle ${oracle_eps} vs macrocon ${plain_eps}")
+
+# The landmarks method (guidance = distances from K true point pairs): flip-free, and K reaches it.
+run_checked(WHAT "eval-mapping --method landmarks --landmarks 1" OUTPUT_VARIABLE one_out
+  COMMAND ${CLI} eval-mapping --shared ${SHARED} --classes arm --pairs 2 --method landmarks --landmarks 1 --json --quiet)
+string(JSON four_eps GET "${oracle_out}" methods landmarks overall mean_eps100)
+string(JSON four_flips GET "${oracle_out}" methods landmarks overall flipped_triangles)
+string(JSON one_eps GET "${one_out}" methods landmarks overall mean_eps100)
+if(NOT four_flips EQUAL 0 OR four_eps EQUAL one_eps OR NOT four_eps GREATER 0)
+  message(FATAL_ERROR "landmarks: expected 0 flips and a result that depends on --landmarks: 4 -> ${four_eps}, 1 -> ${one_eps}")
+endif()
+message(STATUS "eval-mapping landmarks: 4 -> ${four_eps}, 1 -> ${one_eps}")

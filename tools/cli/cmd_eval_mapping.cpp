@@ -22,7 +22,9 @@ const char* kUsage =
     "gradient descent, 15,000 iterations, from the same rigid start); --method restricts to a list.\n"
     "Diagnostic method, only when asked for (--method macrocon,oracle): oracle = the SDK's map with\n"
     "the ground-truth correspondents' base-mesh positions as extra guidance channels, i.e. what the\n"
-    "optimizer and its distortion prior reach when the descriptors are unambiguous.\n"
+    "optimizer and its distortion prior reach when the descriptors are unambiguous; landmarks = the\n"
+    "SDK's map guided by the geodesic distances from --landmarks K (default 4) true point pairs, spread\n"
+    "by farthest-point sampling: what a few artist-clicked correspondences give.\n"
     "Classes: eye, nose, mouth, ear, face, hand, foot, arm. Pair i uses slot i of the list (MakeHuman:\n"
     "each class once, sided classes once same-side and once mirrored; then ICT likewise) and the people\n"
     "or faces 2i and 2i+1 of the seed. Default --pairs: the MakeHuman slots, i.e. 13 pairs covering\n"
@@ -50,7 +52,7 @@ int run_eval_mapping(const Args& args) {
   }
   const ArgParser p(args,
                     {"shared", "seed", "pairs", "classes", "method", "samples", "thesis-iterations", "eval-vertices",
-                     "threads"},
+                     "threads", "landmarks"},
                     {"json", "quiet"});
   tools::MappingEvalOptions o;
   o.shared_dir = p.required("shared");
@@ -66,6 +68,8 @@ int run_eval_mapping(const Args& args) {
   o.thesis_iterations = static_cast<int>(p.integer("thesis-iterations", o.thesis_iterations));
   o.max_evaluated_vertices = static_cast<int>(p.integer("eval-vertices", o.max_evaluated_vertices));
   o.threads = static_cast<int>(p.integer("threads", o.threads));
+  o.landmarks = static_cast<int>(p.integer("landmarks", o.landmarks));
+  require(o.landmarks >= 1 && o.landmarks <= 64, MCON_ERROR_INVALID_ARGUMENT, "--landmarks must be in [1, 64]");
   require(o.alignment_samples >= 1 && o.thesis_iterations >= 0 && o.max_evaluated_vertices >= 1 && o.threads >= 1 &&
               o.threads <= 256,
           MCON_ERROR_INVALID_ARGUMENT,

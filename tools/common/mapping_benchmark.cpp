@@ -27,6 +27,9 @@ namespace mcon::tools {
 const char* const kMappingMethods[3] = {"macrocon", "rigid", "thesis"};
 // Weight of each ground-truth guidance column of the `oracle` method (3 channels, each std 1).
 constexpr double kOracleGuidanceWeight = 3.0;
+// The `landmarks` method: the weight of each distance column (4 landmarks: 1 and 0.5 measured
+// alike on the default run, 2.78 and 2.77 mean eps x 100).
+constexpr double kLandmarkGuidanceWeight = 1.0;
 const char* const kMappingParts[8] = {"eye", "nose", "mouth", "ear", "face", "hand", "foot", "arm"};
 
 namespace {
@@ -188,10 +191,11 @@ std::vector<MappingSlot> mapping_slots(const std::string& shared_dir, const std:
 
 std::vector<MappingPairResult> run_mapping_evaluation(const MappingEvalOptions& options) {
   require(options.pairs >= 0 && options.threads >= 1 && options.alignment_samples >= 1 &&
-              options.thesis_iterations >= 0 && options.max_evaluated_vertices >= 1,
+              options.thesis_iterations >= 0 && options.max_evaluated_vertices >= 1 && options.landmarks >= 1 &&
+              options.landmarks <= 64,
           MCON_ERROR_INVALID_ARGUMENT, "eval-mapping: invalid options");
   for (const std::string& m : options.methods)
-    require(m == "macrocon" || m == "rigid" || m == "thesis" || m == "oracle", MCON_ERROR_INVALID_ARGUMENT,
+    require(m == "macrocon" || m == "rigid" || m == "thesis" || m == "oracle" || m == "landmarks", MCON_ERROR_INVALID_ARGUMENT,
             "eval-mapping: unknown method '" + m + "'");
   const std::vector<MappingSlot> slots = mapping_slots(options.shared_dir, options.parts);
   require(!slots.empty(), MCON_ERROR_INVALID_ARGUMENT, "eval-mapping: no class selected");
@@ -318,6 +322,20 @@ std::vector<MappingPairResult> run_mapping_evaluation(const MappingEvalOptions& 
         res.methods["thesis"].iterations = th.iterations;
       }
 
+      // A guided method: the SDK's map with host guidance channels (PatchMapOptions).
+      auto run_guided = [&](const char* name, const Eigen::MatrixXd& gs, const Eigen::MatrixXd& gt, double weight) {
+        PatchMapOptions oo;  // the full map (mo has no Newton iterations when macrocon is not asked for)
+        oo.map.alignment = mo.map.alignment;
+        oo.source_guidance = &gs;
+        oo.target_guidance = &gt;
+        oo.guidance_weight = weight;
+        const auto to = std::chrono::steady_clock::now();
+        const SurfaceMap gm = map_patches(src.patch, dst.patch, oo);
+        phi[name] = gm.phi;
+        reflected[name] = gm.reflected;
+        res.methods[name].seconds = seconds_since(to);
+        res.methods[name].iterations = gm.iterations;
+      };
       if (wants("oracle")) {
         // Guidance = the base-mesh position of every vertex's true correspondent (the source's
         // mirrored for a mirrored pair): descriptors without ambiguity, so what is left of the
@@ -339,18 +357,29 @@ std::vector<MappingPairResult> run_mapping_evaluation(const MappingEvalOptions& 
             if (host[v] < 0) g.row(static_cast<Eigen::Index>(v)) = mean.transpose();
           return g;
         };
-        const Eigen::MatrixXd gs = guidance(src.host, slot.mirrored), gt = guidance(dst.host, false);
-        PatchMapOptions oo;  // the full map (mo has no Newton iterations when macrocon is not asked for)
-        oo.map.alignment = mo.map.alignment;
-        oo.source_guidance = &gs;
-        oo.target_guidance = &gt;
-        oo.guidance_weight = kOracleGuidanceWeight;
-        const auto to = std::chrono::steady_clock::now();
-        const SurfaceMap om = map_patches(src.patch, dst.patch, oo);
-        phi["oracle"] = om.phi;
-        reflected["oracle"] = om.reflected;
-        res.methods["oracle"].seconds = seconds_since(to);
-        res.methods["oracle"].iterations = om.iterations;
+        run_guided("oracle", guidance(src.host, slot.mirrored), guidance(dst.host, false), kOracleGuidanceWeight);
+      }
+      if (wants("landmarks") && !sources.empty()) {
+        // What an artist can give: a few corresponding points clicked on both meshes (here true
+        // pairs, spread by farthest-point sampling over the source), and as guidance the geodesic
+        // distance from each, computed on each patch.
+        const HeatGeodesics src_heat(src.patch.mesh), dst_heat(dst.patch.mesh);
+        std::vector<int> picked;
+        Eigen::VectorXd nearest = src_heat.from_point(src.patch.center_triangle, src.patch.center_barycentric);
+        for (int k = 0; k < options.landmarks && k < static_cast<int>(sources.size()); ++k) {
+          int best = 0;  // the evaluated source vertex farthest from the center and the picks so far
+          for (int c = 1; c < static_cast<int>(sources.size()); ++c)
+            if (nearest[sources[c]] > nearest[sources[best]]) best = c;
+          picked.push_back(best);
+          nearest = nearest.cwiseMin(src_heat.from_vertices({sources[best]}));
+        }
+        Eigen::MatrixXd gs(src.patch.mesh.num_vertices(), static_cast<Eigen::Index>(picked.size()));
+        Eigen::MatrixXd gt(dst.patch.mesh.num_vertices(), static_cast<Eigen::Index>(picked.size()));
+        for (std::size_t k = 0; k < picked.size(); ++k) {
+          gs.col(static_cast<Eigen::Index>(k)) = src_heat.from_vertices({sources[picked[k]]});
+          gt.col(static_cast<Eigen::Index>(k)) = dst_heat.from_vertices({truths[picked[k]]});
+        }
+        run_guided("landmarks", gs, gt, kLandmarkGuidanceWeight);
       }
 
       // Where each evaluated point lands, per method, then one heat solve per true vertex.

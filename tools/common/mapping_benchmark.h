@@ -45,6 +45,7 @@ struct MappingEvalOptions {
   int thesis_iterations = 15000;
   int max_evaluated_vertices = 300;      // per pair, deterministic stride subsample
   int threads = 2;
+  int landmarks = 4;                     // corresponding points of the `landmarks` method
   std::function<void(const std::string&)> log;  // one line per pair (stderr in the CLI)
 };
 
