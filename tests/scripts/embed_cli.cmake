@@ -108,3 +108,30 @@ check_run(${OUT}/entry)
 run_checked(WHAT "a bad --center-vertex" EXPECT_FAILURE "not a vertex"
   COMMAND ${CLI} embed --source ${MESH} --target ${MESH} --center-vertex 99999999 --radius 0.5
           --out ${OUT}/bad)
+
+# Landmarks: two clicked pairs on the nose (MakeHuman is exactly mirror-symmetric: 6974 <-> 198 and
+# 7120 <-> 359 are mirror images, at different angles around the tip 297). Pairing each with
+# itself keeps the map plain; pairing each with its mirror image must make it reflected, which
+# no rotation about the tip can satisfy.
+foreach(case "plain;6974:6974,7120:7120;OFF" "mirror;6974:198,7120:359;ON")  # string(JSON) gives booleans as ON/OFF
+  list(GET case 0 name)
+  list(GET case 1 pairs)
+  list(GET case 2 want)
+  run_checked(WHAT "macrocon embed --landmarks ${pairs}" OUTPUT_VARIABLE lm_out
+    COMMAND ${CLI} embed --source ${MESH} --target ${MESH} --center-vertex 297 --radius 0.55
+            --source-center-vertex 297 --source-radius 0.45 --samples 500 --seed 1 --landmarks ${pairs}
+            --out ${OUT}/landmarks_${name} --json)
+  string(JSON lm_reflected GET "${lm_out}" reflected)
+  string(JSON lm_count GET "${lm_out}" landmarks)
+  string(JSON lm_flips GET "${lm_out}" flips)
+  if(NOT lm_reflected STREQUAL want OR NOT lm_count EQUAL 2 OR NOT lm_flips EQUAL 0)
+    message(FATAL_ERROR "--landmarks ${pairs}: reflected ${lm_reflected} (want ${want}), landmarks ${lm_count}, "
+                        "flips ${lm_flips}")
+  endif()
+endforeach()
+run_checked(WHAT "a landmark outside the target patch" EXPECT_FAILURE "target vertex 5 is not a vertex of the target patch"
+  COMMAND ${CLI} embed --source ${MESH} --target ${MESH} --center-vertex 297 --radius 0.55
+          --source-center-vertex 297 --landmarks 6974:5 --out ${OUT}/bad)
+run_checked(WHAT "a malformed --landmarks" EXPECT_FAILURE "expects S:T pairs"
+  COMMAND ${CLI} embed --source ${MESH} --target ${MESH} --center-vertex 297 --radius 0.55
+          --source-center-vertex 297 --landmarks 6974-5 --out ${OUT}/bad)

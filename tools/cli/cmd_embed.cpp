@@ -32,7 +32,8 @@ const char* kUsage =
     "usage: macrocon embed --source FILE --target FILE --center-vertex N --radius R\n"
     "                      [--source-center-vertex M --source-radius Q] [--face-range A:B]\n"
     "                      [--source-face-range A:B] [--seed S] [--samples K] [--iterations I]\n"
-    "                      [--orientation auto|preserve|reverse] [--out DIR] [--json]\n"
+    "                      [--orientation auto|preserve|reverse] [--landmarks S:T,S:T,...]\n"
+    "                      [--out DIR] [--json]\n"
     "Maps a source patch onto the geodesic disk of radius R around vertex N of the target mesh and\n"
     "transfers the source's constraints. With --source-center-vertex the source patch is cut the same\n"
     "way from the source mesh (radius Q, default R); without it the source file must already be one\n"
@@ -46,7 +47,11 @@ const char* kUsage =
     "--orientation (default auto) forces an orientation-preserving or -reversing map, e.g. to flip a\n"
     "nearly mirror-symmetric patch; the summary's alignment_score_unreflected/_reflected (-1: not\n"
     "tried), orientation_compared and level0_energy_unreflected/_reflected (-1: not compared) show\n"
-    "how close the automatic call was.\n";
+    "how close the automatic call was.\n"
+    "--landmarks pairs source vertex S with target vertex T (file numbers, both inside their patches),\n"
+    "e.g. points an artist clicked on both meshes; the map is guided by the geodesic distances from\n"
+    "them (mcon_map_options guidance channels), which settles what the geometry cannot (orientation,\n"
+    "which finger is which).\n";
 
 void parse_range(const std::string& key, const std::string& s, long& begin, long& end) {
   const auto colon = s.find(':');
@@ -75,6 +80,45 @@ Patch cut(const io::LoadedMesh& mesh, long file_vertex, double radius, const std
   options.center.vertex = mesh.file_to_mesh[static_cast<std::size_t>(file_vertex)];
   options.radius = radius;
   return extract_geodesic_disk(mesh.mesh, options);
+}
+
+// The patch vertex at host vertex h (cut patches keep host links; snapped vertices sit at an edge
+// end), or -1 if the patch does not contain it.
+int patch_vertex_at(const Patch& patch, int h) {
+  for (std::size_t v = 0; v < patch.host_vertex.size(); ++v) {
+    const HostPoint& hp = patch.host_vertex[v];
+    if ((hp.v0 == h && (hp.v1 == h || hp.t == 0.0)) || (hp.v1 == h && hp.t == 1.0)) return static_cast<int>(v);
+  }
+  return -1;
+}
+
+// "S:T,S:T,...": pairs of file vertex numbers (source, target).
+std::vector<std::pair<long, long>> parse_landmarks(const std::string& s) {
+  std::vector<std::pair<long, long>> out;
+  std::size_t at = 0;
+  while (at <= s.size()) {
+    const std::size_t end = std::min(s.find(',', at), s.size());
+    const std::string item = s.substr(at, end - at);
+    const std::size_t colon = item.find(':');
+    require(colon != std::string::npos, MCON_ERROR_INVALID_ARGUMENT,
+            "--landmarks expects S:T pairs separated by commas, got '" + item + "'");
+    out.emplace_back(static_cast<long>(ArgParser::parse_number("landmarks", item.substr(0, colon))),
+                     static_cast<long>(ArgParser::parse_number("landmarks", item.substr(colon + 1))));
+    at = end + 1;
+  }
+  require(out.size() <= 64, MCON_ERROR_INVALID_ARGUMENT, "--landmarks takes at most 64 pairs");
+  return out;
+}
+
+// The patch vertex of file vertex `file_vertex` of `mesh`, or an error naming the landmark.
+int landmark_vertex(const io::LoadedMesh& mesh, const Patch& patch, long file_vertex, const char* side) {
+  const bool known = file_vertex >= 0 && file_vertex < static_cast<long>(mesh.file_to_mesh.size()) &&
+                     mesh.file_to_mesh[static_cast<std::size_t>(file_vertex)] >= 0;
+  const int v = known ? patch_vertex_at(patch, mesh.file_to_mesh[static_cast<std::size_t>(file_vertex)]) : -1;
+  require(v >= 0, MCON_ERROR_INVALID_ARGUMENT,
+          std::string("--landmarks: ") + side + " vertex " + std::to_string(file_vertex) + " is not a vertex of the " +
+              side + " patch");
+  return v;
 }
 
 // An already-cut, normalized patch: centered at the vertex nearest to its area-weighted centroid
@@ -199,7 +243,8 @@ int run_embed(const Args& args) {
   }
   const ArgParser p(args,
                     {"source", "target", "center-vertex", "radius", "source-center-vertex", "source-radius",
-                     "face-range", "source-face-range", "seed", "samples", "iterations", "orientation", "out"},
+                     "face-range", "source-face-range", "seed", "samples", "iterations", "orientation", "landmarks",
+                     "out"},
                     {"json"});
   const auto t_start = std::chrono::steady_clock::now();
   require(p.has("center-vertex"), MCON_ERROR_INVALID_ARGUMENT, "missing required option --center-vertex");
@@ -234,6 +279,22 @@ int run_embed(const Args& args) {
   options.map.orientation = orientation == "preserve"  ? MapOrientation::preserve
                             : orientation == "reverse" ? MapOrientation::reverse
                                                        : MapOrientation::automatic;
+  // Landmarks: one guidance column per pair, the geodesic distance from it on each patch.
+  const std::vector<std::pair<long, long>> landmarks =
+      p.has("landmarks") ? parse_landmarks(p.get("landmarks")) : std::vector<std::pair<long, long>>{};
+  Eigen::MatrixXd source_guidance(source.mesh.num_vertices(), static_cast<Eigen::Index>(landmarks.size()));
+  Eigen::MatrixXd target_guidance(target.mesh.num_vertices(), static_cast<Eigen::Index>(landmarks.size()));
+  if (!landmarks.empty()) {
+    const HeatGeodesics source_heat(source.mesh), target_heat(target.mesh);
+    for (std::size_t k = 0; k < landmarks.size(); ++k) {
+      source_guidance.col(static_cast<Eigen::Index>(k)) =
+          source_heat.from_vertices({landmark_vertex(source_mesh, source, landmarks[k].first, "source")});
+      target_guidance.col(static_cast<Eigen::Index>(k)) =
+          target_heat.from_vertices({landmark_vertex(target_mesh, target, landmarks[k].second, "target")});
+    }
+    options.source_guidance = &source_guidance;
+    options.target_guidance = &target_guidance;
+  }
   const auto t_map = std::chrono::steady_clock::now();
   const SurfaceMap map = map_patches(source, target, options);
   const double map_seconds = seconds_since(t_map);
@@ -361,6 +422,7 @@ int run_embed(const Args& args) {
   summary.set("reflected", map.reflected);
   // The evidence of the orientation call, for a host that offers a "flip" (--orientation).
   summary.set("orientation", orientation);
+  summary.set("landmarks", static_cast<double>(landmarks.size()));
   summary.set("alignment_score_unreflected", map.alignment.score_unreflected);
   summary.set("alignment_score_reflected", map.alignment.score_reflected);
   summary.set("orientation_compared", map.orientation_compared);
