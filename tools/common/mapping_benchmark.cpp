@@ -364,20 +364,16 @@ std::vector<MappingPairResult> run_mapping_evaluation(const MappingEvalOptions& 
         // pairs, spread by farthest-point sampling over the source), and as guidance the geodesic
         // distance from each, computed on each patch.
         const HeatGeodesics src_heat(src.patch.mesh), dst_heat(dst.patch.mesh);
-        std::vector<int> picked;
+        const int count = std::min(options.landmarks, static_cast<int>(sources.size()));
+        Eigen::MatrixXd gs(src.patch.mesh.num_vertices(), count), gt(dst.patch.mesh.num_vertices(), count);
         Eigen::VectorXd nearest = src_heat.from_point(src.patch.center_triangle, src.patch.center_barycentric);
-        for (int k = 0; k < options.landmarks && k < static_cast<int>(sources.size()); ++k) {
+        for (int k = 0; k < count; ++k) {
           int best = 0;  // the evaluated source vertex farthest from the center and the picks so far
           for (int c = 1; c < static_cast<int>(sources.size()); ++c)
             if (nearest[sources[c]] > nearest[sources[best]]) best = c;
-          picked.push_back(best);
-          nearest = nearest.cwiseMin(src_heat.from_vertices({sources[best]}));
-        }
-        Eigen::MatrixXd gs(src.patch.mesh.num_vertices(), static_cast<Eigen::Index>(picked.size()));
-        Eigen::MatrixXd gt(dst.patch.mesh.num_vertices(), static_cast<Eigen::Index>(picked.size()));
-        for (std::size_t k = 0; k < picked.size(); ++k) {
-          gs.col(static_cast<Eigen::Index>(k)) = src_heat.from_vertices({sources[picked[k]]});
-          gt.col(static_cast<Eigen::Index>(k)) = dst_heat.from_vertices({truths[picked[k]]});
+          gs.col(k) = src_heat.from_vertices({sources[best]});
+          gt.col(k) = dst_heat.from_vertices({truths[best]});
+          nearest = nearest.cwiseMin(gs.col(k));
         }
         run_guided("landmarks", gs, gt, kLandmarkGuidanceWeight);
       }
