@@ -82,13 +82,11 @@ Patch cut(const io::LoadedMesh& mesh, long file_vertex, double radius, const std
   return extract_geodesic_disk(mesh.mesh, options);
 }
 
-// The patch vertex at host vertex h (cut patches keep host links; snapped vertices sit at an edge
-// end), or -1 if the patch does not contain it.
+// The patch vertex at host vertex h (a patch vertex that is a host vertex links {h, h}; cut
+// crossings lie strictly inside an edge), or -1 if the patch does not contain it.
 int patch_vertex_at(const Patch& patch, int h) {
-  for (std::size_t v = 0; v < patch.host_vertex.size(); ++v) {
-    const HostPoint& hp = patch.host_vertex[v];
-    if ((hp.v0 == h && (hp.v1 == h || hp.t == 0.0)) || (hp.v1 == h && hp.t == 1.0)) return static_cast<int>(v);
-  }
+  for (std::size_t v = 0; v < patch.host_vertex.size(); ++v)
+    if (patch.host_vertex[v].v0 == h && patch.host_vertex[v].v1 == h) return static_cast<int>(v);
   return -1;
 }
 
