@@ -172,10 +172,10 @@ class Map(_Handle):
         if max_iterations is not None:
             o.max_iterations = int(max_iterations)
         o.orientation = int(_ORIENTATIONS[orientation])
-        keep = []  # the guidance arrays stay alive until mcon_map_compute returns
         if (source_guidance is None) != (target_guidance is None):
             raise ValueError("source_guidance and target_guidance must be given together")
         if source_guidance is not None:
+            # gs / gt are locals until the function returns, so the memory stays valid for the call.
             gs, ss = strided_rows("source_guidance", source_guidance, np.float64, vector=True)
             gt, st = strided_rows("target_guidance", target_guidance, np.float64, vector=True)
             if gs.shape[1] != gt.shape[1]:
@@ -184,7 +184,6 @@ class Map(_Handle):
             if gs.shape[0] != source.vertex_count or gt.shape[0] != target.vertex_count:
                 raise ValueError(f"guidance needs one row per patch vertex: source {source.vertex_count}, target "
                                  f"{target.vertex_count}, got {gs.shape[0]} and {gt.shape[0]}")
-            keep += [gs, gt]
             o.source_guidance, o.source_guidance_stride = ptr(gs), ss
             o.target_guidance, o.target_guidance_stride = ptr(gt), st
             o.guidance_dimension = gs.shape[1]
