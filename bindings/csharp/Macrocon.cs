@@ -137,6 +137,13 @@ namespace Macrocon
                 throw new ArgumentException($"{what}: {count} rows {stride} bytes apart from offset {offset} need {needed} bytes, the buffer holds {length}");
         }
 
+        /// <summary>Copies `count` rows of rowBytes bytes, `stride` bytes apart from `offset` in src,
+        /// into dest back to back (the layout must have passed Check).</summary>
+        internal static void Pack(ReadOnlySpan<byte> src, int offset, int stride, int count, int rowBytes, Span<byte> dest)
+        {
+            for (int v = 0; v < count; ++v) src.Slice(offset + v * stride, rowBytes).CopyTo(dest.Slice(rowBytes * v));
+        }
+
         /// <summary>The rows' start address, checked for the scalar alignment the C side declares.</summary>
         internal static IntPtr Start(string what, IntPtr buffer, int offset, int alignment)
         {

@@ -212,9 +212,8 @@ namespace Macrocon
             if (dimension < 1) throw new ArgumentException($"dimension {dimension} must be >= 1");
             Interleaved.Check("recordBytes", recordBytes.Length, fieldOffset, recordStride, sourceVertices, 8 * dimension, 8);
             var packed = new double[dimension * sourceVertices];
-            var rows = MemoryMarshal.AsBytes(new Span<double>(packed));
-            for (int v = 0; v < sourceVertices; ++v)
-                recordBytes.Slice(fieldOffset + v * recordStride, 8 * dimension).CopyTo(rows.Slice(8 * dimension * v));
+            Interleaved.Pack(recordBytes, fieldOffset, recordStride, sourceVertices, 8 * dimension,
+                             MemoryMarshal.AsBytes(new Span<double>(packed)));
             return TransferField(kind, dimension, packed);
         }
 
@@ -225,9 +224,8 @@ namespace Macrocon
             if (dimension < 1) throw new ArgumentException($"dimension {dimension} must be >= 1");
             Interleaved.Check("recordBytes", recordBytes.Length, fieldOffset, recordStride, sourceVertices, 4 * dimension, 4);
             var packed = new int[dimension * sourceVertices];
-            var rows = MemoryMarshal.AsBytes(new Span<int>(packed));
-            for (int v = 0; v < sourceVertices; ++v)
-                recordBytes.Slice(fieldOffset + v * recordStride, 4 * dimension).CopyTo(rows.Slice(4 * dimension * v));
+            Interleaved.Pack(recordBytes, fieldOffset, recordStride, sourceVertices, 4 * dimension,
+                             MemoryMarshal.AsBytes(new Span<int>(packed)));
             return TransferLabels(dimension, packed, outsideLabel);
         }
 
