@@ -34,7 +34,9 @@ const char* kUsage =
     "--eval-vertices: evaluated source vertices per pair (default 300, deterministic stride);\n"
     "--threads: TBB threads (default 2). Per-pair lines go to stderr unless --quiet.\n"
     "--json prints {\"pairs\": N, \"methods\": {\"macrocon\": {\"overall\": M, \"per_class\": {\"eye\": M, ...}}, ...}}\n"
-    "with M = {mean_eps100, within_0_05, flipped_triangles, overlap, seconds_median, iterations_median}.\n";
+    "with M = {mean_eps100, within_0_05, flipped_triangles, overlap, seconds_median, iterations_median},\n"
+    "and \"target_edge_eps100\": {\"overall\": e, \"per_class\": {...}}, the target's mean edge length in the\n"
+    "same units (100 x edge / sqrt(target patch area)): the scale of one target edge, to read mean_eps100 against.\n";
 
 std::vector<std::string> split(const std::string& s) {
   std::vector<std::string> out;
@@ -96,6 +98,11 @@ int run_eval_mapping(const Args& args) {
     for (std::size_t k = 0; k < per.size(); ++k) row(per.key(k), per.value(k));
     row("all", entry.at("overall"));
   }
+  const tools::Json& edge = json.at("target_edge_eps100");
+  std::printf("target edge (eps100):");
+  const tools::Json& per = edge.at("per_class");
+  for (std::size_t k = 0; k < per.size(); ++k) std::printf(" %s %.3f", per.key(k).c_str(), per.value(k).as_number());
+  std::printf(" all %.3f\n", edge.at("overall").as_number());
   return 0;
 }
 

@@ -390,6 +390,7 @@ std::vector<MappingPairResult> run_mapping_evaluation(const MappingEvalOptions& 
       }
       const HeatGeodesics heat(dst.patch.mesh);
       const double scale = 1.0 / std::sqrt(patch_area(dst.patch.mesh));
+      res.target_edge_eps = scale * mean_edge_length(dst.patch.mesh);
       std::map<std::string, std::vector<double>> eps;
       for (auto& [name, l] : landed) eps[name].assign(sources.size(), -1.0);
       for_each_block(static_cast<int>(sources.size()), 8, [&](int begin, int end, int) {
@@ -438,7 +439,8 @@ std::vector<MappingPairResult> run_mapping_evaluation(const MappingEvalOptions& 
       std::ostringstream line;
       line << "pair " << i << " " << slot.model << " " << slot.source_class << " -> " << slot.target_class
            << " (" << res.source_vertices << " -> " << res.target_vertices << " vertices, "
-           << res.ground_truth_vertices << " with ground truth):";
+           << res.ground_truth_vertices << " with ground truth, target edge eps100 "
+           << fmt(100 * res.target_edge_eps) << "):";
       for (const auto& [name, r] : res.methods)
         line << " " << name << (r.reflected ? " (mirrored)" : "") << " eps100 " << fmt(100 * r.mean_eps) << " within " << fmt(r.within_0_05) << " flips "
              << r.flipped_triangles << " overlap " << fmt(r.overlap) << " " << fmt(r.seconds) << "s it "
@@ -507,6 +509,23 @@ Json mapping_evaluation_json(const std::vector<MappingPairResult>& pairs, const 
     ms.set(m, entry);
   }
   out.set("methods", ms);
+  std::map<std::string, std::vector<double>> edges;
+  for (const MappingPairResult& p : pairs) {
+    edges["overall"].push_back(100 * p.target_edge_eps);
+    edges[p.slot.part].push_back(100 * p.target_edge_eps);
+  }
+  auto mean = [](const std::vector<double>& v) {
+    double sum = 0;
+    for (double x : v) sum += x;
+    return v.empty() ? 0.0 : sum / static_cast<double>(v.size());
+  };
+  Json resolution = Json::object();
+  resolution.set("overall", mean(edges["overall"]));
+  Json per = Json::object();
+  for (const char* part : kMappingParts)
+    if (edges.count(part)) per.set(part, mean(edges[part]));
+  resolution.set("per_class", per);
+  out.set("target_edge_eps100", resolution);
   return out;
 }
 

@@ -65,6 +65,10 @@ struct MappingPairResult {
   int person_a = 0, person_b = 0;
   int source_vertices = 0, target_vertices = 0;
   int ground_truth_vertices = 0;  // source vertices with a surviving true vertex
+  // The target's resolution in eps units: mean 3D edge length / sqrt(target patch area). A point
+  // a third of an edge away from its true vertex scores about a third of this; it tells how far
+  // below one target edge a method's mean eps lies.
+  double target_edge_eps = 0;
   std::string orientation_note;   // the map's orientation evidence (rigid scores, level-0 energies)
   std::map<std::string, MethodPairResult> methods;
 };
@@ -77,9 +81,11 @@ std::vector<MappingSlot> mapping_slots(const std::string& shared_dir, const std:
 // Throws mcon::Error (IO for missing data, INVALID_ARGUMENT for bad options).
 std::vector<MappingPairResult> run_mapping_evaluation(const MappingEvalOptions& options);
 
-// {"pairs": N, "methods": {m: {"overall": M, "per_class": {part: M}}}} with M = {mean_eps100,
+// {"pairs": N, "methods": {m: {"overall": M, "per_class": {part: M}}},
+//  "target_edge_eps100": {"overall": e, "per_class": {part: e}}} with M = {mean_eps100,
 // within_0_05, flipped_triangles, overlap, seconds_median, iterations_median}; mean_eps100,
-// within_0_05 and overlap are means over pairs (each pair weighs the same).
+// within_0_05, overlap and e (100 x MappingPairResult::target_edge_eps) are means over pairs (each
+// pair weighs the same).
 Json mapping_evaluation_json(const std::vector<MappingPairResult>& pairs, const std::vector<std::string>& methods);
 
 }  // namespace mcon::tools
