@@ -91,6 +91,7 @@ SurfaceMap compute_surface_map(const MapDomain& source, const MapDomain& target,
   check_domain(source, "source");
   check_domain(target, "target");
   const int L = static_cast<int>(source.descriptor_levels.size());
+  const int R = static_cast<int>(options.refine_sigma_factors.size());
   require(static_cast<int>(target.descriptor_levels.size()) == L, MCON_ERROR_INVALID_ARGUMENT,
           "source and target have different numbers of descriptor levels");
   for (int l = 0; l < L; ++l)
@@ -102,6 +103,11 @@ SurfaceMap compute_surface_map(const MapDomain& source, const MapDomain& target,
               options.weights.barrier_start > 0 && options.weights.descriptor >= 0 &&
               options.weights.distortion >= 0 && options.weights.area >= 0 && options.weights.injectivity >= 0,
           MCON_ERROR_INVALID_ARGUMENT, "invalid map options");
+  for (double f : options.refine_sigma_factors)
+    require(f > 0 && std::isfinite(f), MCON_ERROR_INVALID_ARGUMENT,
+            "invalid map options: refinement sigma factors must be finite and > 0");
+  require(options.refine_max_iterations >= 1, MCON_ERROR_INVALID_ARGUMENT,
+          "invalid map options: refine_max_iterations must be >= 1");
   std::vector<Vec2> target_polygon;
   {
     const MeshTopology topo = build_topology(target.mesh);
@@ -124,7 +130,7 @@ SurfaceMap compute_surface_map(const MapDomain& source, const MapDomain& target,
   std::vector<std::unique_ptr<DescriptorField2D>> fields;
   std::vector<MatchLevel> levels(L);
   SurfaceMap out;
-  out.levels.resize(L);
+  out.levels.resize(L + R);
   for (int c : options.chiral_columns)
     require(c >= 0 && c < source.descriptor_levels[0].cols(), MCON_ERROR_INVALID_ARGUMENT,
             "chiral column " + std::to_string(c) + " is not a descriptor column");
@@ -147,6 +153,7 @@ SurfaceMap compute_surface_map(const MapDomain& source, const MapDomain& target,
     levels[l].score.band = options.rim_band;
     out.levels[l].sigma = levels[l].score.sigma;
   }
+  for (int r = 0; r < R; ++r) out.levels[L + r].sigma = levels[L - 1].score.sigma * options.refine_sigma_factors[r];
 
   // 1. Rigid start.
   const auto t0 = std::chrono::steady_clock::now();
@@ -170,17 +177,24 @@ SurfaceMap compute_surface_map(const MapDomain& source, const MapDomain& target,
   // 2. Projected Newton, smoothest level first.
   const auto t1 = std::chrono::steady_clock::now();
   const int n = source.mesh.num_vertices();
-  const int cap = std::max(options.newton.max_iterations, 1);
-  // Runs level l from x; `share` maps its iterations into the progress range.
-  // energy_scale: the first level's start energy, the tolerance scale of later levels.
-  auto run_level = [&](int l, const SourceDisk& disk, Eigen::VectorXd& x, double energy_scale, double progress_from,
-                       double progress_to) {
-    ScoreSettings score = levels[l].score;
+  // Runs stage s from x (s < L: descriptor level s; else refinement pass s - L at the finest
+  // level with its narrower width); its iterations map into the progress range.
+  // energy_scale: the first level's start energy, the tolerance scale of later stages.
+  auto stage_score = [&](int s) {
+    ScoreSettings score = levels[std::min(s, L - 1)].score;
     score.outside = OutsideRule::nearest_rim;
-    const MapEnergy energy(disk, *fields[l], source_values(l, disk.reflected), score, options.weights);
+    score.sigma = out.levels[s].sigma;
+    return score;
+  };
+  auto run_level = [&](int s, const SourceDisk& disk, Eigen::VectorXd& x, double energy_scale, double progress_from,
+                       double progress_to) {
+    const int l = std::min(s, L - 1);
+    const MapEnergy energy(disk, *fields[l], source_values(l, disk.reflected), stage_score(s), options.weights);
     bool cancelled = false;
     NewtonOptions newton = options.newton;
+    if (s >= L) newton.max_iterations = std::min(newton.max_iterations, options.refine_max_iterations);
     newton.energy_scale = std::max(newton.energy_scale, energy_scale);
+    const int cap = std::max(newton.max_iterations, 1);
     NewtonReport r = minimize_map_energy(energy, x, newton, [&](int it, double) {
       const double f = progress_from + (progress_to - progress_from) * std::min(1.0, static_cast<double>(it) / cap);
       if (options.progress && !options.progress(std::min(f, 0.999))) cancelled = true;
@@ -194,7 +208,7 @@ SurfaceMap compute_surface_map(const MapDomain& source, const MapDomain& target,
     for (int v = 0; v < n; ++v) x.segment<2>(2 * v) = T.apply(source.uv[v]);
     return x;
   };
-  const double level_share = (1 - kAlignShare) / L;
+  const double level_share = (1 - kAlignShare) / (L + R);
   // One orientation's optimization: its disk, iterate and per-level reports.
   struct Candidate {
     const SourceDisk* disk;
@@ -238,11 +252,11 @@ SurfaceMap compute_surface_map(const MapDomain& source, const MapDomain& target,
   }
   const SourceDisk& disk = *chosen.disk;
   out.reflected = disk.reflected;
-  while (static_cast<int>(chosen.reports.size()) < L) {
+  while (static_cast<int>(chosen.reports.size()) < L + R) {
     const int l = static_cast<int>(chosen.reports.size());
     advance(chosen, level_from(l), level_from(l + 1));
   }
-  for (int l = 0; l < L; ++l) {
+  for (int l = 0; l < L + R; ++l) {
     const NewtonReport& r = chosen.reports[l];
     LevelReport& lr = out.levels[l];
     lr.iterations = r.iterations;
@@ -258,6 +272,10 @@ SurfaceMap compute_surface_map(const MapDomain& source, const MapDomain& target,
     out.energy = r.terms;
   }
   const Eigen::VectorXd& x = chosen.x;
+  if (R > 0)  // the reported terms (and matching score) keep the finest level's width
+    out.energy = MapEnergy(disk, *fields[L - 1], source_values(L - 1, disk.reflected), stage_score(L - 1),
+                           options.weights)
+                     .evaluate(x);
   out.optimization_seconds = seconds_since(t1);
   const int inverted = count_inverted(disk.triangles, x);
   require(inverted == 0, MCON_ERROR_NUMERICAL,

@@ -521,7 +521,7 @@ MCON_API mcon_status mcon_patch_create_from_arrays(mcon_context context, const m
 
 typedef struct mcon_map_t* mcon_map;
 
-/* Why the optimization of the finest level stopped. */
+/* Why the last optimization stage (the last refinement pass at the finest level) stopped. */
 typedef enum mcon_map_stop_reason {
   MCON_MAP_STOP_CONVERGED = 1,     /* the decrease fell below the tolerance */
   MCON_MAP_STOP_STALLED = 2,       /* the line search found no acceptable step */
@@ -550,7 +550,8 @@ typedef struct mcon_map_options {
   uint32_t alignment_samples;
   /* Nonzero (default): orientation-reversing maps (a left eye onto a right eye) may win. */
   uint32_t allow_reflection;
-  /* Newton iterations per coarse-to-fine level; default 100, >= 1. */
+  /* Newton iterations per coarse-to-fine level; default 100, >= 1 (the refinement pass after the
+   * finest level runs at most min(this, 10)). */
   uint32_t max_iterations;
   mcon_progress_callback progress;
   void* progress_user_data;
@@ -603,16 +604,19 @@ typedef struct mcon_map_info {
   size_t target_vertices_inside;  /* target vertices with a source preimage */
   double overlap_ratio;           /* source 3D area mapped into the target / source area */
   double matching_score;          /* area-weighted Gaussian matching score in [0, 1] */
-  /* Final energy terms at the finest level (unweighted) and the weighted total. */
+  /* Final energy terms (unweighted) and the weighted total, measured with the finest descriptor
+   * level's Gaussian width (the refinement passes use a narrower one; matching_score likewise). */
   double energy_total;
   double energy_descriptor;
   double energy_distortion;
   double energy_area;
   double energy_injectivity;
-  uint32_t iterations;            /* Newton iterations over all levels */
-  uint32_t stop_reason;           /* mcon_map_stop_reason of the finest level */
+  uint32_t iterations;            /* Newton iterations over all stages */
+  uint32_t stop_reason;           /* mcon_map_stop_reason of the last stage */
   uint32_t reflected;             /* 1 if the map reverses orientation */
-  uint32_t levels;                /* coarse-to-fine descriptor levels */
+  /* Optimization stages: the coarse-to-fine descriptor levels, then the refinement passes at the
+   * finest level with a narrower Gaussian (by default 3 levels + 1 pass = 4). */
+  uint32_t levels;
   uint32_t flipped_triangles;     /* inverted triangles of phi: always 0 (checked) */
   double alignment_score;         /* score of the rigid initialization */
   double alignment_seconds;
