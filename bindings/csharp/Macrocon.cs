@@ -306,6 +306,7 @@ namespace Macrocon
             public IntPtr source_guidance; public UIntPtr source_guidance_stride;
             public IntPtr target_guidance; public UIntPtr target_guidance_stride;
             public uint guidance_dimension; public double guidance_weight;
+            public double refine_sigma_factor;
         }
 
         [StructLayout(LayoutKind.Sequential)]

@@ -20,6 +20,9 @@ namespace Macrocon
         public double[] SourceGuidance, TargetGuidance;
         public int GuidanceDimension;
         public double GuidanceWeight = 1.0;
+        /// <summary>Gaussian width factor of the refinement pass after the finest level: 0 turns it
+        /// off, otherwise in (0, 1].</summary>
+        public double RefineSigmaFactor = 0.5;
     }
 
     /// <summary>Polylines re-traced on a target patch (every segment inside one target triangle).</summary>
@@ -85,6 +88,7 @@ namespace Macrocon
             if (settings.MaxIterations.HasValue) o.max_iterations = settings.MaxIterations.Value;
             o.allow_reflection = settings.AllowReflection ? 1u : 0u;
             o.orientation = (uint)settings.Orientation;
+            o.refine_sigma_factor = settings.RefineSigmaFactor;
             if ((settings.SourceGuidance == null) != (settings.TargetGuidance == null))
                 throw new ArgumentException("SourceGuidance and TargetGuidance must be given together");
             if (settings.SourceGuidance != null)

@@ -579,6 +579,13 @@ typedef struct mcon_map_options {
   size_t target_guidance_stride;
   uint32_t guidance_dimension;
   double guidance_weight;
+  /* Appended after guidance_weight: the refinement pass after the finest coarse-to-fine level
+   * runs with the Gaussian descriptor width scaled by this factor (at most min(max_iterations,
+   * 10) Newton iterations). Default 0.5; 0 turns the pass off; otherwise in (0, 1], anything else
+   * (or NaN) is INVALID_ARGUMENT. A narrower kernel pulls points closer to their descriptor
+   * matches: on the benchmark it helps hands, feet and mouths most and costs noses a little
+   * (README, "Mapping evaluation"). */
+  double refine_sigma_factor;
 } mcon_map_options;
 
 MCON_API mcon_status mcon_map_options_init(mcon_map_options* options);

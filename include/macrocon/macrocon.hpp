@@ -760,6 +760,8 @@ struct MapOptions {
   std::uint32_t guidance_dimension = 0;
   std::vector<double> source_guidance, target_guidance;
   double guidance_weight = 1.0;
+  // Gaussian width factor of the refinement pass after the finest level (0: no pass; (0, 1]).
+  double refine_sigma_factor = 0.5;
 };
 
 // The re-embedding map Phi of a source patch onto a target patch, and transfers through it.
@@ -777,6 +779,7 @@ class Map {
     c.source_guidance = options.source_guidance.empty() ? nullptr : options.source_guidance.data();
     c.target_guidance = options.target_guidance.empty() ? nullptr : options.target_guidance.data();
     c.guidance_weight = options.guidance_weight;
+    c.refine_sigma_factor = options.refine_sigma_factor;
     if (options.guidance_dimension != 0 &&
         (options.source_guidance.size() != source.vertex_count() * options.guidance_dimension ||
          options.target_guidance.size() != target.vertex_count() * options.guidance_dimension))

@@ -43,6 +43,7 @@ mcon_map_options default_map_options() {
   o.max_iterations = 100;
   o.orientation = MCON_MAP_ORIENTATION_AUTOMATIC;
   o.guidance_weight = 1.0;
+  o.refine_sigma_factor = 0.5;
   return o;
 }
 
@@ -126,6 +127,11 @@ mcon_status mcon_map_compute(mcon_patch source, mcon_patch target, const mcon_ma
                          : o.orientation == MCON_MAP_ORIENTATION_REVERSE ? MapOrientation::reverse
                                                                          : MapOrientation::automatic;
     po.map.newton.max_iterations = static_cast<int>(o.max_iterations);
+    require(o.refine_sigma_factor >= 0 && o.refine_sigma_factor <= 1, MCON_ERROR_INVALID_ARGUMENT,
+            "refine_sigma_factor must be 0 (no refinement) or in (0, 1] (got " + std::to_string(o.refine_sigma_factor) +
+                ")");
+    po.map.refine_sigma_factors.clear();
+    if (o.refine_sigma_factor > 0) po.map.refine_sigma_factors.push_back(o.refine_sigma_factor);
     Eigen::MatrixXd source_guidance, target_guidance;
     if (o.guidance_dimension == 0) {
       require(o.source_guidance == nullptr && o.target_guidance == nullptr, MCON_ERROR_INVALID_ARGUMENT,

@@ -575,3 +575,47 @@ TEST_F(CapiMapArgs, OptionsOfTheOrientationSizeIgnoreGuidanceBeyondIt) {
   mcon_map n = nullptr;
   EXPECT_EQ(mcon_map_compute(source_, target_, &full, &n), MCON_ERROR_NULL_POINTER);
 }
+
+TEST_F(CapiMapArgs, RefineSigmaFactorIsCheckedAndSwitchesThePass) {
+  // Default 0.5: the refinement pass is a stage of its own (levels 4); 0 turns it off (levels 3,
+  // a different map); outside [0, 1] or NaN is refused with the field's name.
+  mcon_map_options o;
+  ASSERT_EQ(mcon_map_options_init(&o), MCON_OK);
+  EXPECT_EQ(o.refine_sigma_factor, 0.5);
+  auto info_of = [](mcon_map m) {
+    mcon_map_info info;
+    mcon_map_info_init(&info);
+    EXPECT_EQ(mcon_map_get_info(m, &info), MCON_OK);
+    return info;
+  };
+  EXPECT_EQ(info_of(map_).levels, 4u);
+  mcon_map_options off = fast_options();
+  off.refine_sigma_factor = 0;
+  mcon_map m = nullptr;
+  ASSERT_EQ(mcon_map_compute(source_, target_, &off, &m), MCON_OK) << last_message();
+  const MapPtr unrefined(m);
+  EXPECT_EQ(info_of(m).levels, 3u);
+  EXPECT_LT(info_of(m).iterations, info_of(map_).iterations);
+  std::vector<double> phi(2 * ns_), reference(2 * ns_);
+  ASSERT_EQ(mcon_map_get_phi(m, phi.data(), phi.size()), MCON_OK);
+  ASSERT_EQ(mcon_map_get_phi(map_, reference.data(), reference.size()), MCON_OK);
+  EXPECT_NE(phi, reference);
+  for (double bad : {-0.1, 1.5, kNaN, std::numeric_limits<double>::infinity()}) {
+    mcon_map_options x = fast_options();
+    x.refine_sigma_factor = bad;
+    mcon_map n = reinterpret_cast<mcon_map>(&n);
+    EXPECT_EQ(mcon_map_compute(source_, target_, &x, &n), MCON_ERROR_INVALID_ARGUMENT) << bad;
+    EXPECT_EQ(n, nullptr);
+    EXPECT_TRUE(mentions("refine_sigma_factor")) << last_message();
+  }
+  // A caller compiled before the field (struct_size up to guidance_weight's end) gets the default,
+  // and garbage beyond its size is not read.
+  mcon_map_options old = fast_options();
+  old.struct_size = static_cast<uint32_t>(offsetof(mcon_map_options, refine_sigma_factor));
+  old.refine_sigma_factor = -5;
+  mcon_map k = nullptr;
+  ASSERT_EQ(mcon_map_compute(source_, target_, &old, &k), MCON_OK) << last_message();
+  const MapPtr defaulted(k);
+  ASSERT_EQ(mcon_map_get_phi(k, phi.data(), phi.size()), MCON_OK);
+  EXPECT_EQ(phi, reference);
+}

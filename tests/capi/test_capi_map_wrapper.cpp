@@ -135,6 +135,25 @@ TEST(CppMap, OrientationOptionReachesTheCApi) {
   }
 }
 
+TEST(CppMap, RefineSigmaFactorReachesTheCApi) {
+  const macrocon::Context ctx;
+  const auto& a = map_test::body().arrays;
+  const macrocon::Mesh body = macrocon::Mesh::from_arrays(ctx, a.positions, a.indices);
+  const macrocon::Patch source = nose(body, 0.45), target = nose(body, 0.55);
+  macrocon::MapOptions o = fast();
+  EXPECT_EQ(o.refine_sigma_factor, 0.5);
+  EXPECT_EQ(macrocon::Map::compute(source, target, o).info().levels, 4u);
+  o.refine_sigma_factor = 0;
+  EXPECT_EQ(macrocon::Map::compute(source, target, o).info().levels, 3u);
+  o.refine_sigma_factor = 2;
+  try {
+    (void)macrocon::Map::compute(source, target, o);
+    ADD_FAILURE() << "refine_sigma_factor 2 was accepted";
+  } catch (const macrocon::Error& e) {
+    EXPECT_EQ(e.status(), MCON_ERROR_INVALID_ARGUMENT);
+  }
+}
+
 TEST(CppMap, GuidanceChannelsDecideWhatTheGeometryCannot) {
   // A flat disk onto itself: every geometric channel is radially symmetric, so any rotation fits.
   // Guidance that pairs source point p with target point R p must make the map that rotation.

@@ -537,6 +537,15 @@ static class Tests
             settings.Orientation = (MapOrientation)7;
             Check(Expect<MacroconException>(() => Map.Compute(source, target, settings)).Status == Status.InvalidArgument,
                   "bad orientation");
+            // The refinement pass after the finest level: a stage of its own by default, off with 0.
+            settings.Orientation = MapOrientation.Automatic;
+            Check(new MapSettings().RefineSigmaFactor == 0.5, "default refinement factor");
+            Check(a.Levels == 4, "default levels " + a.Levels);
+            settings.RefineSigmaFactor = 0;
+            using (var map = Map.Compute(source, target, settings)) Check(map.Info.Levels == 3, "no refinement: 3 levels");
+            settings.RefineSigmaFactor = 1.5;
+            Check(Expect<MacroconException>(() => Map.Compute(source, target, settings)).Status == Status.InvalidArgument,
+                  "bad refinement factor");
         }
     }
 

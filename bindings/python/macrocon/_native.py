@@ -198,6 +198,7 @@ class MapOptions(ctypes.Structure):
         ("target_guidance_stride", c_size),
         ("guidance_dimension", ctypes.c_uint32),
         ("guidance_weight", ctypes.c_double),
+        ("refine_sigma_factor", ctypes.c_double),
     ]
 
 

@@ -149,6 +149,7 @@ class Map(_Handle):
         source_guidance=None,
         target_guidance=None,
         guidance_weight: float = 1.0,
+        refine_sigma_factor: float = 0.5,
     ) -> "Map":
         """orientation: "automatic" (the descriptors decide; allow_reflection restricts it),
         "preserve" or "reverse" (forced, e.g. a "flip" that recomputes with the orientation
@@ -158,7 +159,10 @@ class Map(_Handle):
         (target vertices, d) (or (n,) for d = 1; rows may be strided), of per-vertex values that
         must agree between corresponding points (painted region ids, landmark distances), for
         what the geometry cannot tell apart; each column is normalized over both patches and
-        scaled by guidance_weight. Give both or neither."""
+        scaled by guidance_weight. Give both or neither.
+
+        refine_sigma_factor: Gaussian width factor of the refinement pass after the finest level
+        (default 0.5; 0 turns the pass off; else in (0, 1])."""
         require_type(source, Patch, "source")
         require_type(target, Patch, "target")
         if not isinstance(orientation, str) or orientation not in _ORIENTATIONS:
@@ -172,6 +176,7 @@ class Map(_Handle):
         if max_iterations is not None:
             o.max_iterations = int(max_iterations)
         o.orientation = int(_ORIENTATIONS[orientation])
+        o.refine_sigma_factor = float(refine_sigma_factor)
         if (source_guidance is None) != (target_guidance is None):
             raise ValueError("source_guidance and target_guidance must be given together")
         if source_guidance is not None:

@@ -338,6 +338,17 @@ def test_forced_orientation_and_its_evidence(source, target):
             macrocon.Map.compute(source, target, orientation=bad, **FAST)
 
 
+def test_refinement_pass_is_a_stage_and_can_be_switched_off(source, target):
+    """refine_sigma_factor: the default pass shows as a 4th stage; 0 turns it off; out of range raises."""
+    with macrocon.Map.compute(source, target, seed=3, **FAST) as refined, \
+            macrocon.Map.compute(source, target, seed=3, refine_sigma_factor=0.0, **FAST) as plain:
+        assert refined.info.levels == 4 and plain.info.levels == 3
+        assert refined.info.flipped_triangles == 0 and plain.info.flipped_triangles == 0
+    for bad in (-0.1, 1.5, float("nan")):
+        with pytest.raises(macrocon.InvalidArgumentError, match="refine_sigma_factor"):
+            macrocon.Map.compute(source, target, refine_sigma_factor=bad, **FAST)
+
+
 def test_guidance_decides_what_the_geometry_cannot(context):
     """A flat disk onto itself fits any rotation; guidance pairing p with R p makes it that rotation."""
     from conftest import grid
