@@ -268,7 +268,7 @@ SurfaceMap compute_surface_map(const MapDomain& source, const MapDomain& target,
       out.energy_history_level.push_back(l);
     }
     out.iterations += r.iterations;
-    out.stop_reason = r.reason;
+    if (l == L - 1) out.stop_reason = r.reason;  // a refinement pass ends at its short cap by design
     out.energy = r.terms;
   }
   const Eigen::VectorXd& x = chosen.x;

@@ -104,7 +104,7 @@ struct SurfaceMap {
   MapEnergyTerms energy;                          // final terms, with the finest level's Gaussian width
   double matching_score = 0;                      // 1 - energy.descriptor
   int iterations = 0;                             // Newton iterations over all stages
-  StopReason stop_reason = StopReason::iteration_cap;  // of the last stage
+  StopReason stop_reason = StopReason::iteration_cap;  // of the finest descriptor level
   std::vector<LevelReport> levels;                // descriptor levels, then refinement passes
   std::vector<double> energy_history;             // energy after every iterate (starts of stages included)
   std::vector<int> energy_history_level;          // stage (index into levels) of each history entry

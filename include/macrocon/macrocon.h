@@ -521,7 +521,8 @@ MCON_API mcon_status mcon_patch_create_from_arrays(mcon_context context, const m
 
 typedef struct mcon_map_t* mcon_map;
 
-/* Why the last optimization stage (the last refinement pass at the finest level) stopped. */
+/* Why the optimization of the finest coarse-to-fine level stopped (the refinement pass after it
+ * ends at its own short iteration cap by design and is not reported here). */
 typedef enum mcon_map_stop_reason {
   MCON_MAP_STOP_CONVERGED = 1,     /* the decrease fell below the tolerance */
   MCON_MAP_STOP_STALLED = 2,       /* the line search found no acceptable step */
@@ -619,7 +620,7 @@ typedef struct mcon_map_info {
   double energy_area;
   double energy_injectivity;
   uint32_t iterations;            /* Newton iterations over all stages */
-  uint32_t stop_reason;           /* mcon_map_stop_reason of the last stage */
+  uint32_t stop_reason;           /* mcon_map_stop_reason of the finest coarse-to-fine level */
   uint32_t reflected;             /* 1 if the map reverses orientation */
   /* Optimization stages: the coarse-to-fine descriptor levels, then the refinement passes at the
    * finest level with a narrower Gaussian (by default 3 levels + 1 pass = 4). */

@@ -266,6 +266,7 @@ TEST(SurfaceMap, RefinementNarrowsTheKernelAndPullsCloser) {
   EXPECT_EQ(sum, refined.iterations);
   EXPECT_GT(refined.iterations, plain.iterations);
   for (int l = 3; l < 5; ++l) EXPECT_LE(refined.levels[l].iterations, refined_options.refine_max_iterations);
+  EXPECT_EQ(refined.stop_reason, refined.levels[2].stop_reason);  // the finest descriptor level's
   EXPECT_EQ(inverted(pr, refined), 0);
   expect_monotone_per_level(refined);
   expect_consistent_directions(pr, refined);
