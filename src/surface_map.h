@@ -62,14 +62,14 @@ struct SurfaceMapOptions {
   // d^2 / (2 sigma^2)), so the distortion prior holds every point off its descriptor match by a
   // bias that grows with sigma^2; the narrower kernel then pulls the map the rest of the way.
   // Measured (eval-mapping, seeds 1-7, 91 pairs, mean eps x 100 averaged over seeds) with {0.5}
-  // against {}: hand 3.28 -> 2.76, foot 2.83 -> 2.67, eye 2.67 -> 2.63, face and mouth lower,
-  // ear +0.02, nose 2.90 -> 3.02 (its descriptors differ most between people, and a narrower
-  // kernel locks onto their differences). Narrower factors (0.35, or 0.5 then 0.25) help hands
-  // more and hurt noses more.
+  // against {}: hand 3.28 -> 2.77, foot 2.84 -> 2.69, eye 2.67 -> 2.64, face and mouth lower,
+  // ear 2.21 -> 2.24, nose 2.90 -> 3.01 (its descriptors differ most between people, and a
+  // narrower kernel locks onto their differences). Narrower factors (0.35, or 0.5 then 0.25)
+  // help hands more and hurt noses more.
   std::vector<double> refine_sigma_factors = {0.5};
   // Newton iterations per refinement pass (also at most newton.max_iterations): the gain comes in
   // the first few (a cap of 8 or 12 gave the same eval-mapping means to within 0.05), and an
-  // uncapped pass took 25 iterations on the 11.5k-vertex face (bench: +3.5 s instead of +0.9 s).
+  // uncapped pass took 25 iterations on the 11.5k-vertex face (bench: about +4 s instead of +0.9 s).
   int refine_max_iterations = 10;
   // Progress in [0, 1] on the calling thread; returning false throws MCON_ERROR_CANCELLED.
   std::function<bool(double)> progress;
