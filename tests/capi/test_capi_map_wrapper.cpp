@@ -15,6 +15,14 @@ macrocon::Patch nose(const macrocon::Mesh& body, double radius) {
                                             static_cast<uint32_t>(map_test::body().file_to_mesh[297]), radius));
 }
 
+// The bundled body's nose cut at two radii (source 0.45, target 0.55), in a context of its own.
+struct NosePair {
+  macrocon::Context ctx;
+  macrocon::Mesh body =
+      macrocon::Mesh::from_arrays(ctx, map_test::body().arrays.positions, map_test::body().arrays.indices);
+  macrocon::Patch source = nose(body, 0.45), target = nose(body, 0.55);
+};
+
 // The C status of the macrocon::Error a wrapper call throws, or MCON_OK if it throws none.
 template <typename F>
 mcon_status status_of(F&& f) {
@@ -37,10 +45,8 @@ macrocon::MapOptions fast() {
 }  // namespace
 
 TEST(CppMap, ComputeTransferAndCrossField) {
-  const macrocon::Context ctx;
-  const auto& a = map_test::body().arrays;
-  const macrocon::Mesh body = macrocon::Mesh::from_arrays(ctx, a.positions, a.indices);
-  const macrocon::Patch source = nose(body, 0.45), target = nose(body, 0.55);
+  const NosePair pair;
+  const auto& [ctx, body, source, target] = pair;
   const macrocon::Map map = macrocon::Map::compute(source, target, fast());
   const mcon_map_info info = map.info();
   EXPECT_EQ(info.flipped_triangles, 0u);
@@ -85,10 +91,8 @@ TEST(CppMap, ComputeTransferAndCrossField) {
 }
 
 TEST(CppMap, ProgressExceptionsAndCancellation) {
-  const macrocon::Context ctx;
-  const auto& a = map_test::body().arrays;
-  const macrocon::Mesh body = macrocon::Mesh::from_arrays(ctx, a.positions, a.indices);
-  const macrocon::Patch source = nose(body, 0.45), target = nose(body, 0.55);
+  const NosePair pair;
+  const auto& [ctx, body, source, target] = pair;
   macrocon::MapOptions o = fast();
   o.progress = [](double) -> bool { throw std::logic_error("from the callback"); };
   EXPECT_THROW(macrocon::Map::compute(source, target, o), std::logic_error);
@@ -110,10 +114,8 @@ TEST(CppMap, ProgressExceptionsAndCancellation) {
 
 TEST(CppMap, OrientationOptionReachesTheCApi) {
   // The flip workflow through the wrapper: force the orientation opposite to the automatic call.
-  const macrocon::Context ctx;
-  const auto& a = map_test::body().arrays;
-  const macrocon::Mesh body = macrocon::Mesh::from_arrays(ctx, a.positions, a.indices);
-  const macrocon::Patch source = nose(body, 0.45), target = nose(body, 0.55);
+  const NosePair pair;
+  const auto& [ctx, body, source, target] = pair;
   macrocon::MapOptions o = fast();
   EXPECT_EQ(o.orientation, MCON_MAP_ORIENTATION_AUTOMATIC);
   const mcon_map_info automatic = macrocon::Map::compute(source, target, o).info();
@@ -130,10 +132,8 @@ TEST(CppMap, OrientationOptionReachesTheCApi) {
 }
 
 TEST(CppMap, RefineSigmaFactorReachesTheCApi) {
-  const macrocon::Context ctx;
-  const auto& a = map_test::body().arrays;
-  const macrocon::Mesh body = macrocon::Mesh::from_arrays(ctx, a.positions, a.indices);
-  const macrocon::Patch source = nose(body, 0.45), target = nose(body, 0.55);
+  const NosePair pair;
+  const auto& [ctx, body, source, target] = pair;
   macrocon::MapOptions o = fast();
   EXPECT_EQ(o.refine_sigma_factor, 0.5);
   EXPECT_EQ(macrocon::Map::compute(source, target, o).info().levels, 4u);

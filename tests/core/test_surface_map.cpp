@@ -33,6 +33,15 @@ synthetic::Problem problem(double angle, double warp, double mismatch = 0) {
   return problem(truth, mismatch);
 }
 
+// A rotation, a warp and a shift by 0.3: the source strip beyond the target's rim has no partner.
+synthetic::GroundTruth warped_partial_overlap() {
+  synthetic::GroundTruth truth;
+  truth.angle = 70 * kPi / 180;
+  truth.warp = 0.05;
+  truth.translation = Vec2(0.3, 0.0);
+  return truth;
+}
+
 SurfaceMap run(const synthetic::Problem& pr, const SurfaceMapOptions& o = {}) {
   return compute_surface_map({pr.source, pr.source_uv, pr.source_levels}, {pr.target, pr.target_uv, pr.target_levels}, o);
 }
@@ -110,11 +119,7 @@ TEST(SurfaceMap, RecoversARotation) {
 }
 
 TEST(SurfaceMap, RecoversAWarpAndAPartialOverlap) {
-  synthetic::GroundTruth truth;
-  truth.angle = 70 * kPi / 180;
-  truth.warp = 0.05;
-  truth.translation = Vec2(0.3, 0.0);
-  const synthetic::Problem pr = problem(truth);
+  const synthetic::Problem pr = problem(warped_partial_overlap());
   const SurfaceMap m = run(pr);
   EXPECT_EQ(inverted(pr, m), 0);
   const double err = synthetic::mean_error(pr, m.phi);
@@ -245,11 +250,7 @@ TEST(SurfaceMap, RefinementNarrowsTheKernelAndPullsCloser) {
   // The refinement passes run after the finest level with a narrower Gaussian, each reported as a
   // stage of its own; near the optimum the narrower kernel pulls harder against the distortion
   // prior, so the warped truth is matched more closely.
-  synthetic::GroundTruth truth;
-  truth.angle = 70 * kPi / 180;
-  truth.warp = 0.05;
-  truth.translation = Vec2(0.3, 0.0);
-  const synthetic::Problem pr = problem(truth);
+  const synthetic::Problem pr = problem(warped_partial_overlap());
   SurfaceMapOptions plain_options;
   plain_options.refine_sigma_factors = {};
   const SurfaceMap plain = run(pr, plain_options);
