@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "cross_field.h"
+#include "transfer/cross_field.h"
 #include "io/mesh_io.h"
 #include "test_meshes.h"
 

@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "curvature_descriptors.h"
-#include "disk_parametrization.h"
-#include "mesh_topology.h"
+#include "descriptors/curvature_descriptors.h"
+#include "patch/disk_parametrization.h"
+#include "mesh/mesh_topology.h"
 #include "test_meshes.h"
 
 using namespace mcon;

@@ -16,10 +16,10 @@
 #include <string>
 #include <vector>
 
-#include "heat_geodesics.h"
+#include "operators/heat_geodesics.h"
 #include "io/mesh_io.h"
-#include "mesh.h"
-#include "mesh_topology.h"
+#include "mesh/mesh.h"
+#include "mesh/mesh_topology.h"
 #include "test_meshes.h"
 
 using namespace mcon;

@@ -14,8 +14,8 @@
 
 #include <tbb/task_arena.h>
 
-#include "injective_step.h"
-#include "surface_map.h"
+#include "map/injective_step.h"
+#include "map/surface_map.h"
 #include "synthetic_maps.h"
 
 using namespace mcon;

@@ -18,10 +18,10 @@
 
 #include <tbb/task_arena.h>
 
-#include "bag_of_features.h"
-#include "counter_rng.h"
-#include "kmeans.h"
-#include "retrieval_index.h"
+#include "retrieval/bag_of_features.h"
+#include "base/counter_rng.h"
+#include "retrieval/kmeans.h"
+#include "retrieval/retrieval_index.h"
 
 using namespace mcon;
 

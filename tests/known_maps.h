@@ -7,8 +7,8 @@
 #include <functional>
 #include <vector>
 
-#include "map_view.h"
-#include "point_location_2d.h"
+#include "transfer/map_view.h"
+#include "mesh/point_location_2d.h"
 #include "synthetic_maps.h"
 
 namespace mcon::known {

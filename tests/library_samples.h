@@ -7,7 +7,7 @@
 #include <limits>
 #include <string>
 
-#include "constraint_library.h"
+#include "library/constraint_library.h"
 #include "test_meshes.h"
 
 namespace mcon::test_samples {

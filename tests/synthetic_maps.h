@@ -9,8 +9,8 @@
 
 #include <Eigen/Core>
 
-#include "descriptor_pyramid.h"
-#include "mesh.h"
+#include "descriptors/descriptor_pyramid.h"
+#include "mesh/mesh.h"
 #include "test_meshes.h"
 
 namespace mcon::synthetic {

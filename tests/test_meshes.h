@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "mesh.h"
+#include "mesh/mesh.h"
 
 namespace mcon::test_meshes {
 

@@ -14,7 +14,7 @@
 #include <string>
 #include <type_traits>
 
-#include "error.h"
+#include "base/error.h"
 #include "macrocon/macrocon.h"
 
 namespace mcon::capi {

@@ -5,7 +5,7 @@
 #include <oneapi/tbb/global_control.h>
 #include <oneapi/tbb/info.h>
 
-#include "capi_handles.h"
+#include "capi/capi_handles.h"
 
 namespace mcon::capi {
 namespace {

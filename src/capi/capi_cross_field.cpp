@@ -2,8 +2,8 @@
 // (design-notes §7: what quad meshers take as orientation input).
 #include <cmath>
 
-#include "capi_map_handles.h"
-#include "cross_field.h"
+#include "capi/capi_map_handles.h"
+#include "transfer/cross_field.h"
 #include "io/mesh_io.h"
 
 using namespace mcon;
@@ -49,7 +49,7 @@ mcon_status mcon_patch_compute_cross_field(mcon_patch patch, mcon_polyline_set g
               "the guides lie on another patch (use polylines transferred onto this patch)");
       for (const TracedPolyline& p : guides->polylines) {
         std::vector<SurfacePoint> line;
-        for (const SurfacePointOnMesh& q : p.points) line.push_back({q.triangle, q.barycentric});
+        for (const SurfacePoint& q : p.points) line.push_back({q.triangle, q.barycentric});
         if (p.closed && !line.empty()) line.push_back(line.front());
         lines.push_back(std::move(line));
       }

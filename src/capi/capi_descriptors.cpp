@@ -1,8 +1,8 @@
 // Descriptors: per-vertex curvature descriptors of a patch (curvature_descriptors.h, thesis §3.1).
 #include <cmath>
 
-#include "capi_handles.h"
-#include "curvature_descriptors.h"
+#include "capi/capi_handles.h"
+#include "descriptors/curvature_descriptors.h"
 
 using namespace mcon;
 using namespace mcon::capi;

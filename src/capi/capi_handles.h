@@ -6,9 +6,9 @@
 
 #include <oneapi/tbb/task_arena.h>
 
-#include "capi_common.h"
-#include "geodesic_disk_patch.h"
-#include "mesh.h"
+#include "capi/capi_common.h"
+#include "patch/geodesic_disk_patch.h"
+#include "mesh/mesh.h"
 
 struct mcon_context_t {
   static constexpr std::uint32_t kMagic = 0x4d43430a;  // "MCC"

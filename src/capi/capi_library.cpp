@@ -3,9 +3,9 @@
 #include <cmath>
 #include <cstring>
 
-#include "capi_library.h"
-#include "library_file.h"
-#include "retrieval_descriptors.h"
+#include "capi/capi_library.h"
+#include "library/library_file.h"
+#include "retrieval/retrieval_descriptors.h"
 
 using namespace mcon;
 using namespace mcon::capi;

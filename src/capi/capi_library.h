@@ -8,9 +8,9 @@
 #include <utility>
 #include <vector>
 
-#include "capi_handles.h"
-#include "constraint_library.h"
-#include "library_retrieval.h"
+#include "capi/capi_handles.h"
+#include "library/constraint_library.h"
+#include "library/library_retrieval.h"
 
 struct mcon_library_t {
   static constexpr std::uint32_t kMagic = 0x4d434c0a;  // "MCL"

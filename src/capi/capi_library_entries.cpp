@@ -4,7 +4,7 @@
 #include <cstring>
 #include <limits>
 
-#include "capi_library.h"
+#include "capi/capi_library.h"
 
 using namespace mcon;
 using namespace mcon::capi;
@@ -24,14 +24,14 @@ SurfacePoint read_point(const mcon_surface_point& p, std::size_t triangle_count,
           what + ": face " + std::to_string(p.face) + " is not a triangle of the patch (" +
               std::to_string(triangle_count) + " triangles)");
   SurfacePoint out;
-  out.face = p.face;
+  out.triangle = static_cast<int>(p.face);
   double sum = 0;
   for (int k = 0; k < 3; ++k) {
     const double b = p.barycentric[k];
     require(std::isfinite(b), MCON_ERROR_NON_FINITE, what + ": barycentric[" + std::to_string(k) + "] is not finite");
     require(b >= -1e-9 && b <= 1 + 1e-9, MCON_ERROR_INVALID_ARGUMENT,
             what + ": barycentric[" + std::to_string(k) + "] = " + std::to_string(b) + " is outside [0, 1]");
-    out.barycentric[static_cast<std::size_t>(k)] = b;
+    out.barycentric[k] = b;
     sum += b;
   }
   require(std::abs(sum - 1) <= 1e-6, MCON_ERROR_INVALID_ARGUMENT,
@@ -134,8 +134,8 @@ void copy_string(const std::string& s, char* out_text, std::size_t capacity, std
 
 mcon_surface_point to_c(const SurfacePoint& p) {
   mcon_surface_point out{};
-  out.face = p.face;
-  for (int k = 0; k < 3; ++k) out.barycentric[k] = p.barycentric[static_cast<std::size_t>(k)];
+  out.face = static_cast<std::uint32_t>(p.triangle);
+  for (int k = 0; k < 3; ++k) out.barycentric[k] = p.barycentric[k];
   return out;
 }
 

@@ -3,7 +3,7 @@
 // cost depends on the entry count and histogram length only, never on the entries' patch sizes.
 #include <limits>
 
-#include "capi_library.h"
+#include "capi/capi_library.h"
 
 using namespace mcon;
 using namespace mcon::capi;

@@ -5,11 +5,11 @@
 #include <cstddef>
 #include <cstring>
 
-#include "capi_library.h"
-#include "capi_map_handles.h"
-#include "mesh_topology.h"
-#include "patch_from_arrays.h"
-#include "patch_map.h"
+#include "capi/capi_library.h"
+#include "capi/capi_map_handles.h"
+#include "mesh/mesh_topology.h"
+#include "patch/patch_from_arrays.h"
+#include "map/patch_map.h"
 
 using namespace mcon;
 using namespace mcon::capi;
@@ -84,8 +84,8 @@ mcon_status mcon_patch_create_from_arrays(mcon_context context, const mcon_mesh_
             "frame.center_triangle " + std::to_string(f.center_triangle) + " is out of range (the mesh has " +
                 std::to_string(tri.triangles.size()) + " triangles)");
     PatchFrame pf;
-    pf.center_triangle = static_cast<int>(f.center_triangle);
-    pf.center_barycentric = Vec3(f.center_barycentric[0], f.center_barycentric[1], f.center_barycentric[2]);
+    pf.center.triangle = static_cast<int>(f.center_triangle);
+    pf.center.barycentric = Vec3(f.center_barycentric[0], f.center_barycentric[1], f.center_barycentric[2]);
     pf.origin = Vec3(f.origin[0], f.origin[1], f.origin[2]);
     pf.scale = f.scale;
 
@@ -190,8 +190,8 @@ mcon_status mcon_map_get_info(mcon_map map, mcon_map_info* info) {
     auto v = zeroed_struct<mcon_map_info>();
     v.source_vertex_count = m.source_to_target.size();
     v.target_vertex_count = m.target_to_source.size();
-    for (const BarycentricPoint& p : m.source_to_target) v.source_vertices_inside += p.triangle >= 0 ? 1 : 0;
-    for (const BarycentricPoint& p : m.target_to_source) v.target_vertices_inside += p.triangle >= 0 ? 1 : 0;
+    for (const SurfacePoint& p : m.source_to_target) v.source_vertices_inside += p.triangle >= 0 ? 1 : 0;
+    for (const SurfacePoint& p : m.target_to_source) v.target_vertices_inside += p.triangle >= 0 ? 1 : 0;
     v.overlap_ratio = m.overlap_ratio;
     v.matching_score = m.matching_score;
     v.energy_total = m.energy.total;

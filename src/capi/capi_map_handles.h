@@ -6,10 +6,10 @@
 
 #include <vector>
 
-#include "capi_handles.h"
-#include "map_view.h"
-#include "polyline_transfer.h"
-#include "surface_map.h"
+#include "capi/capi_handles.h"
+#include "transfer/map_view.h"
+#include "transfer/polyline_transfer.h"
+#include "map/surface_map.h"
 
 struct mcon_map_t {
   static constexpr std::uint32_t kMagic = 0x4d434d50;  // "MCMP"

@@ -1,7 +1,7 @@
 // Meshes: strided caller arrays -> a validated, copied mcon::TriMesh (mesh_from_arrays).
 #include <limits>
 
-#include "capi_handles.h"
+#include "capi/capi_handles.h"
 
 using namespace mcon;
 using namespace mcon::capi;

@@ -2,8 +2,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "capi_handles.h"
-#include "mesh_topology.h"
+#include "capi/capi_handles.h"
+#include "mesh/mesh_topology.h"
 
 using namespace mcon;
 using namespace mcon::capi;
@@ -130,9 +130,9 @@ mcon_status mcon_patch_get_info(mcon_patch patch, mcon_patch_info* info) {
     v.radius = p.radius;
     for (int i = 0; i < 3; ++i) {
       v.center[i] = p.center_position[i];
-      v.center_barycentric[i] = p.center_barycentric[i];
+      v.center_barycentric[i] = p.center.barycentric[i];
     }
-    v.center_patch_triangle = to_index(p.center_triangle);
+    v.center_patch_triangle = to_index(p.center.triangle);
     v.max_geodesic_distance = p.max_geodesic_distance;
     v.param_flipped_triangles = static_cast<std::uint32_t>(p.param_flipped_triangles);
     write_info(info, sizeof(mcon_patch_info), "mcon_patch_info", v);

@@ -2,8 +2,8 @@
 // fields by kind and integer labels (field_transfer.h, polyline_transfer.h).
 #include <cmath>
 
-#include "capi_map_handles.h"
-#include "field_transfer.h"
+#include "capi/capi_map_handles.h"
+#include "transfer/field_transfer.h"
 
 using namespace mcon;
 using namespace mcon::capi;
@@ -16,13 +16,13 @@ namespace {
 Vec3 to_host(const Patch& p, const Vec3& x) { return p.center_position + p.radius * x; }
 
 // Source points from the caller's arrays (validated: triangle range, finite, on the triangle).
-std::vector<SurfacePointOnMesh> read_points(const Patch& source, const uint32_t* triangles, const double* barycentric,
+std::vector<SurfacePoint> read_points(const Patch& source, const uint32_t* triangles, const double* barycentric,
                                             std::size_t count) {
   if (count > 0) {
     require_pointer(triangles, "triangles");
     require_pointer(barycentric, "barycentric");
   }
-  std::vector<SurfacePointOnMesh> points(count);
+  std::vector<SurfacePoint> points(count);
   const std::size_t nt = source.mesh.triangles.size();
   for (std::size_t i = 0; i < count; ++i) {
     require(triangles[i] < nt, MCON_ERROR_INVALID_ARGUMENT,
@@ -61,13 +61,13 @@ mcon_status mcon_map_transfer_points(mcon_map map, const uint32_t* triangles, co
                                      uint32_t* out_triangles, double* out_barycentric, double* out_xyz,
                                      size_t capacity) {
   return guard_object("mcon_map_transfer_points", map, "map", [&] {
-    const std::vector<SurfacePointOnMesh> points = read_points(map->source->patch, triangles, barycentric, count);
+    const std::vector<SurfacePoint> points = read_points(map->source->patch, triangles, barycentric, count);
     if (out_triangles == nullptr && out_barycentric == nullptr && out_xyz == nullptr) return;
     require_capacity(capacity, count, "outputs (capacity in points)");
     const PolylineTransfer transfer(map->view());
     const Patch& target = map->target->patch;
     for (std::size_t i = 0; i < count; ++i) {
-      const SurfacePointOnMesh q = transfer.map_point(points[i]);
+      const SurfacePoint q = transfer.map_point(points[i]);
       const bool inside = q.triangle >= 0;
       Vec3 x = Vec3::Zero();
       if (inside) {
@@ -93,7 +93,7 @@ mcon_status mcon_map_transfer_polylines(mcon_map map, const uint32_t* triangles,
     require_pointer(out_polylines, "out_polylines");
     *out_polylines = nullptr;
     if (polyline_count > 0) require_pointer(polyline_sizes, "polyline_sizes");
-    const std::vector<SurfacePointOnMesh> points = read_points(map->source->patch, triangles, barycentric, point_count);
+    const std::vector<SurfacePoint> points = read_points(map->source->patch, triangles, barycentric, point_count);
     std::vector<PolylineInput> inputs(polyline_count);
     std::size_t used = 0;
     for (std::size_t i = 0; i < polyline_count; ++i) {

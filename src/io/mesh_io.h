@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "../mesh.h"
+#include "mesh/mesh.h"
 
 namespace mcon::io {
 

@@ -7,7 +7,7 @@
 #include <string_view>
 #include <vector>
 
-#include "mesh.h"
+#include "mesh/mesh.h"
 
 namespace mcon::io {
 

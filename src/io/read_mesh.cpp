@@ -3,7 +3,7 @@
 // benchmark's diagonal — then drop unreferenced vertices and validate.
 #include <string>
 
-#include "error.h"
+#include "base/error.h"
 #include "io/file_suffix.h"
 #include "io/mesh_io.h"
 #include "io/polygon_soup.h"

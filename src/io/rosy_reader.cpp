@@ -3,7 +3,7 @@
 #include <cmath>
 #include <string>
 
-#include "error.h"
+#include "base/error.h"
 #include "io/mesh_io.h"
 #include "io/text_cursor.h"
 

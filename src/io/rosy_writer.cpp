@@ -6,7 +6,7 @@
 #include <charconv>
 #include <string>
 
-#include "error.h"
+#include "base/error.h"
 #include "io/mesh_io.h"
 
 namespace mcon::io {

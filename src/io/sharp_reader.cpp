@@ -1,7 +1,7 @@
 // Reads QuadWild `.sharp` files ("<count>" then "<kind>,<face>,<edge>" lines), for tests and tools.
 #include <string>
 
-#include "error.h"
+#include "base/error.h"
 #include "io/mesh_io.h"
 #include "io/text_cursor.h"
 

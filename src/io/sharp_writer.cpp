@@ -6,7 +6,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
-#include "error.h"
+#include "base/error.h"
 #include "io/mesh_io.h"
 #include "io/writer_input.h"
 

@@ -5,7 +5,7 @@
 
 #include <zlib.h>
 
-#include "error.h"
+#include "base/error.h"
 #include "io/file_suffix.h"
 #include "io/mesh_io.h"
 

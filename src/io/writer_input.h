@@ -3,8 +3,8 @@
 
 #include <string>
 
-#include "error.h"
-#include "mesh.h"
+#include "base/error.h"
+#include "mesh/mesh.h"
 
 namespace mcon::io {
 

@@ -7,10 +7,10 @@
 
 #include <tbb/task_arena.h>
 
-#include "bag_of_features.h"
-#include "cotan_laplacian.h"
-#include "error.h"
-#include "retrieval_index.h"
+#include "retrieval/bag_of_features.h"
+#include "operators/cotan_laplacian.h"
+#include "base/error.h"
+#include "retrieval/retrieval_index.h"
 #include "test_meshes.h"
 #include "test_status.h"
 

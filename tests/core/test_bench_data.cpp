@@ -18,8 +18,8 @@
 #include "common/morph_target.h"
 #include "common/patch_instances.h"
 #include "common/retessellate.h"
-#include "error.h"
-#include "mesh_topology.h"
+#include "base/error.h"
+#include "mesh/mesh_topology.h"
 #include "test_meshes.h"
 
 using namespace mcon;

@@ -18,8 +18,8 @@
 #include <limits>
 #include <set>
 
-#include "error.h"
-#include "library_file.h"
+#include "base/error.h"
+#include "library/library_file.h"
 #include "library_samples.h"
 #include "macrocon_library_generated.h"
 
@@ -66,9 +66,10 @@ bool same_bits(const std::array<T, N>& a, const std::array<T, N>& b) {
   return std::memcmp(a.data(), b.data(), N * sizeof(T)) == 0;
 }
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+bool same_bits(const Vec3& a, const Vec3& b) { return std::memcmp(a.data(), b.data(), sizeof(double) * 3) == 0; }
 
 bool same_point(const SurfacePoint& a, const SurfacePoint& b) {
-  return a.face == b.face && same_bits(a.barycentric, b.barycentric);
+  return a.triangle == b.triangle && same_bits(a.barycentric, b.barycentric);
 }
 
 bool same_polylines(const std::vector<ConstraintPolyline>& a, const std::vector<ConstraintPolyline>& b) {

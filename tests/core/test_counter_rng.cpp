@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "counter_rng.h"
+#include "base/counter_rng.h"
 
 using namespace mcon;
 

@@ -14,10 +14,10 @@
 
 #include <Eigen/Geometry>
 
-#include "cross_field.h"
-#include "error.h"
+#include "transfer/cross_field.h"
+#include "base/error.h"
 #include "io/mesh_io.h"
-#include "mesh_topology.h"
+#include "mesh/mesh_topology.h"
 #include "test_meshes.h"
 #include "test_status.h"
 
@@ -308,15 +308,15 @@ TEST(CrossField, Deterministic) {
 TEST(CrossField, PolylineSegmentsGoToTheFacesTheyTouch) {
   const TriMesh m = test_meshes::make_grid(5);  // 4 x 4 cells of side 0.25
   const SurfacePoint a = locate(m, 0.10, 0.05), b = locate(m, 0.20, 0.05), c = locate(m, 0.40, 0.05);
-  ASSERT_EQ(a.face, b.face);
-  ASSERT_NE(b.face, c.face);
+  ASSERT_EQ(a.triangle, b.triangle);
+  ASSERT_NE(b.triangle, c.triangle);
   const double h = mean_edge_length(m);
   const std::vector<DirectionConstraint> out = constraints_from_polylines(m, {{a, b, b, c}}, 2.0);
   // a-b: one face; b-b: zero length, skipped; b-c: both end faces.
   ASSERT_EQ(out.size(), 3u);
-  EXPECT_EQ(out[0].face, a.face);
-  EXPECT_EQ(out[1].face, b.face);
-  EXPECT_EQ(out[2].face, c.face);
+  EXPECT_EQ(out[0].face, a.triangle);
+  EXPECT_EQ(out[1].face, b.triangle);
+  EXPECT_EQ(out[2].face, c.triangle);
   EXPECT_NEAR(out[0].weight, 2.0 * 0.10 / h, 1e-12);
   EXPECT_NEAR(out[2].weight, 2.0 * 0.20 / h, 1e-12);
   for (const auto& d : out) EXPECT_LT((d.direction - Vec3::UnitX()).norm(), 1e-12);

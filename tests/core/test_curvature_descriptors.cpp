@@ -12,13 +12,13 @@
 #include <string>
 #include <vector>
 
-#include "cotan_laplacian.h"
-#include "curvature_descriptors.h"
-#include "error.h"
-#include "geodesic_disk_patch.h"
+#include "operators/cotan_laplacian.h"
+#include "descriptors/curvature_descriptors.h"
+#include "base/error.h"
+#include "patch/geodesic_disk_patch.h"
 #include "io/mesh_io.h"
-#include "mesh.h"
-#include "mesh_topology.h"
+#include "mesh/mesh.h"
+#include "mesh/mesh_topology.h"
 #include "test_meshes.h"
 
 using namespace mcon;

@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "descriptor_normalization.h"
-#include "error.h"
+#include "descriptors/descriptor_normalization.h"
+#include "base/error.h"
 #include "test_status.h"
 
 using namespace mcon;

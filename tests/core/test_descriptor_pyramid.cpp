@@ -2,9 +2,9 @@
 
 #include <cmath>
 
-#include "cotan_laplacian.h"
-#include "descriptor_pyramid.h"
-#include "error.h"
+#include "operators/cotan_laplacian.h"
+#include "descriptors/descriptor_pyramid.h"
+#include "base/error.h"
 #include "synthetic_maps.h"
 
 using namespace mcon;

@@ -4,10 +4,10 @@
 #include <cmath>
 #include <vector>
 
-#include "disk_parametrization.h"
-#include "error.h"
-#include "mesh.h"
-#include "mesh_topology.h"
+#include "patch/disk_parametrization.h"
+#include "base/error.h"
+#include "mesh/mesh.h"
+#include "mesh/mesh_topology.h"
 #include "test_meshes.h"
 
 using namespace mcon;

@@ -5,7 +5,7 @@
 #include <limits>
 #include <set>
 
-#include "field_transfer.h"
+#include "transfer/field_transfer.h"
 #include "known_maps.h"
 #include "test_status.h"
 
@@ -85,7 +85,7 @@ TEST(FieldTransfer, LabelsAreNeverBlended) {
   const std::vector<std::int32_t> out = transfer_labels(view, 3, labels, -1);
   int inside = 0, outside = 0;
   for (int w = 0; w < m.target.num_vertices(); ++w) {
-    const BarycentricPoint& p = m.c.target_to_source[w];
+    const SurfacePoint& p = m.c.target_to_source[w];
     if (p.triangle < 0) {
       ++outside;
       for (int c = 0; c < 3; ++c) EXPECT_EQ(out[3 * w + c], -1);
@@ -115,7 +115,7 @@ TEST(FieldTransfer, RotatedMapRotatesTangentVectorsAndKeepsTheirLength) {
   const double c = std::cos(angle), s = std::sin(angle);
   int checked = 0;
   for (int w = 0; w < m.target.num_vertices(); ++w) {
-    const BarycentricPoint& p = m.c.target_to_source[w];
+    const SurfacePoint& p = m.c.target_to_source[w];
     if (p.triangle < 0) {
       EXPECT_EQ(u[w].norm(), 0.0);
       continue;
@@ -154,7 +154,7 @@ TEST(FieldTransfer, TangentVectorsLandInTheCurvedTargetsTangentPlanes) {
   const std::vector<Vec3> normals = vertex_normals(m.target);
   int checked = 0;
   for (int w = 0; w < m.target.num_vertices(); ++w) {
-    const BarycentricPoint& p = m.c.target_to_source[w];
+    const SurfacePoint& p = m.c.target_to_source[w];
     if (p.triangle < 0) continue;
     const Tri& s = m.source.triangles[p.triangle];
     const Vec3 v = p.barycentric[0] * t[s[0]] + p.barycentric[1] * t[s[1]] + p.barycentric[2] * t[s[2]];

@@ -2,9 +2,9 @@
 
 #include <cmath>
 
-#include "error.h"
-#include "geodesic_disk_patch.h"
-#include "mesh_topology.h"
+#include "base/error.h"
+#include "patch/geodesic_disk_patch.h"
+#include "mesh/mesh_topology.h"
 #include "test_meshes.h"
 #include "test_status.h"
 
@@ -90,12 +90,12 @@ TEST(GeodesicDiskPatch, PointCenterInsideATriangle) {
   o.radius = 0.25;
   const Patch p = extract_geodesic_disk(host, o);
   expect_valid_disk(host, p);
-  ASSERT_GE(p.center_triangle, 0);
-  EXPECT_EQ(p.host_triangle[p.center_triangle], 1000);
+  ASSERT_GE(p.center.triangle, 0);
+  EXPECT_EQ(p.host_triangle[p.center.triangle], 1000);
   // The center maps back to the requested point, i.e. the origin of the normalized patch.
-  const Tri& tri = p.mesh.triangles[p.center_triangle];
-  const Vec3 c = p.center_barycentric[0] * p.mesh.positions[tri[0]] + p.center_barycentric[1] * p.mesh.positions[tri[1]] +
-                 p.center_barycentric[2] * p.mesh.positions[tri[2]];
+  const Tri& tri = p.mesh.triangles[p.center.triangle];
+  const Vec3 c = p.center.barycentric[0] * p.mesh.positions[tri[0]] + p.center.barycentric[1] * p.mesh.positions[tri[1]] +
+                 p.center.barycentric[2] * p.mesh.positions[tri[2]];
   EXPECT_LT(c.norm(), 1e-9);
 }
 

@@ -8,9 +8,9 @@
 #include <thread>
 #include <vector>
 
-#include "error.h"
-#include "heat_geodesics.h"
-#include "mesh.h"
+#include "base/error.h"
+#include "operators/heat_geodesics.h"
+#include "mesh/mesh.h"
 #include "test_meshes.h"
 #include "test_status.h"
 

@@ -2,9 +2,9 @@
 
 #include <cmath>
 
-#include "cotan_laplacian.h"
-#include "error.h"
-#include "heat_smoothing.h"
+#include "operators/cotan_laplacian.h"
+#include "base/error.h"
+#include "operators/heat_smoothing.h"
 #include "test_meshes.h"
 
 using namespace mcon;

@@ -2,10 +2,10 @@
 
 #include <cmath>
 
-#include "cotan_laplacian.h"
-#include "intrinsic_delaunay.h"
-#include "mesh.h"
-#include "mesh_topology.h"
+#include "operators/cotan_laplacian.h"
+#include "operators/intrinsic_delaunay.h"
+#include "mesh/mesh.h"
+#include "mesh/mesh_topology.h"
 #include "test_meshes.h"
 
 using namespace mcon;

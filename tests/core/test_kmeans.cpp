@@ -8,9 +8,9 @@
 
 #include <tbb/task_arena.h>
 
-#include "counter_rng.h"
-#include "error.h"
-#include "kmeans.h"
+#include "base/counter_rng.h"
+#include "base/error.h"
+#include "retrieval/kmeans.h"
 #include "test_status.h"
 
 using namespace mcon;

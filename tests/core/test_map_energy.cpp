@@ -5,12 +5,12 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "counter_rng.h"
-#include "descriptor_field_2d.h"
-#include "error.h"
-#include "injective_step.h"
-#include "map_energy.h"
-#include "matching_score.h"
+#include "base/counter_rng.h"
+#include "map/descriptor_field_2d.h"
+#include "base/error.h"
+#include "map/injective_step.h"
+#include "map/map_energy.h"
+#include "map/matching_score.h"
 #include "synthetic_maps.h"
 
 using namespace mcon;

@@ -3,9 +3,9 @@
 #include <cmath>
 #include <limits>
 
-#include "error.h"
-#include "mesh.h"
-#include "mesh_topology.h"
+#include "base/error.h"
+#include "mesh/mesh.h"
+#include "mesh/mesh_topology.h"
 #include "test_meshes.h"
 
 using namespace mcon;

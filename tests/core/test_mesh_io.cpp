@@ -13,10 +13,10 @@
 #include <string>
 #include <vector>
 
-#include "error.h"
+#include "base/error.h"
 #include "io/mesh_io.h"
-#include "mesh.h"
-#include "mesh_topology.h"
+#include "mesh/mesh.h"
+#include "mesh/mesh_topology.h"
 #include "test_meshes.h"
 #include "test_status.h"
 

@@ -3,9 +3,9 @@
 #include <cmath>
 #include <limits>
 
-#include "error.h"
-#include "geodesic_disk_patch.h"
-#include "patch_map.h"
+#include "base/error.h"
+#include "patch/geodesic_disk_patch.h"
+#include "map/patch_map.h"
 #include "test_meshes.h"
 
 using namespace mcon;
@@ -66,7 +66,7 @@ TEST(PatchMap, GuidanceSelectsTheRotation) {
     double err = 0;
     int inside = 0;
     for (int v = 0; v < p.mesh.num_vertices(); ++v) {
-      const BarycentricPoint& b = m.source_to_target[v];
+      const SurfacePoint& b = m.source_to_target[v];
       if (b.triangle < 0) continue;
       const Tri& t = p.mesh.triangles[b.triangle];
       const Vec3 q = b.barycentric[0] * p.mesh.positions[t[0]] + b.barycentric[1] * p.mesh.positions[t[1]] +

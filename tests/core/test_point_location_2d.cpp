@@ -3,9 +3,9 @@
 #include <cmath>
 #include <limits>
 
-#include "counter_rng.h"
-#include "error.h"
-#include "point_location_2d.h"
+#include "base/counter_rng.h"
+#include "base/error.h"
+#include "mesh/point_location_2d.h"
 #include "synthetic_maps.h"
 
 using namespace mcon;

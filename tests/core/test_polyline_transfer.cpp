@@ -7,7 +7,7 @@
 #include <limits>
 
 #include "known_maps.h"
-#include "polyline_transfer.h"
+#include "transfer/polyline_transfer.h"
 #include "test_status.h"
 
 using namespace mcon;
@@ -39,7 +39,7 @@ std::vector<Vec2> circle(const Vec2& c, double r, int n, double start = 0) {
   return out;
 }
 
-Vec2 uv_of(const known::KnownMap& m, const SurfacePointOnMesh& p) {
+Vec2 uv_of(const known::KnownMap& m, const SurfacePoint& p) {
   const Tri& t = m.target.triangles[p.triangle];
   return p.barycentric[0] * m.target_uv[t[0]] + p.barycentric[1] * m.target_uv[t[1]] + p.barycentric[2] * m.target_uv[t[2]];
 }
@@ -106,11 +106,11 @@ TEST(PolylineTransfer, ClosedLoopInsideIsRetracedOnTheCurvedTarget) {
   expect_on_surface(m, out[0]);
   std::vector<Vec2> mapped;
   for (const Vec2& p : loop) mapped.push_back(psi(p));
-  for (const SurfacePointOnMesh& p : out[0].points) EXPECT_LE(distance_to_path(uv_of(m, p), mapped, true), 1e-9);
+  for (const SurfacePoint& p : out[0].points) EXPECT_LE(distance_to_path(uv_of(m, p), mapped, true), 1e-9);
   // Every mapped input point is among the output points.
   for (const Vec2& q : mapped) {
     double best = 1e9;
-    for (const SurfacePointOnMesh& p : out[0].points) best = std::min(best, (uv_of(m, p) - q).norm());
+    for (const SurfacePoint& p : out[0].points) best = std::min(best, (uv_of(m, p) - q).norm());
     EXPECT_LE(best, 1e-9);
   }
 }
@@ -128,7 +128,7 @@ TEST(PolylineTransfer, PartsOutsideTheOverlapAreDropped) {
     EXPECT_NEAR(uv_of(m, out[0].points.front()).x(), -0.1, 1e-9);
     const Vec2 last = uv_of(m, out[0].points.back());
     EXPECT_GT(last.norm(), 0.98);  // ends on the target's boundary polygon
-    for (const SurfacePointOnMesh& p : out[0].points) EXPECT_LE(uv_of(m, p).norm(), 1.0 + 1e-9);
+    for (const SurfacePoint& p : out[0].points) EXPECT_LE(uv_of(m, p).norm(), 1.0 + 1e-9);
   }
   {
     // A closed loop around (0.7 + 0.8, 0) ... partly outside: one open piece (the two ends of the
@@ -171,7 +171,7 @@ TEST(PolylineTransfer, PointsKeepTheirPlaceInPhi) {
   const PolylineTransfer transfer(m.view());
   for (const Vec2& q : {Vec2(0.1, 0.2), Vec2(-0.4, 0.3), Vec2(0.0, -0.6), Vec2(0.33, 0.0)}) {
     const known::SourcePoint s = known::source_point(m, q);
-    const SurfacePointOnMesh t = transfer.map_point({s.triangle, s.barycentric});
+    const SurfacePoint t = transfer.map_point({s.triangle, s.barycentric});
     ASSERT_GE(t.triangle, 0);
     EXPECT_LE((uv_of(m, t) - psi(q)).norm(), 1e-12);
     EXPECT_GE(t.barycentric.minCoeff(), 0.0);

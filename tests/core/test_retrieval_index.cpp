@@ -7,9 +7,9 @@
 
 #include <tbb/task_arena.h>
 
-#include "counter_rng.h"
-#include "error.h"
-#include "retrieval_index.h"
+#include "base/counter_rng.h"
+#include "base/error.h"
+#include "retrieval/retrieval_index.h"
 #include "test_status.h"
 
 using namespace mcon;

@@ -5,9 +5,9 @@
 
 #include <tbb/task_arena.h>
 
-#include "error.h"
-#include "map_energy.h"
-#include "rigid_alignment.h"
+#include "base/error.h"
+#include "map/map_energy.h"
+#include "map/rigid_alignment.h"
 #include "synthetic_maps.h"
 
 using namespace mcon;

@@ -4,11 +4,11 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "bag_of_features.h"
-#include "cotan_laplacian.h"
-#include "error.h"
-#include "retrieval_index.h"
-#include "spectral_descriptors.h"
+#include "retrieval/bag_of_features.h"
+#include "operators/cotan_laplacian.h"
+#include "base/error.h"
+#include "retrieval/retrieval_index.h"
+#include "descriptors/spectral_descriptors.h"
 #include "test_meshes.h"
 #include "test_status.h"
 

@@ -6,10 +6,10 @@
 
 #include <tbb/task_arena.h>
 
-#include "error.h"
-#include "injective_step.h"
-#include "map_energy.h"
-#include "surface_map.h"
+#include "base/error.h"
+#include "map/injective_step.h"
+#include "map/map_energy.h"
+#include "map/surface_map.h"
 #include "synthetic_maps.h"
 #include "test_status.h"
 
@@ -73,7 +73,7 @@ double true_overlap(const synthetic::Problem& pr) {
 void expect_consistent_directions(const synthetic::Problem& pr, const SurfaceMap& m) {
   int mapped = 0;
   for (std::size_t v = 0; v < m.phi.size(); ++v) {
-    const BarycentricPoint& b = m.source_to_target[v];
+    const SurfacePoint& b = m.source_to_target[v];
     if (b.triangle < 0) {
       EXPECT_GT(m.phi[v].norm(), 0.997) << "an inner point has no target triangle";  // 66-gon rim: cos(pi / 66) = 0.9989
       continue;
@@ -86,7 +86,7 @@ void expect_consistent_directions(const synthetic::Problem& pr, const SurfaceMap
   }
   EXPECT_GT(mapped, 0);
   for (std::size_t w = 0; w < pr.target_uv.size(); ++w) {
-    const BarycentricPoint& b = m.target_to_source[w];
+    const SurfacePoint& b = m.target_to_source[w];
     if (b.triangle < 0) continue;
     const Tri& t = pr.source.triangles[b.triangle];
     const Vec2 p = b.barycentric[0] * m.phi[t[0]] + b.barycentric[1] * m.phi[t[1]] + b.barycentric[2] * m.phi[t[2]];
@@ -129,7 +129,7 @@ TEST(SurfaceMap, RecoversAWarpAndAPartialOverlap) {
   // Measured 0.810 against 0.803: the source strip beyond the target's rim stays outside.
   EXPECT_NEAR(m.overlap_ratio, true_overlap(pr), 0.03);
   int outside = 0;
-  for (const BarycentricPoint& b : m.source_to_target) outside += b.triangle < 0;
+  for (const SurfacePoint& b : m.source_to_target) outside += b.triangle < 0;
   EXPECT_GT(outside, 20);
   expect_consistent_directions(pr, m);
   expect_monotone_per_level(m);

@@ -6,8 +6,8 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "error.h"
-#include "library_file.h"
+#include "base/error.h"
+#include "library/library_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   mcon::ConstraintLibrary library;

@@ -2,7 +2,7 @@
 #include <cstdio>
 #include <string>
 
-#include "library_file.h"
+#include "library/library_file.h"
 #include "library_samples.h"
 
 int main(int argc, char** argv) {

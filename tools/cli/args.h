@@ -7,7 +7,7 @@
 #include <string>
 
 #include "command.h"
-#include "error.h"
+#include "base/error.h"
 
 namespace mcon::cli {
 

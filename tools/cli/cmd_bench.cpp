@@ -17,9 +17,9 @@
 #include "common/json.h"
 #include "common/makehuman_people.h"
 #include "common/patch_instances.h"
-#include "geodesic_disk_patch.h"
-#include "heat_geodesics.h"
-#include "patch_map.h"
+#include "patch/geodesic_disk_patch.h"
+#include "operators/heat_geodesics.h"
+#include "map/patch_map.h"
 
 namespace mcon::cli {
 namespace {

@@ -14,16 +14,16 @@
 
 #include "args.h"
 #include "common/json.h"
-#include "cross_field.h"
-#include "curvature_descriptors.h"
-#include "field_transfer.h"
-#include "geodesic_disk_patch.h"
-#include "heat_geodesics.h"
+#include "transfer/cross_field.h"
+#include "descriptors/curvature_descriptors.h"
+#include "transfer/field_transfer.h"
+#include "patch/geodesic_disk_patch.h"
+#include "operators/heat_geodesics.h"
 #include "io/mesh_io.h"
-#include "map_view.h"
-#include "patch_from_arrays.h"
-#include "patch_map.h"
-#include "polyline_transfer.h"
+#include "transfer/map_view.h"
+#include "patch/patch_from_arrays.h"
+#include "map/patch_map.h"
+#include "transfer/polyline_transfer.h"
 
 namespace mcon::cli {
 namespace {
@@ -136,12 +136,12 @@ Patch as_entry(const TriMesh& mesh) {
   for (int v = 1; v < mesh.num_vertices(); ++v)
     if ((mesh.positions[v] - centroid).squaredNorm() < (mesh.positions[best] - centroid).squaredNorm()) best = v;
   PatchFrame frame;
-  for (int t = 0; t < mesh.num_triangles() && frame.center_triangle < 0; ++t)
+  for (int t = 0; t < mesh.num_triangles() && frame.center.triangle < 0; ++t)
     for (int k = 0; k < 3; ++k)
       if (mesh.triangles[t][k] == best) {
-        frame.center_triangle = t;
-        frame.center_barycentric = Vec3::Zero();
-        frame.center_barycentric[k] = 1.0;
+        frame.center.triangle = t;
+        frame.center.barycentric = Vec3::Zero();
+        frame.center.barycentric[k] = 1.0;
       }
   return patch_from_mesh(mesh, frame);
 }
@@ -162,7 +162,7 @@ std::vector<PolylineInput> iso_lines(const TriMesh& mesh, const Eigen::VectorXd&
   }
   auto point_on = [&](const Edge& e, int t) {
     const double s = (value - d[e.first]) / (d[e.second] - d[e.first]);
-    SurfacePointOnMesh p;
+    SurfacePoint p;
     p.triangle = t;
     p.barycentric = Vec3::Zero();
     for (int k = 0; k < 3; ++k) {
@@ -210,7 +210,7 @@ std::vector<PolylineInput> iso_lines(const TriMesh& mesh, const Eigen::VectorXd&
   return out;
 }
 
-Vec3 on_mesh(const TriMesh& m, const SurfacePointOnMesh& p) {
+Vec3 on_mesh(const TriMesh& m, const SurfacePoint& p) {
   const Tri& t = m.triangles[p.triangle];
   return p.barycentric[0] * m.positions[t[0]] + p.barycentric[1] * m.positions[t[1]] +
          p.barycentric[2] * m.positions[t[2]];
@@ -302,7 +302,7 @@ int run_embed(const Args& args) {
   // 3. Source constraints: fields and guide loops around the center.
   const auto t_transfer = std::chrono::steady_clock::now();
   const Eigen::VectorXd distance =
-      HeatGeodesics(source.mesh).from_point(source.center_triangle, source.center_barycentric);
+      HeatGeodesics(source.mesh).from_point(source.center.triangle, source.center.barycentric);
   const Eigen::VectorXd mean = mean_curvature_descriptor(source.mesh);
   Eigen::MatrixXd interpolated(source.mesh.num_vertices(), 4);
   std::vector<std::int32_t> rings(source.mesh.positions.size());
@@ -323,7 +323,7 @@ int run_embed(const Args& args) {
   const auto t_polylines = std::chrono::steady_clock::now();
   const PolylineTransfer transfer(view);
   const std::vector<TracedPolyline> traced = transfer.map_polylines(guides);
-  const SurfacePointOnMesh center_on_target = transfer.map_point({source.center_triangle, source.center_barycentric});
+  const SurfacePoint center_on_target = transfer.map_point({source.center.triangle, source.center.barycentric});
 
   const double polyline_seconds = seconds_since(t_polylines);
   const auto t_field = std::chrono::steady_clock::now();
@@ -331,7 +331,7 @@ int run_embed(const Args& args) {
   std::vector<std::vector<SurfacePoint>> guide_points;
   for (const TracedPolyline& t : traced) {
     std::vector<SurfacePoint> line;
-    for (const SurfacePointOnMesh& q : t.points) line.push_back({q.triangle, q.barycentric});
+    for (const SurfacePoint& q : t.points) line.push_back({q.triangle, q.barycentric});
     if (t.closed) line.push_back(line.front());
     guide_points.push_back(std::move(line));
   }
@@ -370,7 +370,7 @@ int run_embed(const Args& args) {
   }
   for (const PolylineInput& in : guides) {
     std::vector<Vec3> line;
-    for (const SurfacePointOnMesh& q : in.points) line.push_back(host(source, on_mesh(source.mesh, q)));
+    for (const SurfacePoint& q : in.points) line.push_back(host(source, on_mesh(source.mesh, q)));
     source_lines.push_back(std::move(line));
     source_closed.push_back(in.closed);
   }
@@ -381,7 +381,7 @@ int run_embed(const Args& args) {
   // 6. Summary.
   using tools::Json;
   std::size_t source_inside = 0, target_inside = 0;
-  for (const BarycentricPoint& q : map.source_to_target) source_inside += q.triangle >= 0;
+  for (const SurfacePoint& q : map.source_to_target) source_inside += q.triangle >= 0;
   for (std::uint8_t o : outside) target_inside += o == 0;
   Json energies = Json::object();
   energies.set("total", map.energy.total);

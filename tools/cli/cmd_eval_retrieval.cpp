@@ -15,7 +15,7 @@
 #include "common/json.h"
 #include "common/retrieval_benchmark.h"
 #include "common/svg_plots.h"
-#include "retrieval_descriptors.h"
+#include "retrieval/retrieval_descriptors.h"
 
 namespace mcon::cli {
 namespace {

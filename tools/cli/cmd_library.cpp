@@ -6,8 +6,8 @@
 #include <string>
 
 #include "library_cli.h"
-#include "library_file.h"
-#include "library_retrieval.h"
+#include "library/library_file.h"
+#include "library/library_retrieval.h"
 
 namespace mcon::cli {
 namespace {

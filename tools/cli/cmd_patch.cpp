@@ -4,10 +4,10 @@
 #include <string>
 
 #include "args.h"
-#include "curvature_descriptors.h"
-#include "geodesic_disk_patch.h"
+#include "descriptors/curvature_descriptors.h"
+#include "patch/geodesic_disk_patch.h"
 #include "io/mesh_io.h"
-#include "mesh_topology.h"
+#include "mesh/mesh_topology.h"
 
 namespace mcon::cli {
 namespace {

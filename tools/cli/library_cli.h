@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "command.h"
-#include "constraint_library.h"
-#include "error.h"
-#include "geodesic_disk_patch.h"
+#include "library/constraint_library.h"
+#include "base/error.h"
+#include "patch/geodesic_disk_patch.h"
 #include "io/mesh_io.h"
 #include "common/json.h"
 

@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <string_view>
 
-#include "counter_rng.h"
+#include "base/counter_rng.h"
 
 namespace mcon::tools {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "common/json.h"
-#include "error.h"
+#include "base/error.h"
 
 namespace mcon::tools {
 

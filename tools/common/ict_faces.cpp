@@ -7,7 +7,7 @@
 #include <tbb/parallel_for.h>
 
 #include "common/bench_random.h"
-#include "error.h"
+#include "base/error.h"
 
 namespace mcon::tools {
 

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "io/mesh_io.h"
-#include "mesh.h"
+#include "mesh/mesh.h"
 
 namespace mcon::tools {
 

@@ -2,7 +2,7 @@
 
 #include <fstream>
 
-#include "error.h"
+#include "base/error.h"
 #include "io/mesh_io.h"
 
 namespace mcon::tools {

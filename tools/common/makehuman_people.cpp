@@ -10,7 +10,7 @@
 
 #include "common/bench_random.h"
 #include "common/morph_target.h"
-#include "error.h"
+#include "base/error.h"
 
 namespace mcon::tools {
 

@@ -14,13 +14,13 @@
 #include "common/patch_instances.h"
 #include "common/retessellate.h"
 #include "common/thesis_gradient_descent.h"
-#include "curvature_descriptors.h"
-#include "error.h"
-#include "geodesic_disk_patch.h"
-#include "heat_geodesics.h"
-#include "parallel_blocks.h"
-#include "patch_map.h"
-#include "point_location_2d.h"
+#include "descriptors/curvature_descriptors.h"
+#include "base/error.h"
+#include "patch/geodesic_disk_patch.h"
+#include "operators/heat_geodesics.h"
+#include "base/parallel_blocks.h"
+#include "map/patch_map.h"
+#include "mesh/point_location_2d.h"
 
 namespace mcon::tools {
 
@@ -366,7 +366,7 @@ std::vector<MappingPairResult> run_mapping_evaluation(const MappingEvalOptions& 
         const HeatGeodesics src_heat(src.patch.mesh), dst_heat(dst.patch.mesh);
         const int count = std::min(options.landmarks, static_cast<int>(sources.size()));
         Eigen::MatrixXd gs(src.patch.mesh.num_vertices(), count), gt(dst.patch.mesh.num_vertices(), count);
-        Eigen::VectorXd nearest = src_heat.from_point(src.patch.center_triangle, src.patch.center_barycentric);
+        Eigen::VectorXd nearest = src_heat.from_point(src.patch.center.triangle, src.patch.center.barycentric);
         for (int k = 0; k < count; ++k) {
           int best = 0;  // the evaluated source vertex farthest from the center and the picks so far
           for (int c = 1; c < static_cast<int>(sources.size()); ++c)

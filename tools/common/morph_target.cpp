@@ -6,7 +6,7 @@
 #include <memory>
 #include <mutex>
 
-#include "error.h"
+#include "base/error.h"
 #include "io/mesh_io.h"
 
 namespace mcon::tools {

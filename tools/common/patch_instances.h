@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "common/bench_spec.h"
-#include "error.h"
-#include "mesh.h"
+#include "base/error.h"
+#include "mesh/mesh.h"
 
 namespace mcon::tools {
 

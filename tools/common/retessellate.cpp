@@ -12,7 +12,7 @@
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 
 #include "common/bench_random.h"
-#include "error.h"
+#include "base/error.h"
 
 namespace mcon::tools {
 

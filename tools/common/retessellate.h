@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "mesh.h"
+#include "mesh/mesh.h"
 
 namespace mcon::tools {
 

@@ -16,10 +16,10 @@
 #include "common/makehuman_people.h"
 #include "common/patch_instances.h"
 #include "common/retessellate.h"
-#include "error.h"
-#include "geodesic_disk_patch.h"
-#include "retrieval_descriptors.h"
-#include "retrieval_index.h"
+#include "base/error.h"
+#include "patch/geodesic_disk_patch.h"
+#include "retrieval/retrieval_descriptors.h"
+#include "retrieval/retrieval_index.h"
 
 namespace mcon::tools {
 namespace {
@@ -183,7 +183,7 @@ RetrievalBenchmark build_retrieval_benchmark(const RetrievalBenchmarkOptions& op
     out.triangles = patch.mesh.num_triangles();
     const auto ta = Clock::now();
     const PatchDescriptors common =
-        patch_areas_and_center_distance(patch.mesh, patch.center_triangle, patch.center_barycentric);
+        patch_areas_and_center_distance(patch.mesh, patch.center);
     const double common_seconds = seconds_since(ta);
     for (const std::string& d : options.descriptors) {
       const auto td = Clock::now();

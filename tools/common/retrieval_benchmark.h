@@ -20,8 +20,8 @@
 #include <string>
 #include <vector>
 
-#include "bag_of_features.h"
-#include "curvature_descriptors.h"
+#include "retrieval/bag_of_features.h"
+#include "descriptors/curvature_descriptors.h"
 
 namespace mcon::tools {
 

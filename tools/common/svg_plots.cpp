@@ -8,7 +8,7 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "error.h"
+#include "base/error.h"
 
 namespace mcon::tools {
 namespace {

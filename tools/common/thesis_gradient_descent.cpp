@@ -8,9 +8,9 @@
 
 #include <Eigen/Dense>
 
-#include "error.h"
-#include "parallel_blocks.h"
-#include "point_location_2d.h"
+#include "base/error.h"
+#include "base/parallel_blocks.h"
+#include "mesh/point_location_2d.h"
 
 namespace mcon::tools {
 

@@ -25,7 +25,7 @@
 
 #include <Eigen/Core>
 
-#include "mesh.h"
+#include "mesh/mesh.h"
 
 namespace mcon::tools {
 

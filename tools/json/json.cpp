@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include "error.h"  // header-only: mcon::Error, fail, require (no link dependency on the core)
+#include "base/error.h"  // header-only: mcon::Error, fail, require (no link dependency on the core)
 
 namespace mcon::tools {
 

@@ -1,0 +1,265 @@
+#include "map/map_energy.h"
+
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Eigenvalues>
+
+#include "base/error.h"
+#include "base/parallel_blocks.h"
+
+namespace mcon {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr int kVertexBlock = 256;
+constexpr int kTriangleBlock = 512;
+
+Eigen::Vector4d vec(const Eigen::Matrix2d& J) { return Eigen::Vector4d(J(0, 0), J(0, 1), J(1, 0), J(1, 1)); }
+
+// d det / d vec(J) and its (constant) Hessian.
+Eigen::Vector4d det_gradient(const Eigen::Matrix2d& J) { return Eigen::Vector4d(J(1, 1), -J(1, 0), -J(0, 1), J(0, 0)); }
+Eigen::Matrix4d det_hessian() {
+  Eigen::Matrix4d h = Eigen::Matrix4d::Zero();
+  h(0, 3) = h(3, 0) = 1;
+  h(1, 2) = h(2, 1) = -1;
+  return h;
+}
+
+Eigen::Matrix2d jacobian_at(const Eigen::VectorXd& x, const Tri& tri, const Eigen::Matrix2d& rest_inverse) {
+  const int a = 2 * tri[0], b = 2 * tri[1], c = 2 * tri[2];
+  Eigen::Matrix2d X;
+  X << x[b] - x[a], x[c] - x[a], x[b + 1] - x[a + 1], x[c + 1] - x[a + 1];
+  return X * rest_inverse;
+}
+
+}  // namespace
+
+std::vector<Vec2> rest_positions(const std::vector<Vec2>& uv, bool reflected) {
+  std::vector<Vec2> rest(uv);
+  if (reflected)
+    for (Vec2& p : rest) p.y() = -p.y();
+  return rest;
+}
+
+SourceDisk make_source_disk(const TriMesh& mesh, const std::vector<Vec2>& uv, bool reflected) {
+  require(uv.size() == mesh.positions.size(), MCON_ERROR_INVALID_ARGUMENT,
+          "source disk: uv must have one entry per vertex");
+  for (const Vec2& p : uv)
+    require(std::isfinite(p.x()) && std::isfinite(p.y()), MCON_ERROR_NON_FINITE, "source disk: non-finite uv");
+  SourceDisk s;
+  s.num_vertices = mesh.num_vertices();
+  s.reflected = reflected;
+  const std::vector<Vec2> rest = rest_positions(uv, reflected);
+  const int nt = mesh.num_triangles();
+  s.triangles.resize(nt);
+  s.rest_inverse.resize(nt);
+  s.triangle_weight.resize(nt);
+  s.vertex_weight.assign(s.num_vertices, 0.0);
+  double total = 0;
+  for (int t = 0; t < nt; ++t) total += triangle_area(mesh, t);
+  require(total > 0 && std::isfinite(total), MCON_ERROR_DEGENERATE_TRIANGLE, "source disk: zero total area");
+  for (int t = 0; t < nt; ++t) {
+    Tri tri = mesh.triangles[t];
+    if (reflected) std::swap(tri[1], tri[2]);
+    Eigen::Matrix2d E;
+    E << rest[tri[1]] - rest[tri[0]], rest[tri[2]] - rest[tri[0]];
+    const double det = E.determinant();
+    require(det > 0, MCON_ERROR_INVALID_ARGUMENT,
+            "source disk: uv triangle " + std::to_string(t) + " is inverted or degenerate");
+    s.triangles[t] = tri;
+    s.rest_inverse[t] = E.inverse();
+    s.triangle_weight[t] = triangle_area(mesh, t) / total;
+    for (int v : tri) s.vertex_weight[v] += s.triangle_weight[t] / 3.0;
+  }
+  return s;
+}
+
+double conformal_distortion(const Eigen::Matrix2d& J, Eigen::Vector4d* gradient, Eigen::Matrix4d* hessian) {
+  const double det = J.determinant();
+  if (!(det > 0)) return kInf;
+  const Eigen::Vector4d j = vec(J);
+  const double F = j.squaredNorm();
+  const double value = F / (2 * det) - 1;
+  if (gradient || hessian) {
+    const Eigen::Vector4d gd = det_gradient(J);
+    if (gradient) *gradient = j / det - F / (2 * det * det) * gd;
+    if (hessian) {
+      *hessian = Eigen::Matrix4d::Identity() / det - (j * gd.transpose() + gd * j.transpose()) / (det * det) +
+                 F / (det * det * det) * gd * gd.transpose() - F / (2 * det * det) * det_hessian();
+    }
+  }
+  return value;
+}
+
+double area_distortion(const Eigen::Matrix2d& J, Eigen::Vector4d* gradient, Eigen::Matrix4d* hessian) {
+  const double det = J.determinant();
+  if (!(det > 0)) return kInf;
+  const double value = 0.5 * (det + 1 / det) - 1;
+  if (gradient || hessian) {
+    const double a1 = 0.5 * (1 - 1 / (det * det));
+    const double a2 = 1 / (det * det * det);
+    const Eigen::Vector4d gd = det_gradient(J);
+    if (gradient) *gradient = a1 * gd;
+    if (hessian) *hessian = a2 * gd * gd.transpose() + a1 * det_hessian();
+  }
+  return value;
+}
+
+double injectivity_barrier(const Eigen::Matrix2d& J, double s, Eigen::Vector4d* gradient, Eigen::Matrix4d* hessian) {
+  const double det = J.determinant();
+  if (!(det > 0)) return kInf;
+  const double q = det / s;
+  if (q >= 1) {
+    if (gradient) gradient->setZero();
+    if (hessian) hessian->setZero();
+    return 0;
+  }
+  const double lq = std::log(q), qm = q - 1;
+  const double value = -qm * qm * lq;
+  if (gradient || hessian) {
+    const double b1 = -2 * qm * lq - qm * qm / q;                              // db/dq
+    const double b2 = -2 * lq - 4 * qm / q + qm * qm / (q * q);               // d2b/dq2
+    const Eigen::Vector4d gd = det_gradient(J);
+    if (gradient) *gradient = (b1 / s) * gd;
+    if (hessian) *hessian = (b2 / (s * s)) * gd * gd.transpose() + (b1 / s) * det_hessian();
+  }
+  return value;
+}
+
+Eigen::Matrix<double, 4, 6> jacobian_map(const Eigen::Matrix2d& D) {
+  Eigen::Matrix<double, 4, 6> B = Eigen::Matrix<double, 4, 6>::Zero();
+  for (int r = 0; r < 2; ++r)
+    for (int c = 0; c < 2; ++c) {
+      B(2 * r + c, 0 + r) = -(D(0, c) + D(1, c));
+      B(2 * r + c, 2 + r) = D(0, c);
+      B(2 * r + c, 4 + r) = D(1, c);
+    }
+  return B;
+}
+
+Eigen::Matrix4d project_psd(const Eigen::Matrix4d& h) {
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> es(h);
+  const Eigen::Vector4d ev = es.eigenvalues();
+  if (ev.minCoeff() >= 0) return h;
+  return es.eigenvectors() * ev.cwiseMax(0.0).asDiagonal() * es.eigenvectors().transpose();
+}
+
+Eigen::Matrix2d project_psd(const Eigen::Matrix2d& h) {
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es;
+  es.computeDirect(h);
+  const Eigen::Vector2d ev = es.eigenvalues();
+  if (ev.minCoeff() >= 0) return h;
+  return es.eigenvectors() * ev.cwiseMax(0.0).asDiagonal() * es.eigenvectors().transpose();
+}
+
+MapEnergy::MapEnergy(const SourceDisk& source, const DescriptorField2D& target_field,
+                     const Eigen::MatrixXd& source_values, const ScoreSettings& score,
+                     const MapEnergyWeights& weights)
+    : source_(&source), field_(&target_field), score_(score), weights_(weights) {
+  require(source_values.rows() == source.num_vertices, MCON_ERROR_INVALID_ARGUMENT,
+          "map energy: one source descriptor row per vertex expected");
+  require(source_values.cols() == target_field.dimension(), MCON_ERROR_INVALID_ARGUMENT,
+          "map energy: source and target descriptors differ in dimension");
+  require(source_values.allFinite(), MCON_ERROR_NON_FINITE, "map energy: non-finite source descriptor");
+  const int d = target_field.dimension();
+  values_.resize(static_cast<std::size_t>(source.num_vertices) * d);
+  for (int v = 0; v < source.num_vertices; ++v)
+    for (int k = 0; k < d; ++k) values_[static_cast<std::size_t>(v) * d + k] = source_values(v, k);
+}
+
+MapEnergyTerms MapEnergy::evaluate(const Eigen::VectorXd& x) const {
+  MapEnergyTerms terms;
+  const SourceDisk& s = *source_;
+  const int d = field_->dimension();
+  const int nt = static_cast<int>(s.triangles.size());
+  // Distortion and barrier per triangle; an inverted triangle makes both +infinity.
+  const int tblocks = (nt + kTriangleBlock - 1) / kTriangleBlock;
+  std::vector<Eigen::Vector3d> sums(static_cast<std::size_t>(tblocks), Eigen::Vector3d::Zero());
+  for_each_block(nt, kTriangleBlock, [&](int begin, int end, int b) {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (int t = begin; t < end; ++t) {
+      const Eigen::Matrix2d J = jacobian_at(x, s.triangles[t], s.rest_inverse[t]);
+      const double w = s.triangle_weight[t];
+      sum += w * Eigen::Vector3d(conformal_distortion(J, nullptr, nullptr), area_distortion(J, nullptr, nullptr),
+                                 injectivity_barrier(J, weights_.barrier_start, nullptr, nullptr));
+    }
+    sums[b] = sum;
+  });
+  for (int b = 0; b < tblocks; ++b) {
+    terms.distortion += sums[b][0];
+    terms.area += sums[b][1];
+    terms.injectivity += sums[b][2];
+  }
+  terms.descriptor = deterministic_sum(s.num_vertices, kVertexBlock, [&](int v) {
+    thread_local std::vector<double> scratch;
+    scratch.resize(3 * static_cast<std::size_t>(d));
+    const ScoreSample sample = match_score(*field_, &values_[static_cast<std::size_t>(v) * d],
+                                           Vec2(x[2 * v], x[2 * v + 1]), score_, false, scratch.data());
+    return s.vertex_weight[v] * (1.0 - sample.score);
+  });
+  terms.total = weights_.descriptor * terms.descriptor + weights_.distortion * terms.distortion +
+                weights_.area * terms.area + weights_.injectivity * terms.injectivity;
+  if (!std::isfinite(terms.total)) terms.total = kInf;
+  return terms;
+}
+
+void MapEnergy::derivatives(const Eigen::VectorXd& x, Derivatives& out) const {
+  const SourceDisk& s = *source_;
+  const int d = field_->dimension();
+  const int nt = static_cast<int>(s.triangles.size());
+  const int nv = s.num_vertices;
+  out.triangle_hessians.resize(nt);
+  out.vertex_hessians.resize(nv);
+  std::vector<Vector6d> tri_grad(static_cast<std::size_t>(nt));
+  std::vector<Vec2> vert_grad(static_cast<std::size_t>(nv));
+  const int tblocks = (nt + kTriangleBlock - 1) / kTriangleBlock;
+  std::vector<Eigen::Vector3d> sums(static_cast<std::size_t>(tblocks), Eigen::Vector3d::Zero());
+  for_each_block(nt, kTriangleBlock, [&](int begin, int end, int b) {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (int t = begin; t < end; ++t) {
+      const Eigen::Matrix2d J = jacobian_at(x, s.triangles[t], s.rest_inverse[t]);
+      Eigen::Vector4d g1, g2, g3;
+      Eigen::Matrix4d h1, h2, h3;
+      const double e1 = conformal_distortion(J, &g1, &h1);
+      const double e2 = area_distortion(J, &g2, &h2);
+      const double e3 = injectivity_barrier(J, weights_.barrier_start, &g3, &h3);
+      const double w = s.triangle_weight[t];
+      sum += w * Eigen::Vector3d(e1, e2, e3);
+      const Eigen::Vector4d g = w * (weights_.distortion * g1 + weights_.area * g2 + weights_.injectivity * g3);
+      const Eigen::Matrix4d h = project_psd(
+          Eigen::Matrix4d(w * (weights_.distortion * h1 + weights_.area * h2 + weights_.injectivity * h3)));
+      const Eigen::Matrix<double, 4, 6> B = jacobian_map(s.rest_inverse[t]);
+      tri_grad[t] = B.transpose() * g;
+      out.triangle_hessians[t] = B.transpose() * h * B;
+    }
+    sums[b] = sum;
+  });
+  MapEnergyTerms terms;
+  for (int b = 0; b < tblocks; ++b) {
+    terms.distortion += sums[b][0];
+    terms.area += sums[b][1];
+    terms.injectivity += sums[b][2];
+  }
+  terms.descriptor = deterministic_sum(nv, kVertexBlock, [&](int v) {
+    thread_local std::vector<double> scratch;
+    scratch.resize(3 * static_cast<std::size_t>(d));
+    const ScoreSample sample = match_score(*field_, &values_[static_cast<std::size_t>(v) * d],
+                                           Vec2(x[2 * v], x[2 * v + 1]), score_, true, scratch.data());
+    const double w = weights_.descriptor * s.vertex_weight[v];
+    vert_grad[v] = -w * sample.gradient;
+    out.vertex_hessians[v] = project_psd(Eigen::Matrix2d(-w * sample.hessian));
+    return s.vertex_weight[v] * (1.0 - sample.score);
+  });
+  terms.total = weights_.descriptor * terms.descriptor + weights_.distortion * terms.distortion +
+                weights_.area * terms.area + weights_.injectivity * terms.injectivity;
+  out.terms = terms;
+  // Gather in a fixed order (deterministic).
+  out.gradient.setZero(2 * nv);
+  for (int v = 0; v < nv; ++v) out.gradient.segment<2>(2 * v) += vert_grad[v];
+  for (int t = 0; t < nt; ++t)
+    for (int c = 0; c < 3; ++c) out.gradient.segment<2>(2 * s.triangles[t][c]) += tri_grad[t].segment<2>(2 * c);
+}
+
+}  // namespace mcon

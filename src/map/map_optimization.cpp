@@ -1,0 +1,199 @@
+#include "map/map_optimization.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Sparse>
+#include <Eigen/SparseCholesky>
+
+#include "base/error.h"
+#include "map/injective_step.h"
+
+namespace mcon {
+
+namespace {
+
+// The lower triangle of the 2n x 2n Hessian with the sparsity of the source mesh (2x2 blocks
+// for every vertex pair sharing a triangle), and where each element's entries go in it.
+class HessianPattern {
+ public:
+  HessianPattern(int num_vertices, const std::vector<Tri>& triangles) {
+    const int n = 2 * num_vertices;
+    std::vector<Eigen::Triplet<double>> trip;
+    trip.reserve(triangles.size() * 21 + static_cast<std::size_t>(num_vertices) * 3);
+    for (const Tri& t : triangles)
+      for (int a = 0; a < 6; ++a)
+        for (int b = 0; b < 6; ++b) {
+          const int r = 2 * t[a / 2] + a % 2, c = 2 * t[b / 2] + b % 2;
+          if (r >= c) trip.emplace_back(r, c, 0.0);
+        }
+    for (int v = 0; v < num_vertices; ++v) {
+      trip.emplace_back(2 * v, 2 * v, 0.0);
+      trip.emplace_back(2 * v + 1, 2 * v, 0.0);
+      trip.emplace_back(2 * v + 1, 2 * v + 1, 0.0);
+    }
+    matrix.resize(n, n);
+    matrix.setFromTriplets(trip.begin(), trip.end());
+    matrix.makeCompressed();
+    tri_slots.resize(triangles.size() * 36);
+    for (std::size_t i = 0; i < triangles.size(); ++i)
+      for (int a = 0; a < 6; ++a)
+        for (int b = 0; b < 6; ++b) {
+          const int r = 2 * triangles[i][a / 2] + a % 2, c = 2 * triangles[i][b / 2] + b % 2;
+          tri_slots[i * 36 + a * 6 + b] = r >= c ? slot(r, c) : -1;
+        }
+    vertex_slots.resize(static_cast<std::size_t>(num_vertices) * 3);
+    diagonal_slots.resize(n);
+    for (int v = 0; v < num_vertices; ++v) {
+      vertex_slots[3 * v] = slot(2 * v, 2 * v);
+      vertex_slots[3 * v + 1] = slot(2 * v + 1, 2 * v);
+      vertex_slots[3 * v + 2] = slot(2 * v + 1, 2 * v + 1);
+    }
+    for (int i = 0; i < n; ++i) diagonal_slots[i] = slot(i, i);
+  }
+
+  int slot(int r, int c) const {
+    const int* begin = matrix.innerIndexPtr() + matrix.outerIndexPtr()[c];
+    const int* end = matrix.innerIndexPtr() + matrix.outerIndexPtr()[c + 1];
+    const int* it = std::lower_bound(begin, end, r);
+    return static_cast<int>(it - matrix.innerIndexPtr());
+  }
+
+  Eigen::SparseMatrix<double> matrix;
+  std::vector<int> tri_slots, vertex_slots, diagonal_slots;
+};
+
+}  // namespace
+
+const char* stop_reason_name(StopReason reason) {
+  switch (reason) {
+    case StopReason::converged: return "converged";
+    case StopReason::stalled: return "stalled";
+    case StopReason::iteration_cap: return "iteration_cap";
+    case StopReason::cancelled: return "cancelled";
+  }
+  return "unknown";
+}
+
+NewtonReport minimize_map_energy(const MapEnergy& energy, Eigen::VectorXd& x, const NewtonOptions& options,
+                                 const std::function<bool(int, double)>& keep_going) {
+  const SourceDisk& src = energy.source();
+  require(x.size() == energy.num_variables(), MCON_ERROR_INVALID_ARGUMENT, "newton: wrong variable count");
+  require(count_inverted(src.triangles, x) == 0, MCON_ERROR_NUMERICAL, "newton: the start has inverted triangles");
+
+  NewtonReport report;
+  HessianPattern pattern(src.num_vertices, src.triangles);
+  Eigen::SparseMatrix<double>& H = pattern.matrix;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> ldlt;
+  ldlt.analyzePattern(H);
+
+  MapEnergy::Derivatives der;
+  energy.derivatives(x, der);
+  double E = der.terms.total;
+  require(std::isfinite(E), MCON_ERROR_NUMERICAL, "newton: the start energy is not finite");
+  report.energy.push_back(E);
+  report.terms = der.terms;
+  const double tolerance =
+      options.relative_decrease * std::max(std::abs(E), options.energy_scale) + options.absolute_decrease;
+  double shift_scale = 1.0;  // grows if factorizations fail, shrinks back after successes
+
+  for (int iter = 0; iter < options.max_iterations; ++iter) {
+    // Assemble.
+    double* val = H.valuePtr();
+    std::fill(val, val + H.nonZeros(), 0.0);
+    for (std::size_t t = 0; t < src.triangles.size(); ++t) {
+      const Matrix6d& h = der.triangle_hessians[t];
+      const int* slots = &pattern.tri_slots[t * 36];
+      for (int a = 0; a < 6; ++a)
+        for (int b = 0; b < 6; ++b)
+          if (slots[a * 6 + b] >= 0) val[slots[a * 6 + b]] += h(a, b);
+    }
+    for (int v = 0; v < src.num_vertices; ++v) {
+      const Eigen::Matrix2d& h = der.vertex_hessians[v];
+      val[pattern.vertex_slots[3 * v]] += h(0, 0);
+      val[pattern.vertex_slots[3 * v + 1]] += h(1, 0);
+      val[pattern.vertex_slots[3 * v + 2]] += h(1, 1);
+    }
+    double mean_diag = 0;
+    for (int s : pattern.diagonal_slots) mean_diag += val[s];
+    mean_diag = std::max(mean_diag / static_cast<double>(pattern.diagonal_slots.size()), 1e-300);
+
+    // Factorize with a diagonal shift; raise it until the factorization is positive definite.
+    Eigen::VectorXd dir;
+    bool solved = false;
+    for (int attempt = 0; attempt < 8 && !solved; ++attempt) {
+      const double shift = options.regularization * shift_scale * mean_diag;
+      for (int s : pattern.diagonal_slots) val[s] += shift;
+      ldlt.factorize(H);
+      for (int s : pattern.diagonal_slots) val[s] -= shift;
+      if (ldlt.info() == Eigen::Success && ldlt.vectorD().minCoeff() > 0) {
+        dir = -ldlt.solve(der.gradient);
+        solved = dir.allFinite();
+      }
+      if (!solved) shift_scale *= 100;
+    }
+    require(solved, MCON_ERROR_NUMERICAL, "newton: the linear solve failed");
+    shift_scale = std::max(1.0, shift_scale * 0.1);
+
+    const double slope = der.gradient.dot(dir);  // < 0 for a positive definite model
+    if (!(slope < 0)) {
+      report.reason = StopReason::converged;  // zero gradient
+      break;
+    }
+    // Newton decrement: the model predicts a decrease of -slope / 2.
+    if (-0.5 * slope <= tolerance) {
+      report.reason = StopReason::converged;
+      break;
+    }
+
+    // Line search inside the flip-free region.
+    const double t_max = max_injective_step(src.triangles, x, dir);
+    double alpha = std::min(1.0, options.step_fraction * t_max);
+    bool accepted = false;
+    Eigen::VectorXd trial;
+    MapEnergyTerms trial_terms;
+    for (int k = 0; k < options.max_backtracks; ++k) {
+      trial = x + alpha * dir;
+      trial_terms = energy.evaluate(trial);
+      if (trial_terms.total <= E + options.armijo * alpha * slope) {
+        accepted = true;
+        break;
+      }
+      alpha *= 0.5;
+    }
+    if (!accepted) {
+      report.reason = StopReason::stalled;
+      break;
+    }
+    const double decrease = E - trial_terms.total;
+    x = trial;
+    E = trial_terms.total;
+    report.iterations = iter + 1;
+    report.energy.push_back(E);
+    energy.derivatives(x, der);
+    report.terms = der.terms;
+    if (keep_going && !keep_going(iter + 1, E)) {
+      report.reason = StopReason::cancelled;
+      break;
+    }
+    if (decrease <= tolerance) {
+      report.reason = StopReason::converged;
+      break;
+    }
+    const int w = options.progress_window;
+    if (w > 0 && report.iterations > w) {
+      const std::vector<double>& e = report.energy;
+      const double recent = e[e.size() - 1 - w] - e.back(), total = e.front() - e.back();
+      if (recent <= options.progress_fraction * total) {
+        report.reason = StopReason::converged;
+        break;
+      }
+    }
+    if (iter + 1 == options.max_iterations) report.reason = StopReason::iteration_cap;
+  }
+  if (options.max_iterations <= 0) report.reason = StopReason::iteration_cap;
+  return report;
+}
+
+}  // namespace mcon

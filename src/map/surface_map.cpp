@@ -1,0 +1,304 @@
+#include "map/surface_map.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+
+#include "map/descriptor_field_2d.h"
+#include "base/error.h"
+#include "map/injective_step.h"
+#include "mesh/mesh_topology.h"
+#include "mesh/point_location_2d.h"
+
+namespace mcon {
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void check_domain(const MapDomain& d, const char* name) {
+  const std::string who(name);
+  validate_mesh(d.mesh);
+  require(d.uv.size() == d.mesh.positions.size(), MCON_ERROR_INVALID_ARGUMENT,
+          who + ": uv must have one entry per vertex");
+  for (const Vec2& p : d.uv)
+    require(std::isfinite(p.x()) && std::isfinite(p.y()), MCON_ERROR_NON_FINITE, who + ": non-finite uv");
+  require(!d.descriptor_levels.empty(), MCON_ERROR_INVALID_ARGUMENT, who + ": no descriptor level");
+  for (const Eigen::MatrixXd& level : d.descriptor_levels) {
+    require(level.rows() == d.mesh.num_vertices(), MCON_ERROR_INVALID_ARGUMENT,
+            who + ": a descriptor level does not have one row per vertex");
+    require(level.cols() >= 1, MCON_ERROR_INVALID_ARGUMENT, who + ": descriptor dimension 0");
+    require(level.allFinite(), MCON_ERROR_NON_FINITE, who + ": non-finite descriptor value");
+  }
+  for (int t = 0; t < d.mesh.num_triangles(); ++t) {
+    const Tri& tri = d.mesh.triangles[t];
+    const Vec2 e1 = d.uv[tri[1]] - d.uv[tri[0]], e2 = d.uv[tri[2]] - d.uv[tri[0]];
+    require(e1.x() * e2.y() - e1.y() * e2.x() > 0, MCON_ERROR_INVALID_ARGUMENT,
+            who + ": uv triangle " + std::to_string(t) + " is inverted or degenerate");
+  }
+}
+
+double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+double polygon_area(const std::vector<Vec2>& p) {
+  double a = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) a += cross2(p[i], p[(i + 1) % p.size()]);
+  return 0.5 * a;
+}
+
+// Share of each source triangle's image inside the target's boundary polygon (convex: its
+// corners lie on the unit circle in counter-clockwise order), by Sutherland-Hodgman clipping;
+// the map is affine per triangle, so this is also the share of its 3D area. Triangles inside
+// the polygon's inscribed circle skip the clipping.
+double overlap_ratio(const SourceDisk& disk, const std::vector<Vec2>& phi, const std::vector<Vec2>& polygon) {
+  double inscribed = 1;
+  for (std::size_t i = 0; i < polygon.size(); ++i) {
+    const Vec2 a = polygon[i], e = polygon[(i + 1) % polygon.size()] - a;
+    inscribed = std::min(inscribed, cross2(e, -a) / e.norm());  // distance of the origin to the edge's line
+  }
+  double overlap = 0;
+  std::vector<Vec2> poly, next;
+  for (std::size_t t = 0; t < disk.triangles.size(); ++t) {
+    const Tri& tri = disk.triangles[t];
+    poly = {phi[tri[0]], phi[tri[1]], phi[tri[2]]};
+    if (std::max({poly[0].norm(), poly[1].norm(), poly[2].norm()}) <= inscribed) {
+      overlap += disk.triangle_weight[t];
+      continue;
+    }
+    const double full = polygon_area(poly);
+    for (std::size_t i = 0; i < polygon.size() && !poly.empty(); ++i) {
+      const Vec2 a = polygon[i], e = polygon[(i + 1) % polygon.size()] - a;
+      next.clear();
+      for (std::size_t k = 0; k < poly.size(); ++k) {
+        const Vec2 p = poly[k], q = poly[(k + 1) % poly.size()];
+        const double sp = cross2(e, p - a), sq = cross2(e, q - a);  // >= 0: inside (left of the edge)
+        if (sp >= 0) next.push_back(p);
+        if ((sp >= 0) != (sq >= 0)) next.push_back(p + (sp / (sp - sq)) * (q - p));
+      }
+      poly.swap(next);
+    }
+    if (poly.size() >= 3 && full > 0) overlap += disk.triangle_weight[t] * std::clamp(polygon_area(poly) / full, 0.0, 1.0);
+  }
+  return overlap;
+}
+
+}  // namespace
+
+SurfaceMap compute_surface_map(const MapDomain& source, const MapDomain& target, const SurfaceMapOptions& options) {
+  check_domain(source, "source");
+  check_domain(target, "target");
+  const int L = static_cast<int>(source.descriptor_levels.size());
+  const int R = static_cast<int>(options.refine_sigma_factors.size());
+  require(static_cast<int>(target.descriptor_levels.size()) == L, MCON_ERROR_INVALID_ARGUMENT,
+          "source and target have different numbers of descriptor levels");
+  for (int l = 0; l < L; ++l)
+    require(source.descriptor_levels[l].cols() == target.descriptor_levels[l].cols(), MCON_ERROR_INVALID_ARGUMENT,
+            "source and target descriptors differ in dimension at level " + std::to_string(l));
+  require(options.sigma_scale > 0 && options.rim_band > 0 && options.rim_band < 1 &&
+              options.orientation_ambiguity >= 0 && options.mirror_energy_margin >= 0 &&
+              options.mirror_energy_margin < 1 &&
+              options.weights.barrier_start > 0 && options.weights.descriptor >= 0 &&
+              options.weights.distortion >= 0 && options.weights.area >= 0 && options.weights.injectivity >= 0,
+          MCON_ERROR_INVALID_ARGUMENT, "invalid map options");
+  for (double f : options.refine_sigma_factors)
+    require(f > 0 && std::isfinite(f), MCON_ERROR_INVALID_ARGUMENT,
+            "invalid map options: refinement sigma factors must be finite and > 0");
+  require(options.refine_max_iterations >= 1, MCON_ERROR_INVALID_ARGUMENT,
+          "invalid map options: refine_max_iterations must be >= 1");
+  std::vector<Vec2> target_polygon;
+  {
+    const MeshTopology topo = build_topology(target.mesh);
+    require(topo.boundary_loops.size() == 1, MCON_ERROR_NOT_A_DISK, "target: expected exactly one boundary loop");
+    for (int v : topo.boundary_loops[0]) {
+      require(std::abs(target.uv[v].norm() - 1.0) <= 1e-6, MCON_ERROR_INVALID_ARGUMENT,
+              "target: uv boundary vertex " + std::to_string(v) + " is not on the unit circle");
+      target_polygon.push_back(target.uv[v]);
+    }
+    require(polygon_area(target_polygon) > 0, MCON_ERROR_INVALID_ARGUMENT,
+            "target: uv boundary is not counter-clockwise");
+  }
+  auto report = [&](double f) {
+    if (options.progress && !options.progress(f)) fail(MCON_ERROR_CANCELLED, "surface map cancelled");
+  };
+  report(0.0);
+
+  // Target fields and the per-level Gaussian widths.
+  const TriangleLocator2D target_locator(target.uv, target.mesh.triangles);
+  std::vector<std::unique_ptr<DescriptorField2D>> fields;
+  std::vector<MatchLevel> levels(L);
+  SurfaceMap out;
+  out.levels.resize(L + R);
+  for (int c : options.chiral_columns)
+    require(c >= 0 && c < source.descriptor_levels[0].cols(), MCON_ERROR_INVALID_ARGUMENT,
+            "chiral column " + std::to_string(c) + " is not a descriptor column");
+  std::vector<Eigen::MatrixXd> reflected_levels;  // the source as a mirrored map sees it
+  if (!options.chiral_columns.empty())
+    for (int l = 0; l < L; ++l) {
+      reflected_levels.push_back(source.descriptor_levels[l]);
+      for (int c : options.chiral_columns) reflected_levels.back().col(c) *= -1.0;
+    }
+  auto source_values = [&](int l, bool reflected) -> const Eigen::MatrixXd& {
+    return reflected && !reflected_levels.empty() ? reflected_levels[l] : source.descriptor_levels[l];
+  };
+  for (int l = 0; l < L; ++l) {
+    fields.push_back(std::make_unique<DescriptorField2D>(target_locator, target.descriptor_levels[l]));
+    levels[l].source_values = &source.descriptor_levels[l];
+    if (!reflected_levels.empty()) levels[l].source_values_reflected = &reflected_levels[l];
+    levels[l].target_field = fields.back().get();
+    levels[l].score.sigma =
+        options.sigma_scale * descriptor_sigma(source.descriptor_levels[l], target.descriptor_levels[l]);
+    levels[l].score.band = options.rim_band;
+    out.levels[l].sigma = levels[l].score.sigma;
+  }
+  for (int r = 0; r < R; ++r) out.levels[L + r].sigma = levels[L - 1].score.sigma * options.refine_sigma_factors[r];
+
+  // 1. Rigid start.
+  const auto t0 = std::chrono::steady_clock::now();
+  const SourceDisk plain = make_source_disk(source.mesh, source.uv, false);
+  constexpr double kAlignShare = 0.15;
+  RigidAlignmentOptions alignment_options = options.alignment;
+  if (options.orientation != MapOrientation::automatic) alignment_options.allow_reflection = true;  // both scored
+  RigidAlignmentResult init = align_rigid(source.uv, plain.vertex_weight, levels, alignment_options,
+                                          [&](double f) { report(kAlignShare * f); return true; });
+  if (options.orientation != MapOrientation::automatic) {
+    // A forced orientation takes that orientation's best refined candidate.
+    const bool reverse = options.orientation == MapOrientation::reverse;
+    const double score = reverse ? init.score_reflected : init.score_unreflected;
+    require(score >= 0, MCON_ERROR_NUMERICAL, "surface map: no rigid candidate of the requested orientation");
+    init.transform = reverse ? init.best_reflected : init.best_unreflected;
+    init.score = score;
+  }
+  out.alignment_seconds = seconds_since(t0);
+  out.alignment = init;
+
+  // 2. Projected Newton, smoothest level first.
+  const auto t1 = std::chrono::steady_clock::now();
+  const int n = source.mesh.num_vertices();
+  // Runs stage s from x (s < L: descriptor level s; else refinement pass s - L at the finest
+  // level with its narrower width); its iterations map into the progress range.
+  // energy_scale: the first level's start energy, the tolerance scale of later stages.
+  auto stage_score = [&](int s) {
+    ScoreSettings score = levels[std::min(s, L - 1)].score;
+    score.outside = OutsideRule::nearest_rim;
+    score.sigma = out.levels[s].sigma;
+    return score;
+  };
+  auto run_level = [&](int s, const SourceDisk& disk, Eigen::VectorXd& x, double energy_scale, double progress_from,
+                       double progress_to) {
+    const int l = std::min(s, L - 1);
+    const MapEnergy energy(disk, *fields[l], source_values(l, disk.reflected), stage_score(s), options.weights);
+    bool cancelled = false;
+    NewtonOptions newton = options.newton;
+    if (s >= L) newton.max_iterations = std::min(newton.max_iterations, options.refine_max_iterations);
+    newton.energy_scale = std::max(newton.energy_scale, energy_scale);
+    const int cap = std::max(newton.max_iterations, 1);
+    NewtonReport r = minimize_map_energy(energy, x, newton, [&](int it, double) {
+      const double f = progress_from + (progress_to - progress_from) * std::min(1.0, static_cast<double>(it) / cap);
+      if (options.progress && !options.progress(std::min(f, 0.999))) cancelled = true;
+      return !cancelled;
+    });
+    if (cancelled || r.reason == StopReason::cancelled) fail(MCON_ERROR_CANCELLED, "surface map cancelled");
+    return r;
+  };
+  auto start_from = [&](const RigidTransform2D& T) {
+    Eigen::VectorXd x(2 * n);
+    for (int v = 0; v < n; ++v) x.segment<2>(2 * v) = T.apply(source.uv[v]);
+    return x;
+  };
+  const double level_share = (1 - kAlignShare) / (L + R);
+  // One orientation's optimization: its disk, iterate and per-level reports.
+  struct Candidate {
+    const SourceDisk* disk;
+    Eigen::VectorXd x;
+    std::vector<NewtonReport> reports;
+    double energy_scale = 0;
+  };
+  // Runs the candidate's next level in the progress range [p0, p1].
+  auto advance = [&](Candidate& c, double p0, double p1) {
+    const int l = static_cast<int>(c.reports.size());
+    c.reports.push_back(run_level(l, *c.disk, c.x, c.energy_scale, p0, p1));
+    if (l == 0) c.energy_scale = c.reports.back().energy.front();
+  };
+  auto level_from = [&](int l) { return kAlignShare + l * level_share; };
+  const bool compare = options.orientation == MapOrientation::automatic && init.score_unreflected >= 0 &&
+                       init.score_reflected >= 0 && options.alignment.allow_reflection &&
+                       std::abs(init.score_reflected - init.score_unreflected) < options.orientation_ambiguity;
+  // The mirrored rest disk only where a mirrored candidate runs.
+  const SourceDisk mirrored = (compare || init.transform.reflected) ? make_source_disk(source.mesh, source.uv, true)
+                                                                    : SourceDisk{};
+  Candidate chosen{init.transform.reflected ? &mirrored : &plain, start_from(init.transform), {}, 0};
+  if (compare) {
+    // Both orientations, each optimized on its own; the lower energy after the compared levels
+    // decides, the mirrored one only by the relative margin.
+    Candidate cp{&plain, start_from(init.best_unreflected), {}, 0};
+    Candidate cm{&mirrored, start_from(init.best_reflected), {}, 0};
+    const int upto = std::clamp(options.compared_levels, 1, L);
+    for (int l = 0; l < upto; ++l) {
+      const double mid = level_from(l) + 0.5 * level_share;
+      advance(cp, level_from(l), mid);
+      advance(cm, mid, level_from(l + 1));
+    }
+    out.orientation_compared = true;
+    out.level0_energy_unreflected = cp.reports.front().energy.back();
+    out.level0_energy_reflected = cm.reports.front().energy.back();
+    const bool mirror_wins =
+        cm.reports.back().energy.back() < (1 - options.mirror_energy_margin) * cp.reports.back().energy.back();
+    chosen = mirror_wins ? std::move(cm) : std::move(cp);
+    out.alignment.transform = mirror_wins ? init.best_reflected : init.best_unreflected;
+    out.alignment.score = mirror_wins ? init.score_reflected : init.score_unreflected;
+  }
+  const SourceDisk& disk = *chosen.disk;
+  out.reflected = disk.reflected;
+  while (static_cast<int>(chosen.reports.size()) < L + R) {
+    const int l = static_cast<int>(chosen.reports.size());
+    advance(chosen, level_from(l), level_from(l + 1));
+  }
+  for (int l = 0; l < L + R; ++l) {
+    const NewtonReport& r = chosen.reports[l];
+    LevelReport& lr = out.levels[l];
+    lr.iterations = r.iterations;
+    lr.stop_reason = r.reason;
+    lr.energy_start = r.energy.front();
+    lr.energy_end = r.energy.back();
+    for (double e : r.energy) {
+      out.energy_history.push_back(e);
+      out.energy_history_level.push_back(l);
+    }
+    out.iterations += r.iterations;
+    if (l == L - 1) out.stop_reason = r.reason;  // a refinement pass ends at its short cap by design
+    out.energy = r.terms;
+  }
+  const Eigen::VectorXd& x = chosen.x;
+  if (R > 0)  // the reported terms (and matching score) keep the finest level's width
+    out.energy = MapEnergy(disk, *fields[L - 1], source_values(L - 1, disk.reflected), stage_score(L - 1),
+                           options.weights)
+                     .evaluate(x);
+  out.optimization_seconds = seconds_since(t1);
+  const int inverted = count_inverted(disk.triangles, x);
+  require(inverted == 0, MCON_ERROR_NUMERICAL,
+          "surface map: " + std::to_string(inverted) + " inverted triangles in the result");
+  out.matching_score = 1.0 - out.energy.descriptor;
+
+  // 3. Both directions and the overlap.
+  out.phi.resize(n);
+  for (int v = 0; v < n; ++v) out.phi[v] = x.segment<2>(2 * v);
+  out.source_to_target.resize(n);
+  for (int v = 0; v < n; ++v) {
+    const PointLocation loc = target_locator.locate(out.phi[v]);
+    out.source_to_target[v] = {loc.triangle, loc.barycentric};
+  }
+  out.overlap_ratio = overlap_ratio(disk, out.phi, target_polygon);
+  const TriangleLocator2D deformed(out.phi, source.mesh.triangles);
+  out.target_to_source.resize(target.uv.size());
+  for (std::size_t w = 0; w < target.uv.size(); ++w) {
+    const PointLocation loc = deformed.locate(target.uv[w]);
+    out.target_to_source[w] = {loc.triangle, loc.barycentric};
+  }
+  report(1.0);
+  return out;
+}
+
+}  // namespace mcon

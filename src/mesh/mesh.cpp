@@ -1,0 +1,208 @@
+#include "mesh/mesh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <numeric>
+#include <string>
+#include <unordered_map>
+
+#include "base/error.h"
+
+namespace mcon {
+namespace {
+
+std::uint64_t edge_key(int a, int b) {
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
+}
+
+int find_root(std::vector<int>& parent, int i) {
+  while (parent[i] != i) {
+    parent[i] = parent[parent[i]];
+    i = parent[i];
+  }
+  return i;
+}
+
+void validate_impl(const TriMesh& mesh, bool allow_isolated) {
+  const int nv = mesh.num_vertices();
+  const int nt = mesh.num_triangles();
+  require(nv > 0 && nt > 0, MCON_ERROR_EMPTY_MESH,
+          "mesh is empty (" + std::to_string(nv) + " vertices, " + std::to_string(nt) + " triangles)");
+
+  for (int v = 0; v < nv; ++v) {
+    const Vec3& p = mesh.positions[v];
+    if (!(std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z())))
+      fail(MCON_ERROR_NON_FINITE, "vertex " + std::to_string(v) + " has a non-finite coordinate");
+  }
+  for (int t = 0; t < nt; ++t) {
+    const Tri& tri = mesh.triangles[t];
+    for (int i = 0; i < 3; ++i) {
+      if (tri[i] < 0 || tri[i] >= nv)
+        fail(MCON_ERROR_INDEX_OUT_OF_RANGE, "triangle " + std::to_string(t) + " uses vertex index " +
+                                                std::to_string(static_cast<unsigned>(tri[i])) + " but the mesh has " +
+                                                std::to_string(nv) + " vertices");
+    }
+    if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2])
+      fail(MCON_ERROR_REPEATED_INDEX, "triangle " + std::to_string(t) + " repeats a vertex (" +
+                                          std::to_string(tri[0]) + ", " + std::to_string(tri[1]) + ", " +
+                                          std::to_string(tri[2]) + ")");
+  }
+  for (int t = 0; t < nt; ++t) {
+    const Tri& tri = mesh.triangles[t];
+    const Vec3 &a = mesh.positions[tri[0]], &b = mesh.positions[tri[1]], &c = mesh.positions[tri[2]];
+    const double longest = std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
+    const double twice_area = (b - a).cross(c - a).norm();
+    // Relative test: exact collinearity gives round-off of order 1e-16 * longest^2.
+    if (!(twice_area > 1e-12 * longest))
+      fail(MCON_ERROR_DEGENERATE_TRIANGLE, "triangle " + std::to_string(t) + " has zero area");
+  }
+
+  // Directed edges: each may appear once; its reverse at most once.
+  std::unordered_map<std::uint64_t, int> directed;
+  directed.reserve(static_cast<std::size_t>(nt) * 3);
+  for (int t = 0; t < nt; ++t) {
+    const Tri& tri = mesh.triangles[t];
+    for (int i = 0; i < 3; ++i) {
+      const int a = tri[i], b = tri[(i + 1) % 3];
+      auto [it, inserted] = directed.emplace(edge_key(a, b), t);
+      if (!inserted) {
+        fail(MCON_ERROR_NON_MANIFOLD_EDGE, "edge (" + std::to_string(a) + ", " + std::to_string(b) +
+                                               ") is used by triangles " + std::to_string(it->second) + " and " +
+                                               std::to_string(t) +
+                                               " in the same direction (more than two triangles, or inconsistent "
+                                               "orientation)");
+      }
+    }
+  }
+
+  // Vertex fans: the triangles around a vertex must form one fan, i.e. be connected through the
+  // edges incident to that vertex.
+  std::vector<std::vector<int>> vertex_triangles(nv);
+  for (int t = 0; t < nt; ++t)
+    for (int v : mesh.triangles[t]) vertex_triangles[v].push_back(t);
+  std::vector<int> parent;
+  std::vector<std::pair<int, int>> first_triangle_with_link_vertex;  // (link vertex, slot); valences are small
+  for (int v = 0; v < nv; ++v) {
+    const auto& ts = vertex_triangles[v];
+    if (ts.empty()) {
+      if (!allow_isolated) fail(MCON_ERROR_ISOLATED_VERTEX, "vertex " + std::to_string(v) + " is not used by any triangle");
+      continue;
+    }
+    parent.resize(ts.size());
+    std::iota(parent.begin(), parent.end(), 0);
+    first_triangle_with_link_vertex.clear();
+    for (int k = 0; k < static_cast<int>(ts.size()); ++k) {
+      for (int w : mesh.triangles[ts[k]]) {
+        if (w == v) continue;
+        auto it = std::find_if(first_triangle_with_link_vertex.begin(), first_triangle_with_link_vertex.end(),
+                               [w](const auto& e) { return e.first == w; });
+        if (it == first_triangle_with_link_vertex.end())
+          first_triangle_with_link_vertex.emplace_back(w, k);
+        else
+          parent[find_root(parent, k)] = find_root(parent, it->second);
+      }
+    }
+    int fans = 0;
+    for (int k = 0; k < static_cast<int>(ts.size()); ++k) fans += (find_root(parent, k) == k);
+    if (fans != 1)
+      fail(MCON_ERROR_NON_MANIFOLD_VERTEX, "vertex " + std::to_string(v) + " joins " + std::to_string(fans) +
+                                               " separate fans of triangles (non-manifold vertex)");
+  }
+}
+
+template <typename Scalar>
+Vec3 read_position(const unsigned char* base, std::size_t stride, std::size_t i) {
+  Scalar xyz[3];
+  std::memcpy(xyz, base + i * stride, sizeof(xyz));
+  return Vec3(static_cast<double>(xyz[0]), static_cast<double>(xyz[1]), static_cast<double>(xyz[2]));
+}
+
+}  // namespace
+
+void validate_mesh(const TriMesh& mesh) { validate_impl(mesh, false); }
+void validate_mesh_allow_isolated(const TriMesh& mesh) { validate_impl(mesh, true); }
+
+TriMesh mesh_from_arrays(const MeshArrays& in) {
+  require(in.vertex_count > 0 && in.triangle_count > 0, MCON_ERROR_EMPTY_MESH,
+          "mesh is empty (" + std::to_string(in.vertex_count) + " vertices, " + std::to_string(in.triangle_count) +
+              " triangles)");
+  require(in.positions != nullptr, MCON_ERROR_NULL_POINTER, "positions pointer is NULL");
+  require(in.indices != nullptr, MCON_ERROR_NULL_POINTER, "indices pointer is NULL");
+  require(in.vertex_count < (1u << 31) && in.triangle_count < (1u << 31), MCON_ERROR_INVALID_ARGUMENT,
+          "meshes are limited to 2^31 - 1 vertices and triangles");
+  const std::size_t scalar = in.positions_are_double ? sizeof(double) : sizeof(float);
+  const std::size_t pstride = in.position_stride ? in.position_stride : 3 * scalar;
+  const std::size_t istride = in.index_stride ? in.index_stride : 3 * sizeof(std::uint32_t);
+  require(pstride >= 3 * scalar, MCON_ERROR_INVALID_ARGUMENT,
+          "position_stride " + std::to_string(pstride) + " is smaller than one position (" +
+              std::to_string(3 * scalar) + " bytes)");
+  require(istride >= 3 * sizeof(std::uint32_t), MCON_ERROR_INVALID_ARGUMENT,
+          "index_stride " + std::to_string(istride) + " is smaller than one triangle (12 bytes)");
+
+  TriMesh mesh;
+  mesh.positions.resize(in.vertex_count);
+  const auto* pbase = static_cast<const unsigned char*>(in.positions);
+  for (std::size_t i = 0; i < in.vertex_count; ++i)
+    mesh.positions[i] = in.positions_are_double ? read_position<double>(pbase, pstride, i)
+                                                : read_position<float>(pbase, pstride, i);
+  mesh.triangles.resize(in.triangle_count);
+  const auto* ibase = reinterpret_cast<const unsigned char*>(in.indices);
+  for (std::size_t t = 0; t < in.triangle_count; ++t) {
+    std::uint32_t idx[3];
+    std::memcpy(idx, ibase + t * istride, sizeof(idx));
+    for (int k = 0; k < 3; ++k) {
+      require(idx[k] < in.vertex_count, MCON_ERROR_INDEX_OUT_OF_RANGE,
+              "triangle " + std::to_string(t) + " uses vertex index " + std::to_string(idx[k]) + " but the mesh has " +
+                  std::to_string(in.vertex_count) + " vertices");
+      mesh.triangles[t][k] = static_cast<int>(idx[k]);
+    }
+  }
+  validate_mesh(mesh);
+  return mesh;
+}
+
+double triangle_area(const TriMesh& mesh, int t) {
+  const Tri& tri = mesh.triangles[t];
+  const Vec3 &a = mesh.positions[tri[0]], &b = mesh.positions[tri[1]], &c = mesh.positions[tri[2]];
+  return 0.5 * (b - a).cross(c - a).norm();
+}
+
+Vec3 triangle_normal(const TriMesh& mesh, int t) {
+  const Tri& tri = mesh.triangles[t];
+  const Vec3 &a = mesh.positions[tri[0]], &b = mesh.positions[tri[1]], &c = mesh.positions[tri[2]];
+  const Vec3 n = (b - a).cross(c - a);
+  const double len = n.norm();
+  return len > 0 ? Vec3(n / len) : Vec3::Zero();
+}
+
+double total_area(const TriMesh& mesh) {
+  double area = 0;
+  for (int t = 0; t < mesh.num_triangles(); ++t) area += triangle_area(mesh, t);
+  return area;
+}
+
+double mean_edge_length(const TriMesh& mesh) {
+  double sum = 0;
+  for (const Tri& tri : mesh.triangles)
+    for (int i = 0; i < 3; ++i) sum += (mesh.positions[tri[i]] - mesh.positions[tri[(i + 1) % 3]]).norm();
+  return mesh.triangles.empty() ? 0.0 : sum / (3.0 * static_cast<double>(mesh.triangles.size()));
+}
+
+std::vector<int> remove_unreferenced_vertices(TriMesh& mesh) {
+  std::vector<int> remap(mesh.positions.size(), -1);
+  for (const Tri& tri : mesh.triangles)
+    for (int v : tri) remap[v] = 0;
+  int next = 0;
+  for (std::size_t v = 0; v < remap.size(); ++v)
+    if (remap[v] == 0) {
+      mesh.positions[next] = mesh.positions[v];
+      remap[v] = next++;
+    }
+  mesh.positions.resize(next);
+  for (Tri& tri : mesh.triangles)
+    for (int& v : tri) v = remap[v];
+  return remap;
+}
+
+}  // namespace mcon

@@ -1,0 +1,455 @@
+#include "patch/geodesic_disk_patch.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <numeric>
+#include <string>
+#include <unordered_map>
+
+#include "patch/disk_parametrization.h"
+#include "base/error.h"
+#include "operators/heat_geodesics.h"
+#include "mesh/mesh_region.h"
+#include "mesh/mesh_topology.h"
+
+namespace mcon {
+namespace {
+
+// Work only within this multiple of the radius (edge-graph distance) around the center.
+constexpr double kRegionFactor = 3.0;
+// An enclosed part beyond a second cut loop is a pocket (mouth cavity, eye socket) if it is a
+// cavity: its outward normals face its own centroid (normalized concavity > 0; measured +0.25 on
+// the mouth and face pockets of both benchmark models). The far side of a limb that the disk
+// wrapped around is a protrusion (measured -0.08 to -0.10 for a hand): then the disk is an annulus.
+constexpr double kMinPocketConcavity = 0.05;
+
+enum class Side : std::uint8_t { kIn, kOn, kOut };
+
+std::uint64_t edge_key(int a, int b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
+}
+
+void check_options(const TriMesh& host, const PatchOptions& o) {
+  require(std::isfinite(o.radius) && o.radius > 0, MCON_ERROR_INVALID_ARGUMENT,
+          "radius must be finite and > 0 (got " + std::to_string(o.radius) + ")");
+  require(std::isfinite(o.snap_fraction) && o.snap_fraction >= 0 && o.snap_fraction <= 0.45,
+          MCON_ERROR_INVALID_ARGUMENT, "snap_fraction must lie in [0, 0.45]");
+  const PatchCenter& c = o.center;
+  if (c.vertex >= 0) {
+    require(c.vertex < host.num_vertices(), MCON_ERROR_INVALID_ARGUMENT,
+            "center vertex " + std::to_string(c.vertex) + " is out of range (mesh has " +
+                std::to_string(host.num_vertices()) + " vertices)");
+    return;
+  }
+  require(c.triangle >= 0 && c.triangle < host.num_triangles(), MCON_ERROR_INVALID_ARGUMENT,
+          "center triangle " + std::to_string(c.triangle) + " is out of range (mesh has " +
+              std::to_string(host.num_triangles()) + " triangles)");
+  const Vec3& b = c.barycentric;
+  require(b.allFinite() && b.minCoeff() >= -1e-9 && std::abs(b.sum() - 1.0) < 1e-6, MCON_ERROR_INVALID_ARGUMENT,
+          "center barycentric coordinates must be finite, >= 0 and sum to 1");
+}
+
+// Splits vertices whose triangles form several fans (possible where the cut pinches the disk
+// at a single vertex) into one vertex per fan. Returns, per new vertex, the old vertex.
+std::vector<int> split_nonmanifold_vertices(TriMesh& mesh) {
+  const int nv = mesh.num_vertices();
+  std::vector<std::vector<int>> corners(nv);  // (triangle * 3 + corner) per vertex
+  for (int t = 0; t < mesh.num_triangles(); ++t)
+    for (int k = 0; k < 3; ++k) corners[mesh.triangles[t][k]].push_back(3 * t + k);
+  std::vector<int> origin(nv);
+  std::iota(origin.begin(), origin.end(), 0);
+  std::vector<int> parent;
+  for (int v = 0; v < nv; ++v) {
+    const auto& cs = corners[v];
+    parent.resize(cs.size());
+    std::iota(parent.begin(), parent.end(), 0);
+    auto find = [&](int i) {
+      while (parent[i] != i) i = parent[i] = parent[parent[i]];
+      return i;
+    };
+    std::unordered_map<int, int> first_with;  // link vertex -> corner slot
+    for (int k = 0; k < static_cast<int>(cs.size()); ++k)
+      for (int w : mesh.triangles[cs[k] / 3]) {
+        if (w == v) continue;
+        auto [it, inserted] = first_with.emplace(w, k);
+        if (!inserted) parent[find(k)] = find(it->second);
+      }
+    std::unordered_map<int, int> fan_vertex;
+    for (int k = 0; k < static_cast<int>(cs.size()); ++k) {
+      const int root = find(k);
+      if (fan_vertex.empty()) fan_vertex[root] = v;
+      auto it = fan_vertex.find(root);
+      if (it == fan_vertex.end()) {
+        it = fan_vertex.emplace(root, mesh.num_vertices()).first;
+        mesh.positions.push_back(mesh.positions[v]);
+        origin.push_back(v);
+      }
+      mesh.triangles[cs[k] / 3][cs[k] % 3] = it->second;
+    }
+  }
+  return origin;
+}
+
+}  // namespace
+
+int Patch::filled_triangles() const {
+  return static_cast<int>(std::count(host_triangle.begin(), host_triangle.end(), -1));
+}
+
+Patch extract_geodesic_disk(const TriMesh& host, const PatchOptions& options) {
+  check_options(host, options);
+  auto report = [&](double fraction) {
+    if (options.progress && !options.progress(fraction))
+      fail(MCON_ERROR_CANCELLED, "patch extraction cancelled by the progress callback");
+  };
+  report(0.0);
+  const double r = options.radius;
+  const PatchCenter& c = options.center;
+
+  std::vector<std::vector<int>> host_vertex_triangles(host.num_vertices());
+  for (int t = 0; t < host.num_triangles(); ++t)
+    for (int v : host.triangles[t]) host_vertex_triangles[v].push_back(t);
+  Vec3 center_point;
+  if (c.vertex >= 0) {
+    center_point = host.positions[c.vertex];
+  } else {
+    const Tri& tri = host.triangles[c.triangle];
+    const Vec3 b = c.barycentric / c.barycentric.sum();
+    center_point = b[0] * host.positions[tri[0]] + b[1] * host.positions[tri[1]] + b[2] * host.positions[tri[2]];
+  }
+
+  // 1. A bounded region around the center, and geodesic distance on it.
+  const MeshRegion region =
+      mesh_region_around(host, host_vertex_triangles, c.vertex, c.triangle, center_point, kRegionFactor * r);
+  report(0.1);
+  const TriMesh& rm = region.mesh;
+  Eigen::VectorXd d;
+  {
+    HeatGeodesics heat(rm);
+    if (c.vertex >= 0) {
+      d = heat.from_vertices({region.host_to_vertex[c.vertex]});
+    } else {
+      const auto it = std::find(region.triangle_to_host.begin(), region.triangle_to_host.end(), c.triangle);
+      d = heat.from_point(static_cast<int>(it - region.triangle_to_host.begin()), c.barycentric / c.barycentric.sum());
+    }
+  }
+  report(0.4);
+  const MeshTopology rt = build_topology(rm);
+
+  // 2. Snap iso-line crossings that fall close to a vertex onto that vertex (no slivers).
+  std::vector<char> snap(rm.num_vertices(), 0);
+  for (const auto& e : rt.edges) {
+    const double da = d[e[0]], db = d[e[1]];
+    if ((da < r) == (db < r) || !std::isfinite(da) || !std::isfinite(db)) continue;
+    const double t = (r - da) / (db - da);
+    if (t < options.snap_fraction) snap[e[0]] = 1;
+    if (t > 1.0 - options.snap_fraction) snap[e[1]] = 1;
+  }
+  for (int v = 0; v < rm.num_vertices(); ++v)
+    if (snap[v]) d[v] = r;
+  std::vector<Side> side(rm.num_vertices());
+  for (int v = 0; v < rm.num_vertices(); ++v) side[v] = d[v] < r ? Side::kIn : (d[v] == r ? Side::kOn : Side::kOut);
+  const int center_region_vertex =
+      c.vertex >= 0 ? region.host_to_vertex[c.vertex] : -1;
+  require(center_region_vertex < 0 || side[center_region_vertex] == Side::kIn, MCON_ERROR_INVALID_ARGUMENT,
+          "radius " + std::to_string(r) + " is too small for the mesh resolution at the center");
+
+  // 3. The disk's triangles: those with an inside corner, connected to the center through
+  //    edges that are (partly) inside.
+  const int nt = rm.num_triangles();
+  auto has = [&](int t, Side s) {
+    for (int v : rm.triangles[t])
+      if (side[v] == s) return true;
+    return false;
+  };
+  auto edge_has = [&](int e, Side s) { return side[rt.edges[e][0]] == s || side[rt.edges[e][1]] == s; };
+  std::vector<char> kept(nt, 0);
+  {
+    std::vector<int> stack;
+    for (int t = 0; t < nt; ++t) {
+      const bool seed = c.vertex >= 0
+                            ? std::find(rm.triangles[t].begin(), rm.triangles[t].end(), center_region_vertex) !=
+                                  rm.triangles[t].end()
+                            : region.triangle_to_host[t] == c.triangle;
+      if (seed && has(t, Side::kIn)) {
+        kept[t] = 1;
+        stack.push_back(t);
+      }
+    }
+    require(!stack.empty(), MCON_ERROR_INVALID_ARGUMENT,
+            "radius " + std::to_string(r) + " is too small for the mesh resolution at the center");
+    while (!stack.empty()) {
+      const int t = stack.back();
+      stack.pop_back();
+      for (int e : rt.triangle_edges[t]) {
+        if (edge_has(e, Side::kOut) && !edge_has(e, Side::kIn)) continue;  // touches the disk in a point
+        for (int u : rt.edge_triangles[e])
+          if (u >= 0 && !kept[u] && has(u, Side::kIn)) {
+            kept[u] = 1;
+            stack.push_back(u);
+          }
+      }
+    }
+  }
+  double kept_area = 0;
+  for (int t = 0; t < nt; ++t)
+    if (kept[t]) kept_area += triangle_area(rm, t);
+
+  // 4. What lies outside the disk, in connected parts. Exactly one part reaches beyond the
+  //    region (or, on a closed surface seen whole, is the largest); the others are enclosed
+  //    pockets. A second big outer part means the disk wrapped around into an annulus.
+  std::vector<int> part(nt, -1);
+  std::vector<char> part_is_pocket;
+  {
+    std::vector<char> in_complement(nt, 0);
+    for (int t = 0; t < nt; ++t) in_complement[t] = !kept[t] || has(t, Side::kOut);
+    struct PartInfo {
+      bool touches_cut = false;  // reaches beyond the region, or the host's own boundary
+      double area = 0;
+      Vec3 weighted_centroid = Vec3::Zero();
+      std::vector<int> triangles;  // whole triangles of the part
+    };
+    std::vector<PartInfo> parts;
+    std::vector<int> stack;
+    for (int seed = 0; seed < nt; ++seed) {
+      if (!in_complement[seed] || part[seed] >= 0) continue;
+      const int id = static_cast<int>(parts.size());
+      parts.emplace_back();
+      part[seed] = id;
+      stack.push_back(seed);
+      while (!stack.empty()) {
+        const int t = stack.back();
+        stack.pop_back();
+        PartInfo& info = parts[id];
+        if (!kept[t]) {
+          info.area += triangle_area(rm, t);
+          info.triangles.push_back(t);
+          const Tri& tt = rm.triangles[t];
+          info.weighted_centroid += triangle_area(rm, t) *
+                                    (rm.positions[tt[0]] + rm.positions[tt[1]] + rm.positions[tt[2]]) / 3.0;
+        }
+        for (int v : rm.triangles[t])
+          info.touches_cut |= region.vertex_on_cut[v] != 0 || region.vertex_on_host_boundary[v] != 0;
+        for (int e : rt.triangle_edges[t])
+          for (int u : rt.edge_triangles[e]) {
+            if (u < 0 || u == t || !in_complement[u] || part[u] >= 0) continue;
+            if (kept[t] && kept[u] && !edge_has(e, Side::kOut)) continue;  // an edge inside the disk
+            part[u] = id;
+            stack.push_back(u);
+          }
+      }
+    }
+    part_is_pocket.assign(parts.size(), 0);
+    int largest = -1;
+    for (int i = 0; i < static_cast<int>(parts.size()); ++i)
+      if (largest < 0 || parts[i].area > parts[largest].area) largest = i;
+    int outer_parts = 0;
+    for (int i = 0; i < static_cast<int>(parts.size()); ++i) {
+      const PartInfo& p = parts[i];
+      const bool enclosed = !p.touches_cut && !(region.is_whole_component && i == largest);
+      double concavity = 0;
+      if (p.area > 0) {
+        const Vec3 c0 = p.weighted_centroid / p.area;
+        for (int t : p.triangles) {
+          const Tri& tt = rm.triangles[t];
+          const Vec3 x = (rm.positions[tt[0]] + rm.positions[tt[1]] + rm.positions[tt[2]]) / 3.0;
+          concavity += triangle_area(rm, t) * triangle_normal(rm, t).dot(c0 - x);
+        }
+        concavity /= p.area * std::sqrt(p.area);  // scale-free
+      }
+      part_is_pocket[i] = enclosed && concavity > kMinPocketConcavity;
+      if (!part_is_pocket[i]) ++outer_parts;
+    }
+    if (outer_parts > 1)
+      fail(MCON_ERROR_NOT_A_DISK,
+           "not a disk: the geodesic disk wraps around into an annulus (its outside falls apart into " +
+               std::to_string(outer_parts) + " parts that are not cavities, e.g. around a limb); use a smaller radius");
+  }
+  report(0.55);
+
+  // 5. Assemble: whole triangles inside (and pockets, if filling), clipped triangles on the cut.
+  Patch patch;
+  TriMesh& pm = patch.mesh;
+  std::vector<int> vertex_of_region(rm.num_vertices(), -1);
+  std::unordered_map<std::uint64_t, int> vertex_of_crossing;
+  std::vector<char> is_cut_vertex;
+  auto region_vertex = [&](int v) {
+    if (vertex_of_region[v] < 0) {
+      vertex_of_region[v] = pm.num_vertices();
+      pm.positions.push_back(rm.positions[v]);
+      const int hv = region.vertex_to_host[v];
+      patch.host_vertex.push_back({hv, hv, 0.0});
+      is_cut_vertex.push_back(side[v] == Side::kOn);
+    }
+    return vertex_of_region[v];
+  };
+  auto crossing_vertex = [&](int a, int b) {
+    const auto key = edge_key(a, b);
+    auto it = vertex_of_crossing.find(key);
+    if (it != vertex_of_crossing.end()) return it->second;
+    if (region.vertex_to_host[a] > region.vertex_to_host[b]) std::swap(a, b);  // t from the lower host index
+    const double t = (r - d[a]) / (d[b] - d[a]);
+    const int id = pm.num_vertices();
+    pm.positions.push_back((1 - t) * rm.positions[a] + t * rm.positions[b]);
+    patch.host_vertex.push_back({region.vertex_to_host[a], region.vertex_to_host[b], t});
+    is_cut_vertex.push_back(1);
+    vertex_of_crossing.emplace(key, id);
+    return id;
+  };
+  for (int t = 0; t < nt; ++t) {
+    const bool pocket = part[t] >= 0 && part_is_pocket[part[t]] && options.fill_holes;
+    if (!kept[t] && !pocket) continue;
+    const Tri& tri = rm.triangles[t];
+    const int host_t = region.triangle_to_host[t];
+    if (pocket || !has(t, Side::kOut)) {
+      pm.triangles.push_back({region_vertex(tri[0]), region_vertex(tri[1]), region_vertex(tri[2])});
+      patch.host_triangle.push_back(host_t);
+      continue;
+    }
+    // Clip against d <= r (Sutherland-Hodgman on one triangle): 3 or 4 corners.
+    int poly[4];
+    int count = 0;
+    for (int k = 0; k < 3; ++k) {
+      const int a = tri[k], b = tri[(k + 1) % 3];
+      if (side[a] != Side::kOut) poly[count++] = region_vertex(a);
+      if ((side[a] == Side::kIn && side[b] == Side::kOut) || (side[a] == Side::kOut && side[b] == Side::kIn))
+        poly[count++] = crossing_vertex(a, b);
+    }
+    if (count == 3) {
+      pm.triangles.push_back({poly[0], poly[1], poly[2]});
+      patch.host_triangle.push_back(host_t);
+    } else if (count == 4) {
+      // Split the quad along its shorter diagonal.
+      const double d02 = (pm.positions[poly[0]] - pm.positions[poly[2]]).squaredNorm();
+      const double d13 = (pm.positions[poly[1]] - pm.positions[poly[3]]).squaredNorm();
+      if (d02 <= d13) {
+        pm.triangles.push_back({poly[0], poly[1], poly[2]});
+        pm.triangles.push_back({poly[0], poly[2], poly[3]});
+      } else {
+        pm.triangles.push_back({poly[0], poly[1], poly[3]});
+        pm.triangles.push_back({poly[1], poly[2], poly[3]});
+      }
+      patch.host_triangle.push_back(host_t);
+      patch.host_triangle.push_back(host_t);
+    }
+  }
+
+  // 6. Pinch points become separate vertices, then the boundary loops decide.
+  {
+    const std::vector<int> origin = split_nonmanifold_vertices(pm);
+    for (std::size_t v = patch.host_vertex.size(); v < origin.size(); ++v) {
+      patch.host_vertex.push_back(patch.host_vertex[origin[v]]);
+      is_cut_vertex.push_back(is_cut_vertex[origin[v]]);
+    }
+  }
+  MeshTopology pt = build_topology(pm);
+  std::vector<int> cut_loops, other_loops;
+  for (int i = 0; i < static_cast<int>(pt.boundary_loops.size()); ++i) {
+    bool on_cut = false;
+    for (int v : pt.boundary_loops[i]) on_cut |= is_cut_vertex[v] != 0;
+    (on_cut ? cut_loops : other_loops).push_back(i);
+  }
+  if (pt.boundary_loops.empty())
+    fail(MCON_ERROR_NOT_A_DISK, "not a disk: the geodesic disk covers a whole closed surface; use a smaller radius");
+  if (cut_loops.size() > 1)
+    fail(MCON_ERROR_NOT_A_DISK,
+         "not a disk: " + std::to_string(cut_loops.size()) + " boundary loops on the geodesic circle" +
+             (options.fill_holes ? std::string(" (the disk wraps around into an annulus)")
+                                 : std::string(" (enclosed pockets: enable hole filling)")));
+  int outer = cut_loops.empty() ? -1 : cut_loops[0];
+  if (outer < 0) {  // the disk reaches the host's own boundary all round: take the longest loop
+    for (int i : other_loops)
+      if (outer < 0 || pt.boundary_loops[i].size() > pt.boundary_loops[outer].size()) outer = i;
+  }
+  std::vector<int> holes;
+  for (int i = 0; i < static_cast<int>(pt.boundary_loops.size()); ++i)
+    if (i != outer) holes.push_back(i);
+  if (!holes.empty() && !options.fill_holes)
+    fail(MCON_ERROR_NOT_A_DISK, "not a disk: " + std::to_string(holes.size()) +
+                                    " holes of the host mesh inside the geodesic disk (enable hole filling)");
+
+  // 7. Cap each inner hole with a fan around its centroid, flagged as filled (host triangle -1).
+  for (int h : holes) {
+    const std::vector<int>& loop = pt.boundary_loops[h];
+    const int m = static_cast<int>(loop.size());
+    if (m == 3) {
+      pm.triangles.push_back({loop[2], loop[1], loop[0]});
+      patch.host_triangle.push_back(-1);
+      continue;
+    }
+    Vec3 centroid = Vec3::Zero();
+    for (int v : loop) centroid += pm.positions[v];
+    centroid /= m;
+    const int cv = pm.num_vertices();
+    pm.positions.push_back(centroid);
+    patch.host_vertex.push_back({-1, -1, 0.0});
+    is_cut_vertex.push_back(0);
+    for (int i = 0; i < m; ++i) {  // the loop has the mesh on its left: the cap runs the other way
+      pm.triangles.push_back({loop[(i + 1) % m], loop[i], cv});
+      patch.host_triangle.push_back(-1);
+    }
+  }
+  if (!holes.empty()) pt = build_topology(pm);
+  const int chi = euler_characteristic(pm, pt);
+  {
+    std::vector<int> comp;
+    const int components = triangle_components(pm, pt, comp);
+    require(components == 1, MCON_ERROR_NOT_A_DISK,
+            "not a disk: " + std::to_string(components) + " separate pieces");
+  }
+  require(pt.boundary_loops.size() == 1 && chi == 1, MCON_ERROR_NOT_A_DISK,
+          "not a disk: the geodesic disk has a handle (Euler characteristic " + std::to_string(chi) + ", " +
+              std::to_string(pt.boundary_loops.size()) + " boundary loops); use a smaller radius");
+  validate_mesh(pm);
+  patch.boundary_loop = pt.boundary_loops[0];
+  report(0.7);
+
+  // 8. Where the center lies in the patch.
+  if (c.vertex >= 0) {
+    const int pv = vertex_of_region[center_region_vertex];
+    for (int t = 0; t < pm.num_triangles() && patch.center.triangle < 0; ++t)
+      for (int k = 0; k < 3; ++k)
+        if (pm.triangles[t][k] == pv) {
+          patch.center.triangle = t;
+          patch.center.barycentric = Vec3::Zero();
+          patch.center.barycentric[k] = 1.0;
+        }
+  } else {
+    double best = -1e300;
+    for (int t = 0; t < pm.num_triangles(); ++t) {
+      if (patch.host_triangle[t] != c.triangle) continue;
+      const Tri& tri = pm.triangles[t];
+      const Vec3 a = pm.positions[tri[0]], e1 = pm.positions[tri[1]] - a, e2 = pm.positions[tri[2]] - a;
+      const Vec3 p = center_point - a;
+      const double d11 = e1.dot(e1), d12 = e1.dot(e2), d22 = e2.dot(e2), p1 = p.dot(e1), p2 = p.dot(e2);
+      const double det = d11 * d22 - d12 * d12;
+      const double u = (d22 * p1 - d12 * p2) / det, v = (d11 * p2 - d12 * p1) / det;
+      const Vec3 b(1 - u - v, u, v);
+      if (b.minCoeff() > best) {
+        best = b.minCoeff();
+        patch.center.triangle = t;
+        patch.center.barycentric = b.cwiseMax(0.0) / b.cwiseMax(0.0).sum();
+      }
+    }
+  }
+  require(patch.center.triangle >= 0, MCON_ERROR_UNKNOWN, "the center was lost while cutting the patch");
+
+  // 9. Normalize to geodesic radius 1 around the center, parametrize, measure.
+  patch.center_position = center_point;
+  patch.radius = r;
+  for (Vec3& p : pm.positions) p = (p - center_point) / r;
+  report(0.8);
+  patch.uv = disk_parametrization(pm, patch.boundary_loop);
+  patch.param_flipped_triangles = count_flipped_triangles(pm, patch.uv);
+  {
+    HeatGeodesics heat(pm);
+    const Eigen::VectorXd pd = heat.from_point(patch.center.triangle, patch.center.barycentric);
+    patch.max_geodesic_distance = pd.maxCoeff();
+  }
+  report(1.0);
+  return patch;
+}
+
+}  // namespace mcon

@@ -1,0 +1,297 @@
+#include "transfer/polyline_transfer.h"
+
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <mutex>
+#include <string>
+
+#include "base/error.h"
+#include "mesh/mesh_topology.h"
+#include "mesh/point_location_2d.h"
+
+namespace mcon {
+
+namespace {
+
+Vec3 clamp_barycentric(const Vec3& b) {
+  const Vec3 c = b.cwiseMax(0.0);
+  const double s = c.sum();
+  return s > 0 ? Vec3(c / s) : Vec3(1.0 / 3, 1.0 / 3, 1.0 / 3);
+}
+
+struct TracePoint {
+  int triangle;
+  Vec3 barycentric;
+  Vec2 uv;  // in the target disk's plane
+};
+
+struct SegmentExit {
+  int edge = -1;  // the edge opposite this corner; -1 if the segment ends inside
+  double s = std::numeric_limits<double>::infinity();  // segment parameter of the crossing
+};
+
+// Where the straight segment with barycentric coordinates l0 + s * d (s in [0, 1]) first leaves
+// its triangle: the barycentric coordinate that reaches 0 first, ignoring the edge it came in by
+// (`entry`, -1 for none). Both walks (point location and re-tracing) step through it.
+SegmentExit first_exit(const Vec3& l0, const Vec3& d, int entry) {
+  SegmentExit out;
+  for (int i = 0; i < 3; ++i) {
+    if (i == entry || !(d[i] < 0)) continue;
+    const double si = -l0[i] / d[i];
+    if (si < out.s) {
+      out.s = si;
+      out.edge = i;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+struct PolylineTransfer::Impl {
+  MapView map;
+  std::vector<std::array<int, 3>> neighbor;       // target triangle across the edge opposite corner k
+  std::vector<std::array<int, 2>> boundary_edges;  // (triangle, corner opposite the boundary edge)
+  // Built only if a point cannot be reached by walking (see locate): a quadtree over a squeezed
+  // disk parametrization (filled eye sockets, fingers) is far more expensive than the walks.
+  mutable std::once_flag locator_once;
+  mutable std::unique_ptr<TriangleLocator2D> locator;
+
+  explicit Impl(const MapView& m) : map(m) {
+    const MeshTopology topo = build_topology(m.target);
+    neighbor.resize(m.target.triangles.size());
+    for (int t = 0; t < m.target.num_triangles(); ++t)
+      for (int k = 0; k < 3; ++k) {
+        const auto& et = topo.edge_triangles[topo.triangle_edges[t][k]];
+        neighbor[t][k] = et[0] == t ? et[1] : et[0];
+        if (neighbor[t][k] < 0) boundary_edges.push_back({t, k});
+      }
+  }
+
+  Vec3 bary(int t, const Vec2& p) const {
+    const Tri& tri = map.target.triangles[t];
+    return barycentric_2d(p, map.target_uv[tri[0]], map.target_uv[tri[1]], map.target_uv[tri[2]]);
+  }
+
+  // The corner of triangle `t` opposite the edge it shares with `other`.
+  int corner_facing(int t, int other) const {
+    for (int k = 0; k < 3; ++k)
+      if (neighbor[t][k] == other) return k;
+    return -1;
+  }
+
+  // The target triangle containing p, the image of a point of source triangle `source_triangle`.
+  // Walks in the target's disk plane from the image of one of that triangle's corners (whose
+  // target triangle the map already knows) straight to p. The target's uv domain is convex (its
+  // boundary vertices lie on the unit circle in order), so a walk that leaves it means p lies
+  // outside. Only if no corner has an image on the target is the point located from scratch.
+  PointLocation locate(const Vec2& p, int source_triangle) const {
+    for (int k = 0; k < 3; ++k) {
+      const int v = map.source.triangles[source_triangle][k];
+      const SurfacePoint& c = map.source_to_target[v];
+      if (c.triangle < 0) continue;
+      const Vec2 a = map.phi[v];
+      int cur = c.triangle, entry = -1;
+      for (std::size_t steps = 0; steps <= 4 * neighbor.size() + 16; ++steps) {
+        const Vec3 l0 = bary(cur, a), l1 = bary(cur, p);
+        const SegmentExit exit = first_exit(l0, l1 - l0, entry);
+        const int edge = exit.edge;
+        const double s_exit = exit.s;
+        if (edge < 0 || s_exit >= 1.0) {
+          PointLocation out;
+          out.triangle = cur;
+          out.barycentric = clamp_barycentric(l1);
+          return out;
+        }
+        const int next = neighbor[cur][edge];
+        if (next < 0) return PointLocation{};  // left the (convex) target disk: outside
+        entry = corner_facing(next, cur);
+        cur = next;
+      }
+      break;  // no termination (degenerate geometry): fall back to the locator
+    }
+    std::call_once(locator_once,
+                   [&] { locator = std::make_unique<TriangleLocator2D>(map.target_uv, map.target.triangles); });
+    return locator->locate(p);
+  }
+
+  // Smallest s in [s_min, 1] where segment a->b enters the target through a boundary edge, not
+  // counting `exclude` (the edge just left). Returns false if it never does.
+  bool find_entry(const Vec2& a, const Vec2& b, double s_min, const std::array<int, 2>& exclude, double& s_out,
+                  int& t_out, int& k_out) const {
+    double best = std::numeric_limits<double>::infinity();
+    for (const auto& [t, k] : boundary_edges) {
+      if (t == exclude[0] && k == exclude[1]) continue;
+      const Vec3 l0 = bary(t, a), l1 = bary(t, b);
+      const double d = l1[k] - l0[k];
+      if (!(d > 0)) continue;  // entering means the opposite corner's weight grows
+      const double s = -l0[k] / d;
+      if (s < s_min - 1e-12 || s > 1.0 || s >= best) continue;
+      const Vec3 l = l0 + s * (l1 - l0);
+      if (l.minCoeff() < -1e-9) continue;  // crosses the edge's line outside the edge
+      best = s;
+      t_out = t;
+      k_out = k;
+    }
+    if (!(best <= 1.0)) return false;
+    s_out = std::max(best, s_min);
+    return true;
+  }
+};
+
+PolylineTransfer::PolylineTransfer(const MapView& map) {
+  check_map_view(map);
+  impl_ = new Impl(map);
+}
+
+PolylineTransfer::~PolylineTransfer() { delete impl_; }
+
+Vec2 PolylineTransfer::phi_of(const SurfacePoint& p) const {
+  const MapView& m = impl_->map;
+  const Vec3 b = checked_barycentric(p.triangle, p.barycentric, m.source.num_triangles(), "source point");
+  const Tri& t = m.source.triangles[p.triangle];
+  // phi is affine on each source triangle: the point keeps its barycentric coordinates (Fig. 4.3).
+  return b[0] * m.phi[t[0]] + b[1] * m.phi[t[1]] + b[2] * m.phi[t[2]];
+}
+
+SurfacePoint PolylineTransfer::map_point(const SurfacePoint& p) const {
+  const PointLocation loc = impl_->locate(phi_of(p), p.triangle);
+  SurfacePoint out;
+  if (loc.triangle >= 0) {
+    out.triangle = loc.triangle;
+    out.barycentric = loc.barycentric;
+  }
+  return out;
+}
+
+std::vector<TracedPolyline> PolylineTransfer::map_polylines(const std::vector<PolylineInput>& inputs) const {
+  const Impl& I = *impl_;
+  const TriMesh& T = I.map.target;
+  std::vector<TracedPolyline> result;
+  const std::size_t step_cap = 4 * T.triangles.size() + 16;
+
+  for (std::size_t pi = 0; pi < inputs.size(); ++pi) {
+    const PolylineInput& in = inputs[pi];
+    require(in.points.size() >= 2, MCON_ERROR_INVALID_ARGUMENT,
+            "polyline " + std::to_string(pi) + " has " + std::to_string(in.points.size()) + " points (at least 2)");
+    std::vector<Vec2> p;
+    p.reserve(in.points.size() + 1);
+    for (const SurfacePoint& q : in.points) p.push_back(phi_of(q));
+    if (in.closed) p.push_back(p.front());
+
+    std::vector<std::vector<TracePoint>> pieces;
+    bool open = false;  // the last piece is still being traced
+    int breaks = 0;     // times the walk left the target
+    bool starts_inside = false;
+    auto append = [&](int t, const Vec3& b, const Vec2& uv) {
+      std::vector<TracePoint>& piece = pieces.back();
+      // The same point again (a segment starting on an edge, or passing a vertex): keep one, in
+      // the triangle of the segment that follows it.
+      if (!piece.empty() && (piece.back().uv - uv).norm() <= 1e-14) {
+        piece.back().triangle = t;
+        piece.back().barycentric = clamp_barycentric(b);
+        return;
+      }
+      piece.push_back({t, clamp_barycentric(b), uv});
+    };
+
+    int cur = -1;    // target triangle of the walk, -1 outside
+    int entry = -1;  // corner of `cur` opposite the edge the walk came in through
+    {
+      const PointLocation loc = I.locate(p[0], in.points[0].triangle);
+      if (loc.triangle >= 0) {
+        pieces.emplace_back();
+        open = true;
+        starts_inside = true;
+        cur = loc.triangle;
+        append(cur, loc.barycentric, p[0]);
+      }
+    }
+    for (std::size_t k = 0; k + 1 < p.size(); ++k) {
+      const Vec2 a = p[k], b = p[k + 1];
+      if ((b - a).norm() <= 1e-15) continue;
+      double s = 0;
+      std::array<int, 2> left_edge{-1, -1};
+      std::size_t steps = 0;
+      while (true) {
+        require(++steps <= step_cap, MCON_ERROR_NUMERICAL,
+                "polyline " + std::to_string(pi) + ": the walk over the target did not terminate");
+        if (cur < 0) {
+          double se = 0;
+          int t = -1, kk = -1;
+          if (!I.find_entry(a, b, s, left_edge, se, t, kk)) break;  // this segment stays outside
+          pieces.emplace_back();
+          open = true;
+          cur = t;
+          entry = kk;
+          s = se;
+          const Vec2 x = a + s * (b - a);
+          append(cur, I.bary(cur, x), x);
+          continue;
+        }
+        const Vec3 l0 = I.bary(cur, a), l1 = I.bary(cur, b), d = l1 - l0;
+        const SegmentExit exit = first_exit(l0, d, entry);
+        const int edge = exit.edge;
+        double s_exit = exit.s;
+        if (edge < 0 || s_exit >= 1.0) {  // b lies in this triangle
+          append(cur, l1, b);
+          entry = -1;
+          break;
+        }
+        s_exit = std::max(s_exit, s);
+        const Vec2 x = a + s_exit * (b - a);
+        const int next = I.neighbor[cur][edge];
+        if (next < 0) {  // leaving the target disk: the rest of this piece is outside the overlap
+          append(cur, l0 + s_exit * d, x);
+          open = false;
+          ++breaks;
+          left_edge = {cur, edge};
+          cur = -1;
+          entry = -1;
+          // Re-enter only strictly later: a segment grazing a boundary vertex could otherwise
+          // "enter" through the other boundary edge at the same point and circle the vertex.
+          s = s_exit + 1e-9;
+          continue;
+        }
+        entry = I.corner_facing(next, cur);
+        cur = next;
+        s = s_exit;
+        append(cur, I.bary(cur, x), x);
+      }
+    }
+
+    if (in.closed && starts_inside && open) {
+      if (breaks == 0 && pieces.size() == 1) {
+        // The whole loop survived: drop the repeated first point; the one before it now carries
+        // the triangle of the closing segment.
+        if (pieces[0].size() >= 2) pieces[0].pop_back();
+      } else if (pieces.size() >= 2) {
+        // The piece that reaches the start again continues into the first piece.
+        std::vector<TracePoint> merged = std::move(pieces.back());
+        pieces.pop_back();
+        merged.pop_back();
+        merged.insert(merged.end(), pieces[0].begin(), pieces[0].end());
+        pieces[0] = std::move(merged);
+      }
+    }
+    const bool closed_out = in.closed && starts_inside && breaks == 0 && pieces.size() == 1;
+    for (const auto& piece : pieces) {
+      if (piece.size() < 2) continue;
+      TracedPolyline out;
+      out.closed = closed_out && piece.size() >= 3;
+      if (closed_out && !out.closed) continue;
+      out.input = static_cast<int>(pi);
+      for (const TracePoint& q : piece) {
+        out.points.push_back({q.triangle, q.barycentric});
+        const Tri& t = T.triangles[q.triangle];
+        out.positions.push_back(q.barycentric[0] * T.positions[t[0]] + q.barycentric[1] * T.positions[t[1]] +
+                                q.barycentric[2] * T.positions[t[2]]);
+      }
+      result.push_back(std::move(out));
+    }
+  }
+  return result;
+}
+
+}  // namespace mcon
