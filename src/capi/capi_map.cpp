@@ -195,10 +195,10 @@ mcon_status mcon_map_get_info(mcon_map map, mcon_map_info* info) {
     v.overlap_ratio = m.overlap_ratio;
     v.matching_score = m.matching_score;
     v.energy_total = m.energy.total;
-    v.energy_descriptor = m.energy.descriptor;
-    v.energy_distortion = m.energy.distortion;
-    v.energy_area = m.energy.area;
-    v.energy_injectivity = m.energy.injectivity;
+    v.energy_descriptor = m.energy.value("descriptor");
+    v.energy_distortion = m.energy.value("distortion");
+    v.energy_area = m.energy.value("area");
+    v.energy_injectivity = m.energy.value("injectivity");
     v.iterations = static_cast<std::uint32_t>(m.iterations);
     v.stop_reason = stop_reason_code(m.stop_reason);
     v.reflected = m.reflected ? 1 : 0;

@@ -1,6 +1,7 @@
 #include "map/map_energy.h"
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include <Eigen/Eigenvalues>
@@ -35,6 +36,39 @@ Eigen::Matrix2d jacobian_at(const Eigen::VectorXd& x, const Tri& tri, const Eige
 }
 
 }  // namespace
+
+const std::vector<MapEnergyTerm>& map_energy_terms() {
+  static const std::vector<MapEnergyTerm> terms = {
+      {"descriptor", &MapEnergyWeights::descriptor, nullptr},
+      {"distortion", &MapEnergyWeights::distortion,
+       [](const Eigen::Matrix2d& J, const MapEnergyWeights&, Eigen::Vector4d* g, Eigen::Matrix4d* h) {
+         return conformal_distortion(J, g, h);
+       }},
+      {"area", &MapEnergyWeights::area,
+       [](const Eigen::Matrix2d& J, const MapEnergyWeights&, Eigen::Vector4d* g, Eigen::Matrix4d* h) {
+         return area_distortion(J, g, h);
+       }},
+      {"injectivity", &MapEnergyWeights::injectivity,
+       [](const Eigen::Matrix2d& J, const MapEnergyWeights& w, Eigen::Vector4d* g, Eigen::Matrix4d* h) {
+         return injectivity_barrier(J, w.barrier_start, g, h);
+       }},
+  };
+  return terms;
+}
+
+int map_energy_term_index(const char* name) {
+  const std::vector<MapEnergyTerm>& terms = map_energy_terms();
+  for (std::size_t i = 0; i < terms.size(); ++i)
+    if (std::strcmp(terms[i].name, name) == 0) return static_cast<int>(i);
+  return -1;
+}
+
+double MapEnergyTerms::value(const char* name) const {
+  const int i = map_energy_term_index(name);
+  require(i >= 0 && static_cast<std::size_t>(i) < values.size(), MCON_ERROR_INVALID_ARGUMENT,
+          std::string("map energy: no term named '") + name + "'");
+  return values[static_cast<std::size_t>(i)];
+}
 
 std::vector<Vec2> rest_positions(const std::vector<Vec2>& uv, bool reflected) {
   std::vector<Vec2> rest(uv);
@@ -169,38 +203,58 @@ MapEnergy::MapEnergy(const SourceDisk& source, const DescriptorField2D& target_f
     for (int k = 0; k < d; ++k) values_[static_cast<std::size_t>(v) * d + k] = source_values(v, k);
 }
 
+MapEnergy::TriangleTermSet MapEnergy::triangle_terms() const {
+  TriangleTermSet set;
+  const std::vector<MapEnergyTerm>& terms = map_energy_terms();
+  for (std::size_t i = 0; i < terms.size(); ++i) {
+    if (terms[i].triangle_energy == nullptr) {
+      set.descriptor = static_cast<int>(i);
+    } else {
+      set.index.push_back(static_cast<int>(i));
+      set.energy.push_back(terms[i].triangle_energy);
+      set.weight.push_back(weights_.*terms[i].weight);
+    }
+  }
+  return set;
+}
+
+// The weighted total, summed in table order (the order of the terms is the order of the sum).
+double MapEnergy::weighted_total(const std::vector<double>& values) const {
+  const std::vector<MapEnergyTerm>& terms = map_energy_terms();
+  double total = weights_.*terms[0].weight * values[0];
+  for (std::size_t i = 1; i < terms.size(); ++i) total += weights_.*terms[i].weight * values[i];
+  return total;
+}
+
 MapEnergyTerms MapEnergy::evaluate(const Eigen::VectorXd& x) const {
-  MapEnergyTerms terms;
   const SourceDisk& s = *source_;
   const int d = field_->dimension();
   const int nt = static_cast<int>(s.triangles.size());
-  // Distortion and barrier per triangle; an inverted triangle makes both +infinity.
+  const TriangleTermSet tt = triangle_terms();
+  const std::size_t k = tt.energy.size();
+  MapEnergyTerms terms;
+  terms.values.assign(map_energy_terms().size(), 0.0);
+  // The triangle terms per block; an inverted triangle makes the distortion and barrier +infinity.
   const int tblocks = (nt + kTriangleBlock - 1) / kTriangleBlock;
-  std::vector<Eigen::Vector3d> sums(static_cast<std::size_t>(tblocks), Eigen::Vector3d::Zero());
+  std::vector<double> sums(static_cast<std::size_t>(tblocks) * k, 0.0);
   for_each_block(nt, kTriangleBlock, [&](int begin, int end, int b) {
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    double* sum = &sums[static_cast<std::size_t>(b) * k];
     for (int t = begin; t < end; ++t) {
       const Eigen::Matrix2d J = jacobian_at(x, s.triangles[t], s.rest_inverse[t]);
       const double w = s.triangle_weight[t];
-      sum += w * Eigen::Vector3d(conformal_distortion(J, nullptr, nullptr), area_distortion(J, nullptr, nullptr),
-                                 injectivity_barrier(J, weights_.barrier_start, nullptr, nullptr));
+      for (std::size_t j = 0; j < k; ++j) sum[j] += w * tt.energy[j](J, weights_, nullptr, nullptr);
     }
-    sums[b] = sum;
   });
-  for (int b = 0; b < tblocks; ++b) {
-    terms.distortion += sums[b][0];
-    terms.area += sums[b][1];
-    terms.injectivity += sums[b][2];
-  }
-  terms.descriptor = deterministic_sum(s.num_vertices, kVertexBlock, [&](int v) {
+  for (int b = 0; b < tblocks; ++b)
+    for (std::size_t j = 0; j < k; ++j) terms.values[tt.index[j]] += sums[static_cast<std::size_t>(b) * k + j];
+  terms.values[tt.descriptor] = deterministic_sum(s.num_vertices, kVertexBlock, [&](int v) {
     thread_local std::vector<double> scratch;
     scratch.resize(3 * static_cast<std::size_t>(d));
     const ScoreSample sample = match_score(*field_, &values_[static_cast<std::size_t>(v) * d],
                                            Vec2(x[2 * v], x[2 * v + 1]), score_, false, scratch.data());
     return s.vertex_weight[v] * (1.0 - sample.score);
   });
-  terms.total = weights_.descriptor * terms.descriptor + weights_.distortion * terms.distortion +
-                weights_.area * terms.area + weights_.injectivity * terms.injectivity;
+  terms.total = weighted_total(terms.values);
   if (!std::isfinite(terms.total)) terms.total = kInf;
   return terms;
 }
@@ -210,50 +264,53 @@ void MapEnergy::derivatives(const Eigen::VectorXd& x, Derivatives& out) const {
   const int d = field_->dimension();
   const int nt = static_cast<int>(s.triangles.size());
   const int nv = s.num_vertices;
+  const TriangleTermSet tt = triangle_terms();
+  const std::size_t k = tt.energy.size();
   out.triangle_hessians.resize(nt);
   out.vertex_hessians.resize(nv);
   std::vector<Vector6d> tri_grad(static_cast<std::size_t>(nt));
   std::vector<Vec2> vert_grad(static_cast<std::size_t>(nv));
   const int tblocks = (nt + kTriangleBlock - 1) / kTriangleBlock;
-  std::vector<Eigen::Vector3d> sums(static_cast<std::size_t>(tblocks), Eigen::Vector3d::Zero());
+  std::vector<double> sums(static_cast<std::size_t>(tblocks) * k, 0.0);
   for_each_block(nt, kTriangleBlock, [&](int begin, int end, int b) {
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    double* sum = &sums[static_cast<std::size_t>(b) * k];
     for (int t = begin; t < end; ++t) {
       const Eigen::Matrix2d J = jacobian_at(x, s.triangles[t], s.rest_inverse[t]);
-      Eigen::Vector4d g1, g2, g3;
-      Eigen::Matrix4d h1, h2, h3;
-      const double e1 = conformal_distortion(J, &g1, &h1);
-      const double e2 = area_distortion(J, &g2, &h2);
-      const double e3 = injectivity_barrier(J, weights_.barrier_start, &g3, &h3);
       const double w = s.triangle_weight[t];
-      sum += w * Eigen::Vector3d(e1, e2, e3);
-      const Eigen::Vector4d g = w * (weights_.distortion * g1 + weights_.area * g2 + weights_.injectivity * g3);
-      const Eigen::Matrix4d h = project_psd(
-          Eigen::Matrix4d(w * (weights_.distortion * h1 + weights_.area * h2 + weights_.injectivity * h3)));
+      // The weighted sum of the terms' derivatives, then one PSD projection of the element's
+      // Hessian (projecting the sum keeps more curvature than summing projected terms).
+      Eigen::Vector4d g_sum = Eigen::Vector4d::Zero();
+      Eigen::Matrix4d h_sum = Eigen::Matrix4d::Zero();
+      for (std::size_t j = 0; j < k; ++j) {
+        Eigen::Vector4d g;
+        Eigen::Matrix4d h;
+        sum[j] += w * tt.energy[j](J, weights_, &g, &h);
+        g_sum += tt.weight[j] * g;
+        h_sum += tt.weight[j] * h;
+      }
+      const Eigen::Vector4d grad = w * g_sum;
+      const Eigen::Matrix4d hess = project_psd(Eigen::Matrix4d(w * h_sum));
       const Eigen::Matrix<double, 4, 6> B = jacobian_map(s.rest_inverse[t]);
-      tri_grad[t] = B.transpose() * g;
-      out.triangle_hessians[t] = B.transpose() * h * B;
+      tri_grad[t] = B.transpose() * grad;
+      out.triangle_hessians[t] = B.transpose() * hess * B;
     }
-    sums[b] = sum;
   });
   MapEnergyTerms terms;
-  for (int b = 0; b < tblocks; ++b) {
-    terms.distortion += sums[b][0];
-    terms.area += sums[b][1];
-    terms.injectivity += sums[b][2];
-  }
-  terms.descriptor = deterministic_sum(nv, kVertexBlock, [&](int v) {
+  terms.values.assign(map_energy_terms().size(), 0.0);
+  for (int b = 0; b < tblocks; ++b)
+    for (std::size_t j = 0; j < k; ++j) terms.values[tt.index[j]] += sums[static_cast<std::size_t>(b) * k + j];
+  const double descriptor_weight = weights_.*map_energy_terms()[tt.descriptor].weight;
+  terms.values[tt.descriptor] = deterministic_sum(nv, kVertexBlock, [&](int v) {
     thread_local std::vector<double> scratch;
     scratch.resize(3 * static_cast<std::size_t>(d));
     const ScoreSample sample = match_score(*field_, &values_[static_cast<std::size_t>(v) * d],
                                            Vec2(x[2 * v], x[2 * v + 1]), score_, true, scratch.data());
-    const double w = weights_.descriptor * s.vertex_weight[v];
+    const double w = descriptor_weight * s.vertex_weight[v];
     vert_grad[v] = -w * sample.gradient;
     out.vertex_hessians[v] = project_psd(Eigen::Matrix2d(-w * sample.hessian));
     return s.vertex_weight[v] * (1.0 - sample.score);
   });
-  terms.total = weights_.descriptor * terms.descriptor + weights_.distortion * terms.distortion +
-                weights_.area * terms.area + weights_.injectivity * terms.injectivity;
+  terms.total = weighted_total(terms.values);
   out.terms = terms;
   // Gather in a fixed order (deterministic).
   out.gradient.setZero(2 * nv);

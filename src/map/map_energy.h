@@ -49,12 +49,25 @@ struct MapEnergyWeights {
   double barrier_start = 0.5;  // s_f: area ratio det J_phi below which the barrier acts
 };
 
+// The terms of the energy, in evaluation and summation order: the descriptor term (per source
+// vertex) first, then the terms of the Jacobian J of phi on each source triangle. The table lives
+// in map_energy.cpp; a new term is one row there plus its weight in MapEnergyWeights.
+using TriangleEnergy = double (*)(const Eigen::Matrix2d& J, const MapEnergyWeights& weights,
+                                  Eigen::Vector4d* gradient, Eigen::Matrix4d* hessian);
+struct MapEnergyTerm {
+  const char* name;
+  double MapEnergyWeights::*weight;
+  TriangleEnergy triangle_energy;  // nullptr for the descriptor term
+};
+const std::vector<MapEnergyTerm>& map_energy_terms();
+// Index of the term named `name` in map_energy_terms(); -1 if there is none.
+int map_energy_term_index(const char* name);
+
 struct MapEnergyTerms {
-  double descriptor = 0;   // unweighted, = 1 - (area-weighted matching score)
-  double distortion = 0;   // unweighted, area-weighted mean of the conformal distortion
-  double area = 0;         // unweighted, area-weighted mean of the area distortion
-  double injectivity = 0;  // unweighted barrier
-  double total = 0;        // weighted sum; +infinity if a triangle is inverted
+  std::vector<double> values;  // unweighted, one per map_energy_terms() entry
+  double total = 0;            // weighted sum; +infinity if a triangle is inverted
+  // The unweighted value of the term named `name` (a name from map_energy_terms()).
+  double value(const char* name) const;
 };
 
 // The source disk as the energy sees it: rest triangles (the source's uv, mirrored for a
@@ -116,6 +129,16 @@ class MapEnergy {
   void derivatives(const Eigen::VectorXd& x, Derivatives& out) const;
 
  private:
+  // The triangle rows of map_energy_terms(), resolved against the weights once per evaluation.
+  struct TriangleTermSet {
+    int descriptor = 0;               // index of the descriptor term
+    std::vector<int> index;           // index of each triangle term in map_energy_terms()
+    std::vector<TriangleEnergy> energy;
+    std::vector<double> weight;
+  };
+  TriangleTermSet triangle_terms() const;
+  double weighted_total(const std::vector<double>& values) const;
+
   const SourceDisk* source_;
   const DescriptorField2D* field_;
   std::vector<double> values_;  // source descriptors, row-major n * d for contiguous access

@@ -280,7 +280,7 @@ SurfaceMap compute_surface_map(const MapDomain& source, const MapDomain& target,
   const int inverted = count_inverted(disk.triangles, x);
   require(inverted == 0, MCON_ERROR_NUMERICAL,
           "surface map: " + std::to_string(inverted) + " inverted triangles in the result");
-  out.matching_score = 1.0 - out.energy.descriptor;
+  out.matching_score = 1.0 - out.energy.value("descriptor");
 
   // 3. Both directions and the overlap.
   out.phi.resize(n);

@@ -226,3 +226,53 @@ TEST(MapEnergy, SourceDiskRejectsBadInput) {
   uv.pop_back();
   EXPECT_THROW(make_source_disk(m, uv, false), Error);
 }
+
+namespace {
+
+TEST(MapEnergy, TermTableNamesEachTermOnceWithTheDescriptorFirst) {
+  const std::vector<MapEnergyTerm>& terms = map_energy_terms();
+  ASSERT_GE(terms.size(), 4u);
+  EXPECT_STREQ(terms[0].name, "descriptor");
+  EXPECT_EQ(terms[0].triangle_energy, nullptr);
+  for (std::size_t i = 0; i < terms.size(); ++i) {
+    EXPECT_EQ(map_energy_term_index(terms[i].name), static_cast<int>(i));
+    if (i > 0) {
+      EXPECT_NE(terms[i].triangle_energy, nullptr) << terms[i].name;
+    }
+  }
+  for (const char* name : {"distortion", "area", "injectivity"}) EXPECT_GE(map_energy_term_index(name), 1) << name;
+  EXPECT_EQ(map_energy_term_index("bogus"), -1);
+}
+
+TEST(MapEnergy, TotalIsTheWeightedSumOfTheTermValues) {
+  synthetic::GroundTruth truth;
+  truth.angle = 0.2;
+  const synthetic::Problem pr = synthetic::make_problem(6, 5, truth, 2, {0.0});
+  const TriangleLocator2D locator(pr.target_uv, pr.target.triangles);
+  const DescriptorField2D field(locator, pr.target_levels[0]);
+  const SourceDisk disk = make_source_disk(pr.source, pr.source_uv, false);
+  ScoreSettings score;
+  score.sigma = 0.3;
+  MapEnergyWeights w;
+  w.descriptor = 0.7;
+  w.distortion = 0.2;
+  w.area = 0.3;
+  w.injectivity = 0.05;
+  w.barrier_start = 0.9;
+  const MapEnergy energy(disk, field, pr.source_levels[0], score, w);
+  Eigen::VectorXd x(2 * pr.source_uv.size());
+  for (std::size_t v = 0; v < pr.source_uv.size(); ++v) x.segment<2>(2 * v) = 0.8 * rotation(0.2) * pr.source_uv[v];
+  const MapEnergyTerms t = energy.evaluate(x);
+  ASSERT_EQ(t.values.size(), map_energy_terms().size());
+  double expected = 0;
+  for (std::size_t i = 0; i < t.values.size(); ++i) {
+    EXPECT_TRUE(std::isfinite(t.values[i])) << map_energy_terms()[i].name;
+    expected += w.*map_energy_terms()[i].weight * t.values[i];
+  }
+  EXPECT_NEAR(t.total, expected, 1e-12 * std::max(1.0, std::abs(expected)));
+  EXPECT_GT(t.value("area"), 0);  // the disk was shrunk to 0.8: the area term sees it
+  EXPECT_EQ(t.value("descriptor"), t.values[0]);
+  EXPECT_THROW(t.value("bogus"), Error);
+}
+
+}  // namespace

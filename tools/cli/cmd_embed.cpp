@@ -385,10 +385,8 @@ int run_embed(const Args& args) {
   for (std::uint8_t o : outside) target_inside += o == 0;
   Json energies = Json::object();
   energies.set("total", map.energy.total);
-  energies.set("descriptor", map.energy.descriptor);
-  energies.set("distortion", map.energy.distortion);
-  energies.set("area", map.energy.area);
-  energies.set("injectivity", map.energy.injectivity);
+  for (std::size_t i = 0; i < map_energy_terms().size(); ++i)
+    energies.set(map_energy_terms()[i].name, map.energy.values[i]);
   Json timings = Json::object();
   timings.set("patches", patch_seconds);
   timings.set("map", map_seconds);
