@@ -319,6 +319,8 @@ namespace Macrocon
         [DllImport(Lib)] internal static extern Status mcon_map_release(IntPtr map);
         [DllImport(Lib)] internal static extern Status mcon_map_info_init(ref MapInfo info);
         [DllImport(Lib)] internal static extern Status mcon_map_get_info(MapHandle map, ref MapInfo info);
+        [DllImport(Lib)] internal static extern Status mcon_map_get_energy_term_count(MapHandle map, out uint count);
+        [DllImport(Lib)] internal static extern Status mcon_map_get_energy_term(MapHandle map, uint index, out IntPtr name, out double value);
         [DllImport(Lib)] internal static extern Status mcon_map_get_correspondences(MapHandle map, MapDirection direction, [Out] int[] triangles,
             [Out] double[] barycentric, UIntPtr capacity);
         [DllImport(Lib)] internal static extern Status mcon_map_get_phi(MapHandle map, [Out] double[] xy, UIntPtr capacity);

@@ -5,6 +5,13 @@ using System.Runtime.InteropServices;
 
 namespace Macrocon
 {
+    /// <summary>One term of a map's energy: its name and final unweighted value.</summary>
+    public struct EnergyTerm
+    {
+        public string Name;
+        public double Value;
+    }
+
     /// <summary>Map settings; null members keep the library's defaults.</summary>
     public sealed class MapSettings
     {
@@ -128,6 +135,22 @@ namespace Macrocon
                 Native.Check(Native.mcon_map_info_init(ref i));
                 Native.Check(Native.mcon_map_get_info(Handle, ref i));
                 return i;
+            }
+        }
+
+        /// <summary>The energy terms in evaluation order: name and final unweighted value.</summary>
+        public EnergyTerm[] EnergyTerms
+        {
+            get
+            {
+                Native.Check(Native.mcon_map_get_energy_term_count(Handle, out uint n));
+                var terms = new EnergyTerm[n];
+                for (uint k = 0; k < n; ++k)
+                {
+                    Native.Check(Native.mcon_map_get_energy_term(Handle, k, out IntPtr name, out double value));
+                    terms[k] = new EnergyTerm { Name = Marshal.PtrToStringAnsi(name), Value = value };
+                }
+                return terms;
             }
         }
 

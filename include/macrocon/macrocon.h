@@ -645,6 +645,11 @@ typedef struct mcon_map_info {
 
 MCON_API mcon_status mcon_map_info_init(mcon_map_info* info);
 MCON_API mcon_status mcon_map_get_info(mcon_map map, mcon_map_info* info);
+/* The map's energy terms in evaluation order (descriptor, distortion, area, injectivity, then any
+ * later term): their number, and term `index`'s name (static storage) and final unweighted value. */
+MCON_API mcon_status mcon_map_get_energy_term_count(mcon_map map, uint32_t* out_count);
+MCON_API mcon_status mcon_map_get_energy_term(mcon_map map, uint32_t index, const char** out_name,
+                                              double* out_value);
 
 typedef enum mcon_map_direction {
   MCON_MAP_SOURCE_TO_TARGET = 1, /* per source vertex: a point of the target */

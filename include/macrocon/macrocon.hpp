@@ -810,6 +810,18 @@ class Map {
     check(mcon_map_get_info(handle(), &i));
     return i;
   }
+  // The energy terms in evaluation order: name and final unweighted value.
+  std::vector<std::pair<std::string, double>> energy_terms() const {
+    std::uint32_t n = 0;
+    check(mcon_map_get_energy_term_count(handle(), &n));
+    std::vector<std::pair<std::string, double>> out(n);
+    for (std::uint32_t k = 0; k < n; ++k) {
+      const char* name = nullptr;
+      check(mcon_map_get_energy_term(handle(), k, &name, &out[k].second));
+      out[k].first = name;
+    }
+    return out;
+  }
   // Per vertex of the direction's domain: triangle of the other patch (-1 outside) and 3 weights.
   std::pair<std::vector<std::int32_t>, std::vector<double>> correspondences(mcon_map_direction direction) const {
     const mcon_map_info i = info();

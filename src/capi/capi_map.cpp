@@ -216,6 +216,25 @@ mcon_status mcon_map_get_info(mcon_map map, mcon_map_info* info) {
   });
 }
 
+mcon_status mcon_map_get_energy_term_count(mcon_map map, uint32_t* out_count) {
+  return guard_object("mcon_map_get_energy_term_count", map, "map", [&] {
+    require_pointer(out_count, "out_count");
+    *out_count = static_cast<std::uint32_t>(map->map.energy.values.size());
+  });
+}
+
+mcon_status mcon_map_get_energy_term(mcon_map map, uint32_t index, const char** out_name, double* out_value) {
+  return guard_object("mcon_map_get_energy_term", map, "map", [&] {
+    require(out_name != nullptr || out_value != nullptr, MCON_ERROR_NULL_POINTER, "out_name and out_value are both NULL");
+    const std::vector<double>& values = map->map.energy.values;
+    require(index < values.size(), MCON_ERROR_INVALID_ARGUMENT,
+            "energy term " + std::to_string(index) + " does not exist (the map has " + std::to_string(values.size()) +
+                " terms: see mcon_map_get_energy_term_count)");
+    if (out_name) *out_name = map_energy_terms()[index].name;
+    if (out_value) *out_value = values[index];
+  });
+}
+
 mcon_status mcon_map_get_correspondences(mcon_map map, mcon_map_direction direction, int32_t* out_triangle,
                                          double* out_barycentric, size_t capacity) {
   return guard_object("mcon_map_get_correspondences", map, "map", [&] {

@@ -298,6 +298,54 @@ TEST_F(CapiMapArgs, RetainReleaseAndInfo) {
   EXPECT_EQ(info.flipped_triangles, 0u);
 }
 
+TEST_F(CapiMapArgs, EnergyTermsByIndexMatchTheInfoFields) {
+  uint32_t count = 0;
+  ASSERT_EQ(mcon_map_get_energy_term_count(map_, &count), MCON_OK) << last_message();
+  ASSERT_GE(count, 4u);
+  mcon_map_info info;
+  ASSERT_EQ(mcon_map_info_init(&info), MCON_OK);
+  ASSERT_EQ(mcon_map_get_info(map_, &info), MCON_OK);
+  const std::vector<std::pair<std::string, double>> expected = {{"descriptor", info.energy_descriptor},
+                                                                {"distortion", info.energy_distortion},
+                                                                {"area", info.energy_area},
+                                                                {"injectivity", info.energy_injectivity}};
+  for (uint32_t i = 0; i < count; ++i) {
+    const char* name = nullptr;
+    double value = -1;
+    ASSERT_EQ(mcon_map_get_energy_term(map_, i, &name, &value), MCON_OK) << last_message();
+    ASSERT_NE(name, nullptr);
+    if (i < expected.size()) {
+      EXPECT_EQ(name, expected[i].first);
+      EXPECT_EQ(value, expected[i].second) << name;
+    }
+    EXPECT_TRUE(std::isfinite(value)) << name;
+  }
+  // Either output alone is enough.
+  const char* name = nullptr;
+  EXPECT_EQ(mcon_map_get_energy_term(map_, 1, &name, nullptr), MCON_OK);
+  EXPECT_STREQ(name, "distortion");
+  double value = 0;
+  EXPECT_EQ(mcon_map_get_energy_term(map_, 0, nullptr, &value), MCON_OK);
+  EXPECT_EQ(value, info.energy_descriptor);
+}
+
+TEST_F(CapiMapArgs, EnergyTermGettersRejectBadArguments) {
+  uint32_t count = 0;
+  EXPECT_EQ(mcon_map_get_energy_term_count(nullptr, &count), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_map_get_energy_term_count(map_, nullptr), MCON_ERROR_NULL_POINTER);
+  Garbage g;
+  EXPECT_EQ(mcon_map_get_energy_term_count(reinterpret_cast<mcon_map>(&g), &count), MCON_ERROR_INVALID_ARGUMENT);
+  ASSERT_EQ(mcon_map_get_energy_term_count(map_, &count), MCON_OK);
+  const char* name = nullptr;
+  double value = 0;
+  EXPECT_EQ(mcon_map_get_energy_term(nullptr, 0, &name, &value), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_map_get_energy_term(map_, 0, nullptr, nullptr), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_map_get_energy_term(reinterpret_cast<mcon_map>(&g), 0, &name, &value), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(mcon_map_get_energy_term(map_, count, &name, &value), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_TRUE(mentions("mcon_map_get_energy_term_count")) << last_message();
+  EXPECT_EQ(mcon_map_get_energy_term(map_, UINT32_MAX, &name, &value), MCON_ERROR_INVALID_ARGUMENT);
+}
+
 TEST_F(CapiMapArgs, QueriesRejectBadArguments) {
   std::vector<int32_t> tri(nt_ + ns_);
   std::vector<double> bary(3 * (nt_ + ns_)), phi(2 * ns_);

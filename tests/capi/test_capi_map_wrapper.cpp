@@ -52,6 +52,12 @@ TEST(CppMap, ComputeTransferAndCrossField) {
   EXPECT_EQ(info.flipped_triangles, 0u);
   EXPECT_EQ(info.source_vertex_count, source.vertex_count());
   EXPECT_EQ(map.phi().size(), 2 * source.vertex_count());
+  const auto terms = map.energy_terms();
+  ASSERT_GE(terms.size(), 4u);
+  EXPECT_EQ(terms[0], std::make_pair(std::string("descriptor"), info.energy_descriptor));
+  EXPECT_EQ(terms[1], std::make_pair(std::string("distortion"), info.energy_distortion));
+  EXPECT_EQ(terms[2], std::make_pair(std::string("area"), info.energy_area));
+  EXPECT_EQ(terms[3], std::make_pair(std::string("injectivity"), info.energy_injectivity));
   const auto mask = map.outside_mask();
   const auto corr = map.correspondences(MCON_MAP_TARGET_TO_SOURCE);
   ASSERT_EQ(corr.first.size(), target.vertex_count());

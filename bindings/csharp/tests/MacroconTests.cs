@@ -420,6 +420,9 @@ static class Tests
                 Check((int)info.SourceVertexCount == source.VertexCount && (int)info.TargetVertexCount == target.VertexCount, "counts");
                 Check(info.FlippedTriangles == 0 && info.Reflected == 0 && info.MatchingScore >= 0 && info.MatchingScore <= 1, "info");
                 Check((int)info.SourceVerticesInside > 0.8 * source.VertexCount, "overlap");
+                var terms = map.EnergyTerms;
+                Check(terms.Length >= 4 && terms[0].Name == "descriptor" && terms[3].Name == "injectivity", "energy term names");
+                Check(terms[0].Value == info.EnergyDescriptor && terms[2].Value == info.EnergyArea, "energy term values");
                 var r15 = map.Correspondences(MapDirection.SourceToTarget); var ct = r15.Item1; var cb = r15.Item2;
                 int inside = 0;
                 for (int v = 0; v < ct.Length; ++v)

@@ -4,7 +4,7 @@ from __future__ import annotations
 import ctypes
 from dataclasses import dataclass
 from enum import IntEnum
-from typing import List, Optional, Sequence, Tuple
+from typing import Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
@@ -210,6 +210,18 @@ class Map(_Handle):
                        i.levels, i.flipped_triangles, i.alignment_score, i.alignment_seconds, i.optimization_seconds,
                        i.alignment_score_unreflected, i.alignment_score_reflected, bool(i.orientation_compared),
                        i.level0_energy_unreflected, i.level0_energy_reflected)
+
+    @property
+    def energy_terms(self) -> Dict[str, float]:
+        """The energy terms in evaluation order: name -> final unweighted value."""
+        n = ctypes.c_uint32()
+        check(_native.lib.mcon_map_get_energy_term_count(self.handle, ctypes.byref(n)))
+        out = {}
+        for k in range(n.value):
+            name, value = ctypes.c_char_p(), ctypes.c_double()
+            check(_native.lib.mcon_map_get_energy_term(self.handle, k, ctypes.byref(name), ctypes.byref(value)))
+            out[name.value.decode("utf-8")] = value.value
+        return out
 
     def correspondences(self, direction: Direction = Direction.SOURCE_TO_TARGET) -> Tuple[np.ndarray, np.ndarray]:
         """Per vertex of the direction's domain: (triangle of the other patch, -1 = outside; barycentric (n, 3))."""

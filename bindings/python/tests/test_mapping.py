@@ -89,6 +89,10 @@ def test_map_info_and_correspondences(phi, source, target):
     assert phi.phi.shape == (source.vertex_count, 2)
     # Near identity: phi stays close to the target's own parametrization of the same vertices.
     assert np.median(np.linalg.norm(phi.phi - target.uv, axis=1)) < 0.1
+    terms = phi.energy_terms
+    assert list(terms)[:4] == ["descriptor", "distortion", "area", "injectivity"]
+    assert terms["descriptor"] == info.energy_descriptor and terms["area"] == info.energy_area
+    assert terms["distortion"] == info.energy_distortion and terms["injectivity"] == info.energy_injectivity
 
 
 def test_transfer_points_fields_and_labels(phi, source, target):
