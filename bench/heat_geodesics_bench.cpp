@@ -1,4 +1,4 @@
-// Heat-method geodesics at ~10k vertices (design-notes §2: 0.08 s factorization, 3 ms per
+// Heat-method geodesics at ~10k vertices (docs/design.md §2: 0.08 s factorization, 3 ms per
 // source): constructor time (median of 5), per-source query time (median of 20 sources) and the
 // mean relative error against the analytic distance (vertices within 2 mean edge lengths of the
 // source excluded). The MakeHuman body (13380 vertices) has no analytic distance: its reference

@@ -1,4 +1,4 @@
-# All dependencies come from Debian packages (design-notes §8 has the names that work there).
+# All dependencies come from Debian packages (docs/design.md §8 has the names that work there).
 find_package(Eigen3 3.3 REQUIRED CONFIG)
 find_package(OpenMesh REQUIRED CONFIG)
 find_package(FlatBuffers CONFIG REQUIRED)

@@ -1,6 +1,6 @@
 # The constraint library schema (schema/macrocon_library.fbs) compiled by flatc at build time into
 # <build>/generated/macrocon_library_generated.h. Debian's flatc and headers are both 2.0.8 and the
-# generated header static_asserts that version (design-notes §8). Generated code and the Verifier
+# generated header static_asserts that version (docs/design.md §8). Generated code and the Verifier
 # are header-only: targets get the include dirs, never the non-PIC flatbuffers archive.
 # Also included by the standalone fuzz project (tests/fuzz/CMakeLists.txt).
 set(MACROCON_SCHEMA_FILE ${CMAKE_CURRENT_LIST_DIR}/../schema/macrocon_library.fbs)

@@ -1,5 +1,5 @@
 // The number of threads of the calling process (Linux: the entries of /proc/self/task), for the
-// tests that check mcon_shutdown joins every worker thread (design-notes §5). Header-only, without
+// tests that check mcon_shutdown joins every worker thread (docs/design.md §5). Header-only, without
 // GoogleTest, so the stand-alone exit test programs use it too.
 #pragma once
 

@@ -474,7 +474,7 @@ namespace Macrocon
 
         // ---- the exit hook: release what the program left open, then mcon_shutdown ----
         // mcon_shutdown refuses while a context lives, and without it TBB's workers outlive
-        // Mono's teardown (design-notes §5: a segfault at exit).
+        // Mono's teardown (docs/design.md §5: a segfault at exit).
         private static readonly object liveLock = new object();
         private static readonly List<WeakReference<SafeHandle>> live = new List<WeakReference<SafeHandle>>();
         private static bool hookInstalled;

@@ -16,7 +16,7 @@ std::mutex& scheduler_mutex() {
 }
 
 // A reference to TBB's scheduler, taken when the first context is created, so mcon_shutdown can
-// wait for the worker threads (design-notes §5: Mono crashed at exit without it).
+// wait for the worker threads (docs/design.md §5: Mono crashed at exit without it).
 tbb::task_scheduler_handle& scheduler_handle() {
   static tbb::task_scheduler_handle handle;
   return handle;

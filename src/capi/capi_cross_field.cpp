@@ -1,5 +1,5 @@
 // A guide-aligned 4-RoSy cross field on a patch (cross_field.h) and its QuadWild `.rosy` file
-// (design-notes §7: what quad meshers take as orientation input).
+// (docs/design.md §7: what quad meshers take as orientation input).
 #include <cmath>
 
 #include "capi/capi_map_handles.h"

@@ -43,7 +43,7 @@ struct mcon_patch_t {
 namespace mcon::capi {
 
 // Runs `f` inside the context's arena, isolated from any outer work of the calling thread
-// (design-notes §5: hosts with their own TBB must never see our tasks). Exceptions propagate.
+// (docs/design.md §5: hosts with their own TBB must never see our tasks). Exceptions propagate.
 template <typename F>
 auto run_in_arena(mcon_context context, const F& f) -> decltype(f()) {
   return context->arena->execute([&] { return tbb::this_task_arena::isolate(f); });

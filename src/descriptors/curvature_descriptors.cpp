@@ -12,7 +12,7 @@
 namespace mcon {
 namespace {
 
-// Thesis §3.1 / design-notes §1: CURV9 scales, for patches of geodesic radius 1.
+// Thesis §3.1 / docs/design.md §1: CURV9 scales, for patches of geodesic radius 1.
 constexpr std::array<double, 3> kCurv9Sigmas = {0.025, 0.05, 0.1};
 constexpr double kMeanCurvatureSigma = 0.1;
 

@@ -1,4 +1,4 @@
-// Coarse-to-fine descriptor levels for the re-embedding optimization (design-notes §2): the same
+// Coarse-to-fine descriptor levels for the re-embedding optimization (docs/design.md §2): the same
 // per-vertex descriptor smoothed by heat diffusion at several geodesic scales, smoothest first.
 // A smooth descriptor has few local minima, so the optimizer first aligns the broad shape and
 // then the details (thesis §4.4 found smoothness decisive).

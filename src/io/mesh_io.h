@@ -62,7 +62,7 @@ void write_ply(const std::string& path, const TriMesh& mesh, const std::vector<V
 void write_obj(const std::string& path, const TriMesh& mesh);
 void write_off(const std::string& path, const TriMesh& mesh);
 
-// QuadWild's guide files (design-notes §7), in the layout QuadWild's readers expect, so the mesh
+// QuadWild's guide files (docs/design.md §7), in the layout QuadWild's readers expect, so the mesh
 // file plus these two can be passed to `quadwild mesh.obj field.rosy mesh.sharp` (its main picks
 // the files by their suffix). Face indices refer to the triangles in mesh order: write the mesh
 // itself with write_obj/write_ply so QuadWild sees the same triangles in the same order.

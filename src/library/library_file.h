@@ -1,6 +1,6 @@
 // Constraint library files (.mcl, schema/macrocon_library.fbs). Files come from third parties:
 // loading checks the size, runs the FlatBuffers Verifier with explicit limits, checks the file
-// identifier and format version, and then validates the meaning of every field (design-notes §6).
+// identifier and format version, and then validates the meaning of every field (docs/design.md §6).
 // Any failure is an mcon::Error, never a crash:
 //   MCON_ERROR_INVALID_LIBRARY  corrupt, truncated, forged or inconsistent contents (the message
 //                               says what and where: "entry 3 'nose_07': triangle 12 uses ...")

@@ -1,4 +1,4 @@
-// FlatBuffer -> ConstraintLibrary for hostile input (design-notes §6), in this order:
+// FlatBuffer -> ConstraintLibrary for hostile input (docs/design.md §6), in this order:
 //   1. size within [kLibraryMinBytes, kLibraryMaxBytes] (the Verifier only asserts its limit);
 //   2. file identifier "MCLB" (a clear message for files that are not libraries at all);
 //   3. format_version (verifying only the root table and that field): absent -> INVALID_LIBRARY,

@@ -1,7 +1,7 @@
 // A per-vertex descriptor (d values per vertex) of the target patch seen as a function on the
 // target's disk parametrization: linear inside each triangle, so its value and d x 2 gradient are
 // exact there and the Gauss-Newton model of a squared descriptor difference is the exact second
-// order model (design-notes §2). Points a little outside the triangulation (between the
+// order model (docs/design.md §2). Points a little outside the triangulation (between the
 // boundary polygon and the unit circle) get the value at their nearest point of the
 // triangulation, which keeps the field continuous.
 #pragma once

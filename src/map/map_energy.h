@@ -28,7 +28,7 @@
 //    A C2 version of the truncated log barrier of eq. 4.12: +infinity at inversion (so phi
 //    stays locally injective), no effect while the area ratio stays above s_f.
 //
-// The Hessian model is per element, each projected to positive semi-definite (design-notes §2).
+// The Hessian model is per element, each projected to positive semi-definite (docs/design.md §2).
 #pragma once
 
 #include <limits>

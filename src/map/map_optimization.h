@@ -1,4 +1,4 @@
-// Projected Newton minimization of the map energy (design-notes §2): per-element Hessians with
+// Projected Newton minimization of the map energy (docs/design.md §2): per-element Hessians with
 // negative eigenvalues clamped (map_energy.h), assembled into one sparse matrix whose pattern is
 // analyzed once, a tiny diagonal regularization, SimplicialLDLT; the line search starts at
 // min(1, 0.9 t_max) with t_max the largest flip-free step (injective_step.h) and backtracks

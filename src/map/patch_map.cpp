@@ -17,7 +17,7 @@ constexpr double kChiralityCenterRadius = 0.3;  // normalized geodesic radius of
 // Per-vertex channels of one patch before the joint normalization: mean curvature at sigma 0.1
 // (thesis §4.4: smooth, orientation-blind), the geodesic distance from the patch center and the
 // straight-line (3D) distance from it. Both patches are geodesic disks around corresponding
-// centers (design-notes §1: "patches are disks with a known center"), so the center distance
+// centers (docs/design.md §1: "patches are disks with a known center"), so the center distance
 // pins every point's ring, which curvature alone cannot on parts with repeated features
 // (fingers, toes); the chord is extrinsic and tells the directions of a bent patch apart
 // (across vs. along a forearm, where intrinsic descriptors are blind).

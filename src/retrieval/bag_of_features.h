@@ -1,7 +1,7 @@
 // Bag-of-features (thesis §3.2, after Ovsjanikov et al. 2009 [OBBG09]): per-vertex soft assignment
 // of normalized descriptors to a k-means vocabulary (eq. 3.1), integrated over the patch with
 // vertex areas, optionally once per concentric geodesic ring around the patch center (the cheap
-// spatial extension a disk with a known center allows; design-notes §1). Compared with L1.
+// spatial extension a disk with a known center allows; docs/design.md §1). Compared with L1.
 //
 // Histogram normalization: Θ(P) is divided by the patch's total area, so every histogram sums to 1
 // (and its rings together sum to 1). Patches are already scaled to geodesic radius 1, so what area

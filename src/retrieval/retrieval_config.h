@@ -10,7 +10,7 @@
 namespace mcon {
 
 // Concentric geodesic rings of the default bag-of-features (1 = plain, thesis eq. 3.1; > 1 = the
-// ringed variant of design-notes §1). The one place the measured best default lives: the C API's
+// ringed variant of docs/design.md §1). The one place the measured best default lives: the C API's
 // mcon_retrieval_options_init and the CLI read it from here.
 inline constexpr std::uint32_t kDefaultRetrievalRings = 1;
 

@@ -1,5 +1,5 @@
 // A per-face 4-RoSy cross field on the target patch that follows the transferred guide polylines:
-// what a quad mesher (QuadWild `.rosy`, libigl MIQ) takes as orientation input (design-notes §7).
+// what a quad mesher (QuadWild `.rosy`, libigl MIQ) takes as orientation input (docs/design.md §7).
 // Smoothest field with soft alignment constraints, in the complex representation z_f = e^{4i theta}
 // (Knoppel et al. 2013, "Globally optimal direction fields"; Ray et al. 2008):
 //   minimize  sum_edges w_e |z_f - r_fg z_g|^2  +  lambda sum_constraints w_c |z_f - c|^2,

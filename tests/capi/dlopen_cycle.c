@@ -1,6 +1,6 @@
 /* A host that loads the library at run time (as Mono, Python or a DCC plug-in does): dlopen,
  * work in several contexts from the C ABI, mcon_shutdown, dlclose, and again, a few times.
- * design-notes §5: a program that dlclose'd the library after TBB work crashed 1 run in 5;
+ * docs/design.md §5: a program that dlclose'd the library after TBB work crashed 1 run in 5;
  * ctest runs this program repeatedly. Exit status 0 means every cycle went through cleanly,
  * worker threads did run, and each mcon_shutdown left the process with its one thread. */
 #define _POSIX_C_SOURCE 200809L

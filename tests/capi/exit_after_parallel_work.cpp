@@ -2,7 +2,7 @@
 // with its own context and thread cap) while running its own TBB loops, as a DCC host does, then
 // calls mcon_shutdown and exits. Checks that shutdown really joined every worker thread (the
 // process is back to one thread) and that the library works again afterwards. Exit status 0 =
-// clean; ctest runs it several times (design-notes §5: exits with live TBB workers crashed).
+// clean; ctest runs it several times (docs/design.md §5: exits with live TBB workers crashed).
 
 #include <atomic>
 #include <cstdio>

@@ -1,4 +1,4 @@
-// libFuzzer target for the constraint library loader (hostile files, design-notes §6). Any input
+// libFuzzer target for the constraint library loader (hostile files, docs/design.md §6). Any input
 // must either load or throw mcon::Error with INVALID_LIBRARY or UNSUPPORTED; a crash, a sanitizer
 // report, another exception or status, or an accepted library that does not survive its own
 // save/load round trip unchanged is a finding.

@@ -1,4 +1,4 @@
-# Processes exit cleanly after parallel work and mcon_shutdown (design-notes §5): a host linked
+# Processes exit cleanly after parallel work and mcon_shutdown (docs/design.md §5): a host linked
 # with the library, and a C host that dlopen()s, uses, shuts down and dlclose()s it in a loop.
 # Each program runs several times: the crash this guards against showed up 1 run in 5.
 add_executable(capi_exit_after_parallel_work ${CMAKE_CURRENT_SOURCE_DIR}/capi/exit_after_parallel_work.cpp)

@@ -17,7 +17,7 @@ const char* kUsage =
     "Maps patches of the same class between two random people (MakeHuman) or faces (ICT), the target\n"
     "re-tessellated by seeded random decimation, mirrored pairs included (a right eye onto a left\n"
     "eye), and measures eps = geodesic distance on the target between the mapped and the true point /\n"
-    "sqrt(target patch area) over source vertices mapped inside the target (design-notes 3).\n"
+    "sqrt(target patch area) over source vertices mapped inside the target (docs/design.md §3).\n"
     "Methods: macrocon (the SDK's map), rigid (its initialization only), thesis (the thesis' fixed-step\n"
     "gradient descent, 15,000 iterations, from the same rigid start); --method restricts to a list.\n"
     "Diagnostic method, only when asked for (--method macrocon,oracle): oracle = the SDK's map with\n"

@@ -1,4 +1,4 @@
-// g++ 12 reports -Wmaybe-uninitialized inside OpenMesh's PropertyT::push_back (design-notes §8) at
+// g++ 12 reports -Wmaybe-uninitialized inside OpenMesh's PropertyT::push_back (docs/design.md §8) at
 // a libstdc++ location that SYSTEM includes do not cover, so it is off for this file, before any
 // standard header is seen.
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"

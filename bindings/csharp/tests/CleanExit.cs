@@ -1,7 +1,7 @@
 // A Mono process that runs heavy parallel SDK work (a library's build_retrieval, a map compute)
 // and exits without disposing anything: the binding's exit hook (AppDomain.ProcessExit) must
 // release the handles and call mcon_shutdown, and the process must exit with status 0
-// (design-notes §5: without the shutdown path Mono segfaulted at exit after tbb::parallel_for).
+// (docs/design.md §5: without the shutdown path Mono segfaulted at exit after tbb::parallel_for).
 // Prints "done" and then, from a ProcessExit handler subscribed after the binding's own, the
 // status of the binding's mcon_shutdown call: "exit_status Ok".
 using System;

@@ -38,7 +38,7 @@ def shutdown() -> None:
 
 
 #: Every open handle object, so the exit hook can release what the program left open:
-#: mcon_shutdown refuses while a context is alive (design-notes §5: without it TBB's workers
+#: mcon_shutdown refuses while a context is alive (docs/design.md §5: without it TBB's workers
 #: outlive the interpreter's teardown).
 _live: "weakref.WeakSet[_Handle]" = weakref.WeakSet()
 
