@@ -1,6 +1,6 @@
 // Retrieval speed (wall-clock; cpu_s = process CPU time, meaningful when the machine is shared):
 // top-10 L1 query time over 100,000 library entries (plain and ring histograms; the default
-// library is plain, as `macrocon eval-retrieval` measured best, so "default_query_median_s" is the
+// library is plain, as `macrocon-eval eval-retrieval` measured best, so "default_query_median_s" is the
 // median top-10 query in seconds over 100,000 histograms of length k = 128),
 // the vocabulary build on 1M 9-d descriptor points (normalization + k-means + sigma), and the
 // bag-of-features of one query patch. Prints one JSON object.

@@ -13,7 +13,7 @@
 #include "common/bench_spec.h"
 #include "common/bench_random.h"
 #include "common/ict_faces.h"
-#include "common/json.h"
+#include "json/json_file.h"
 #include "common/makehuman_people.h"
 #include "common/morph_target.h"
 #include "common/patch_instances.h"

@@ -1,4 +1,4 @@
-# Runs a tiny `macrocon eval-retrieval` and checks its output (see eval_retrieval.tests.cmake).
+# Runs a tiny `macrocon-eval eval-retrieval` and checks its output (see eval_retrieval.tests.cmake).
 include(${CMAKE_CURRENT_LIST_DIR}/run_checked.cmake)
 file(REMOVE_RECURSE ${OUT})
 file(MAKE_DIRECTORY ${OUT})

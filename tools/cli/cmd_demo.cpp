@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "args.h"
+#include "command/args.h"
 #include "io/mesh_io.h"
 #include "macrocon/macrocon.hpp"
 

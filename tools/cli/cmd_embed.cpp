@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "args.h"
-#include "common/json.h"
+#include "command/args.h"
+#include "json/json_file.h"
 #include "transfer/cross_field.h"
 #include "descriptors/curvature_descriptors.h"
 #include "transfer/field_transfer.h"

@@ -3,7 +3,7 @@
 #include <cstdio>
 #include <string>
 
-#include "args.h"
+#include "command/args.h"
 #include "descriptors/curvature_descriptors.h"
 #include "patch/geodesic_disk_patch.h"
 #include "io/mesh_io.h"

@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <string>
 
-#include "args.h"
+#include "command/args.h"
 #include "library_cli.h"
 #include "library/library_file.h"
 #include "library/library_retrieval.h"

@@ -8,12 +8,12 @@
 #include <string>
 #include <vector>
 
-#include "command.h"
+#include "command/command.h"
 #include "library/constraint_library.h"
 #include "base/error.h"
 #include "patch/geodesic_disk_patch.h"
 #include "io/mesh_io.h"
-#include "common/json.h"
+#include "json/json_file.h"
 
 namespace mcon::cli {
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "common/json.h"
+#include "json/json_file.h"
 #include "base/error.h"
 
 namespace mcon::tools {

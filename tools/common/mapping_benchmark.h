@@ -1,4 +1,4 @@
-// Map quality on ground truth (`macrocon eval-mapping`, docs/design.md §3): pairs of the same patch
+// Map quality on ground truth (`macrocon-eval eval-mapping`, docs/design.md §3): pairs of the same patch
 // class cut on two different random people (MakeHuman) or faces (ICT), the target re-tessellated
 // by seeded random decimation (surviving vertices keep their identity), mirrored pairs included
 // (a right eye onto a left eye; the ground truth then goes through the base mesh's mirror
@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "common/json.h"
+#include "json/json_file.h"
 
 namespace mcon::tools {
 

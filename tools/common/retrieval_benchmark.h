@@ -1,4 +1,4 @@
-// The retrieval benchmark of `macrocon eval-retrieval` (thesis §3.3 on our own data): random
+// The retrieval benchmark of `macrocon-eval eval-retrieval` (thesis §3.3 on our own data): random
 // MakeHuman people and ICT faces (shared/bench/README.md), a geodesic disk at every landmark class
 // of both models (left and right instances share the class name without the side), each patch on
 // its own triangulation, described by one or more built-in descriptors; then a leave-one-out

@@ -1,5 +1,5 @@
 // BASELINE, not the product: the thesis' own non-linear map optimization (macro-constraints-thesis
-// ch. 4, §4.2-4.3.2 and §4.4 "Parameter Choice"), kept only so that `macrocon eval-mapping` can
+// ch. 4, §4.2-4.3.2 and §4.4 "Parameter Choice"), kept only so that `macrocon-eval eval-mapping` can
 // compare the SDK's map (src/surface_map.h) against it in one run. Deliberately faithful,
 // including its known defects:
 //  - objective eq. 4.15: alpha_d * obj_descr (4.8) + alpha_l * obj_lscm (4.10) + alpha_f * obj_flip (4.12);

@@ -1,4 +1,4 @@
-#include "common/json.h"
+#include "json/json_file.h"
 
 #include <fstream>
 

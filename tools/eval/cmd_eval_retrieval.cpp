@@ -1,4 +1,4 @@
-// `macrocon eval-retrieval`: the retrieval benchmark on real data (thesis §3.3): random MakeHuman
+// `macrocon-eval eval-retrieval`: the retrieval benchmark on real data (thesis §3.3): random MakeHuman
 // people and ICT faces, a differently triangulated patch at every landmark class, leave-one-out
 // retrieval with library-only vocabularies, precision/recall at n = 1..10, timings, and optionally
 // the plots of thesis figures 3.5/3.6 as SVG.
@@ -11,8 +11,8 @@
 
 #include <tbb/task_arena.h>
 
-#include "args.h"
-#include "common/json.h"
+#include "command/args.h"
+#include "json/json_file.h"
 #include "common/retrieval_benchmark.h"
 #include "common/svg_plots.h"
 #include "retrieval/retrieval_descriptors.h"
@@ -29,7 +29,7 @@ constexpr const char* kDefaultDescriptor = "curv9";
 constexpr std::uint32_t kDefaultRings = 1;
 
 const char* kUsage =
-    "usage: macrocon eval-retrieval --shared DIR [--seed S] [--people N] [--faces N]\n"
+    "usage: macrocon-eval eval-retrieval --shared DIR [--seed S] [--people N] [--faces N]\n"
     "                               [--descriptor curv9|hks|wks] [--rings K] [--vocabulary K] [--sigma S]\n"
     "                               [--compare] [--threads T] [--json] [--plot DIR]\n"
     "Builds N random MakeHuman people and N random ICT faces from DIR (the shared folder, seeded by S),\n"

@@ -1,4 +1,4 @@
-// `macrocon bench`: map and heat-geodesic timings on real patches (MakeHuman people), medians over
+// `macrocon-eval bench`: map and heat-geodesic timings on real patches (MakeHuman people), medians over
 // a few runs inside a 2-thread arena. The ~10,000-vertex patches come from the body subdivided
 // once (midpoint subdivision: every triangle into four), which keeps the shape and the vertex
 // numbering of the original vertices, so the bench centers stay valid.
@@ -12,9 +12,9 @@
 
 #include <tbb/task_arena.h>
 
-#include "args.h"
+#include "command/args.h"
 #include "common/bench_spec.h"
-#include "common/json.h"
+#include "json/json_file.h"
 #include "common/makehuman_people.h"
 #include "common/patch_instances.h"
 #include "patch/geodesic_disk_patch.h"
@@ -25,7 +25,7 @@ namespace mcon::cli {
 namespace {
 
 const char* kUsage =
-    "usage: macrocon bench --shared DIR [--runs N] [--threads T] [--seed S] [--json]\n"
+    "usage: macrocon-eval bench --shared DIR [--runs N] [--threads T] [--seed S] [--json]\n"
     "Times the re-embedding map (map_patches: descriptors, rigid initialization, optimization) and heat\n"
     "geodesics on MakeHuman patches between two random people: hand and face (about 1,700 and 2,800\n"
     "vertices) on the body, and the same classes on the body subdivided once (about 6,700 and 11,000).\n"

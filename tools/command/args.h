@@ -6,7 +6,7 @@
 #include <set>
 #include <string>
 
-#include "command.h"
+#include "command/command.h"
 #include "base/error.h"
 
 namespace mcon::cli {

@@ -1,17 +1,17 @@
-// `macrocon eval-mapping`: map quality on ground truth (tools/common/mapping_benchmark.h).
+// `macrocon-eval eval-mapping`: map quality on ground truth (tools/common/mapping_benchmark.h).
 #include <cstdio>
 #include <sstream>
 #include <string>
 
-#include "args.h"
-#include "common/json.h"
+#include "command/args.h"
+#include "json/json_file.h"
 #include "common/mapping_benchmark.h"
 
 namespace mcon::cli {
 namespace {
 
 const char* kUsage =
-    "usage: macrocon eval-mapping --shared DIR [--seed S] [--pairs N] [--classes a,b,...] [--method NAME]\n"
+    "usage: macrocon-eval eval-mapping --shared DIR [--seed S] [--pairs N] [--classes a,b,...] [--method NAME]\n"
     "                             [--samples K] [--thesis-iterations I] [--eval-vertices V] [--threads T]\n"
     "                             [--json] [--quiet]\n"
     "Maps patches of the same class between two random people (MakeHuman) or faces (ICT), the target\n"

@@ -1,5 +1,5 @@
-// Subcommands of the `macrocon` CLI register themselves here, one file each, so that adding a
-// command never touches main.cpp:
+// Subcommands of the `macrocon` and `macrocon-eval` programs register themselves here, one file
+// each, so that adding a command never touches a main():
 //   static const mcon::cli::Registration reg{"patch", "extract a geodesic disk patch", run_patch};
 #pragma once
 
@@ -18,6 +18,10 @@ struct Command {
 };
 
 std::vector<Command>& commands();
+
+// The whole program: `<program> <command> [options]`, `--help`, `--version`; errors go to stderr
+// with a non-zero exit status. Returns the exit status.
+int run_commands(const char* program, int argc, char** argv);
 
 struct Registration {
   Registration(std::string name, std::string summary, std::function<int(const Args&)> run) {
