@@ -556,36 +556,19 @@ typedef struct mcon_map_options {
   uint32_t max_iterations;
   mcon_progress_callback progress;
   void* progress_user_data;
-  /* Appended after progress_user_data (a struct_size that ends before it keeps the default): an
-   * mcon_map_orientation, default MCON_MAP_ORIENTATION_AUTOMATIC; any other value is
-   * INVALID_ARGUMENT. allow_reflection only restricts AUTOMATIC: a forced orientation is an
-   * explicit request and is obeyed. Typical use: a "flip" button that recomputes with the
-   * orientation opposite to mcon_map_info.reflected. */
+  /* An mcon_map_orientation, default AUTOMATIC (allow_reflection restricts only AUTOMATIC). */
   uint32_t orientation;
-  /* Appended after orientation: optional guidance channels, extra per-vertex values that must
-   * agree between corresponding points (painted region ids, distances to landmarks the artist
-   * placed on both meshes, ...), for what the geometry alone cannot tell apart: which finger is
-   * which, the two sides of a forearm strip. guidance_dimension columns of doubles per vertex,
-   * source_vertex_count rows for the source and target_vertex_count rows for the target (patch
-   * vertex order, mcon_patch_get_*), rows `*_stride` bytes apart (0 = packed); copied during the
-   * call. Each column is normalized to standard deviation 1 over both patches and scaled by
-   * guidance_weight (default 1, finite, >= 0), like the built-in curvature channels.
-   * guidance_dimension 0 (default): no guidance, both pointers must be NULL. Errors:
-   * NULL_POINTER (guidance_dimension > 0 with a NULL array), INVALID_ARGUMENT (an array with
-   * guidance_dimension 0, guidance_dimension > 1024, a stride smaller than a row, a bad
-   * weight), NON_FINITE (a NaN or infinite value). */
+  /* Optional guidance channels (docs/api.md): guidance_dimension doubles per patch vertex that
+   * must agree between corresponding points; rows `*_stride` bytes apart (0 = packed), copied.
+   * guidance_dimension 0 (default): none, both pointers NULL. guidance_weight default 1. */
   const double* source_guidance;
   size_t source_guidance_stride;
   const double* target_guidance;
   size_t target_guidance_stride;
   uint32_t guidance_dimension;
   double guidance_weight;
-  /* Appended after guidance_weight: the refinement pass after the finest coarse-to-fine level
-   * runs with the Gaussian descriptor width scaled by this factor (at most min(max_iterations,
-   * 10) Newton iterations). Default 0.5; 0 turns the pass off; otherwise in (0, 1], anything else
-   * (or NaN) is INVALID_ARGUMENT. A narrower kernel pulls points closer to their descriptor
-   * matches: on the benchmark it helps hands, feet and mouths most and costs noses a little
-   * (README, "Mapping evaluation"). */
+  /* Gaussian width factor of the refinement pass after the finest level: in (0, 1], 0 = no
+   * pass; default 0.5 (docs/api.md). */
   double refine_sigma_factor;
 } mcon_map_options;
 
@@ -629,10 +612,7 @@ typedef struct mcon_map_info {
   double alignment_score;         /* score of the rigid initialization */
   double alignment_seconds;
   double optimization_seconds;
-  /* Added after optimization_seconds (an older struct_size simply does not receive them): the
-   * evidence of the orientation decision. Rigid scores of the best orientation-preserving and
-   * best mirrored candidate (-1: that orientation was not tried, e.g. reflected with
-   * allow_reflection = 0). Their difference says how close the automatic call was. */
+  /* Rigid scores of the best orientation-preserving and best mirrored start (-1: not tried). */
   double alignment_score_unreflected;
   double alignment_score_reflected;
   /* 1 if both orientations were optimized at the smoothest level and compared (automatic mode and
