@@ -64,6 +64,82 @@ class HessianPattern {
   std::vector<int> tri_slots, vertex_slots, diagonal_slots;
 };
 
+using Ldlt = Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower>;
+
+// Assemble: the elements' Hessian blocks into the pattern's matrix. Returns the mean diagonal
+// entry (at least 1e-300), the scale of the shift.
+double assemble_hessian(const MapEnergy::Derivatives& der, const SourceDisk& src, HessianPattern& pattern) {
+  Eigen::SparseMatrix<double>& H = pattern.matrix;
+  double* val = H.valuePtr();
+  std::fill(val, val + H.nonZeros(), 0.0);
+  for (std::size_t t = 0; t < src.triangles.size(); ++t) {
+    const Matrix6d& h = der.triangle_hessians[t];
+    const int* slots = &pattern.tri_slots[t * 36];
+    for (int a = 0; a < 6; ++a)
+      for (int b = 0; b < 6; ++b)
+        if (slots[a * 6 + b] >= 0) val[slots[a * 6 + b]] += h(a, b);
+  }
+  for (int v = 0; v < src.num_vertices; ++v) {
+    const Eigen::Matrix2d& h = der.vertex_hessians[v];
+    val[pattern.vertex_slots[3 * v]] += h(0, 0);
+    val[pattern.vertex_slots[3 * v + 1]] += h(1, 0);
+    val[pattern.vertex_slots[3 * v + 2]] += h(1, 1);
+  }
+  double mean_diag = 0;
+  for (int s : pattern.diagonal_slots) mean_diag += val[s];
+  return std::max(mean_diag / static_cast<double>(pattern.diagonal_slots.size()), 1e-300);
+}
+
+// Factorize with a diagonal shift; raise it until the factorization is positive definite.
+// shift_scale grows if factorizations fail, shrinks back after successes.
+Eigen::VectorXd newton_direction(HessianPattern& pattern, Ldlt& ldlt, const Eigen::VectorXd& gradient,
+                                 double mean_diag, double regularization, double& shift_scale) {
+  Eigen::SparseMatrix<double>& H = pattern.matrix;
+  double* val = H.valuePtr();
+  Eigen::VectorXd dir;
+  bool solved = false;
+  for (int attempt = 0; attempt < 8 && !solved; ++attempt) {
+    const double shift = regularization * shift_scale * mean_diag;
+    for (int s : pattern.diagonal_slots) val[s] += shift;
+    ldlt.factorize(H);
+    for (int s : pattern.diagonal_slots) val[s] -= shift;
+    if (ldlt.info() == Eigen::Success && ldlt.vectorD().minCoeff() > 0) {
+      dir = -ldlt.solve(gradient);
+      solved = dir.allFinite();
+    }
+    if (!solved) shift_scale *= 100;
+  }
+  require(solved, MCON_ERROR_NUMERICAL, "newton: the linear solve failed");
+  shift_scale = std::max(1.0, shift_scale * 0.1);
+  return dir;
+}
+
+// Line search inside the flip-free region: halves the step from the largest flip-free one until
+// the Armijo condition holds. Returns false if no step was accepted.
+bool line_search(const MapEnergy& energy, const Eigen::VectorXd& x, const Eigen::VectorXd& dir, double E,
+                 double slope, const NewtonOptions& options, Eigen::VectorXd& trial, MapEnergyTerms& trial_terms) {
+  const double t_max = max_injective_step(energy.source().triangles, x, dir);
+  double alpha = std::min(1.0, options.step_fraction * t_max);
+  for (int k = 0; k < options.max_backtracks; ++k) {
+    trial = x + alpha * dir;
+    trial_terms = energy.evaluate(trial);
+    if (trial_terms.total <= E + options.armijo * alpha * slope) return true;
+    alpha *= 0.5;
+  }
+  return false;
+}
+
+// The last progress_window iterations gained at most progress_fraction of the whole decrease.
+bool progress_stalled(const NewtonReport& report, const NewtonOptions& options) {
+  const int w = options.progress_window;
+  if (w > 0 && report.iterations > w) {
+    const std::vector<double>& e = report.energy;
+    const double recent = e[e.size() - 1 - w] - e.back(), total = e.front() - e.back();
+    return recent <= options.progress_fraction * total;
+  }
+  return false;
+}
+
 }  // namespace
 
 const char* stop_reason_name(StopReason reason) {
@@ -84,9 +160,8 @@ NewtonReport minimize_map_energy(const MapEnergy& energy, Eigen::VectorXd& x, co
 
   NewtonReport report;
   HessianPattern pattern(src.num_vertices, src.triangles);
-  Eigen::SparseMatrix<double>& H = pattern.matrix;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> ldlt;
-  ldlt.analyzePattern(H);
+  Ldlt ldlt;
+  ldlt.analyzePattern(pattern.matrix);
 
   MapEnergy::Derivatives der;
   energy.derivatives(x, der);
@@ -99,43 +174,9 @@ NewtonReport minimize_map_energy(const MapEnergy& energy, Eigen::VectorXd& x, co
   double shift_scale = 1.0;  // grows if factorizations fail, shrinks back after successes
 
   for (int iter = 0; iter < options.max_iterations; ++iter) {
-    // Assemble.
-    double* val = H.valuePtr();
-    std::fill(val, val + H.nonZeros(), 0.0);
-    for (std::size_t t = 0; t < src.triangles.size(); ++t) {
-      const Matrix6d& h = der.triangle_hessians[t];
-      const int* slots = &pattern.tri_slots[t * 36];
-      for (int a = 0; a < 6; ++a)
-        for (int b = 0; b < 6; ++b)
-          if (slots[a * 6 + b] >= 0) val[slots[a * 6 + b]] += h(a, b);
-    }
-    for (int v = 0; v < src.num_vertices; ++v) {
-      const Eigen::Matrix2d& h = der.vertex_hessians[v];
-      val[pattern.vertex_slots[3 * v]] += h(0, 0);
-      val[pattern.vertex_slots[3 * v + 1]] += h(1, 0);
-      val[pattern.vertex_slots[3 * v + 2]] += h(1, 1);
-    }
-    double mean_diag = 0;
-    for (int s : pattern.diagonal_slots) mean_diag += val[s];
-    mean_diag = std::max(mean_diag / static_cast<double>(pattern.diagonal_slots.size()), 1e-300);
-
-    // Factorize with a diagonal shift; raise it until the factorization is positive definite.
-    Eigen::VectorXd dir;
-    bool solved = false;
-    for (int attempt = 0; attempt < 8 && !solved; ++attempt) {
-      const double shift = options.regularization * shift_scale * mean_diag;
-      for (int s : pattern.diagonal_slots) val[s] += shift;
-      ldlt.factorize(H);
-      for (int s : pattern.diagonal_slots) val[s] -= shift;
-      if (ldlt.info() == Eigen::Success && ldlt.vectorD().minCoeff() > 0) {
-        dir = -ldlt.solve(der.gradient);
-        solved = dir.allFinite();
-      }
-      if (!solved) shift_scale *= 100;
-    }
-    require(solved, MCON_ERROR_NUMERICAL, "newton: the linear solve failed");
-    shift_scale = std::max(1.0, shift_scale * 0.1);
-
+    const double mean_diag = assemble_hessian(der, src, pattern);
+    const Eigen::VectorXd dir =
+        newton_direction(pattern, ldlt, der.gradient, mean_diag, options.regularization, shift_scale);
     const double slope = der.gradient.dot(dir);  // < 0 for a positive definite model
     if (!(slope < 0)) {
       report.reason = StopReason::converged;  // zero gradient
@@ -147,22 +188,9 @@ NewtonReport minimize_map_energy(const MapEnergy& energy, Eigen::VectorXd& x, co
       break;
     }
 
-    // Line search inside the flip-free region.
-    const double t_max = max_injective_step(src.triangles, x, dir);
-    double alpha = std::min(1.0, options.step_fraction * t_max);
-    bool accepted = false;
     Eigen::VectorXd trial;
     MapEnergyTerms trial_terms;
-    for (int k = 0; k < options.max_backtracks; ++k) {
-      trial = x + alpha * dir;
-      trial_terms = energy.evaluate(trial);
-      if (trial_terms.total <= E + options.armijo * alpha * slope) {
-        accepted = true;
-        break;
-      }
-      alpha *= 0.5;
-    }
-    if (!accepted) {
+    if (!line_search(energy, x, dir, E, slope, options, trial, trial_terms)) {
       report.reason = StopReason::stalled;
       break;
     }
@@ -177,18 +205,9 @@ NewtonReport minimize_map_energy(const MapEnergy& energy, Eigen::VectorXd& x, co
       report.reason = StopReason::cancelled;
       break;
     }
-    if (decrease <= tolerance) {
+    if (decrease <= tolerance || progress_stalled(report, options)) {
       report.reason = StopReason::converged;
       break;
-    }
-    const int w = options.progress_window;
-    if (w > 0 && report.iterations > w) {
-      const std::vector<double>& e = report.energy;
-      const double recent = e[e.size() - 1 - w] - e.back(), total = e.front() - e.back();
-      if (recent <= options.progress_fraction * total) {
-        report.reason = StopReason::converged;
-        break;
-      }
     }
     if (iter + 1 == options.max_iterations) report.reason = StopReason::iteration_cap;
   }

@@ -180,35 +180,53 @@ double matching_score_sum(const std::vector<Vec2>& points, const std::vector<dou
   return sum;
 }
 
-RigidAlignmentResult align_rigid(const std::vector<Vec2>& uv, const std::vector<double>& vertex_weight,
-                                 const std::vector<MatchLevel>& levels, const RigidAlignmentOptions& options,
-                                 const std::function<bool(double)>& progress) {
+namespace {
+
+void check_alignment_inputs(const std::vector<Vec2>& uv, const std::vector<double>& vertex_weight,
+                            const std::vector<MatchLevel>& levels, const RigidAlignmentOptions& options) {
   require(!levels.empty(), MCON_ERROR_INVALID_ARGUMENT, "rigid alignment: no descriptor level");
   require(uv.size() == vertex_weight.size() && !uv.empty(), MCON_ERROR_INVALID_ARGUMENT,
           "rigid alignment: uv and weights differ in size");
   require(options.samples >= 1 && options.subsample >= 1 && options.refine_count >= 1 &&
               options.translation_sigma > 0 && options.translation_bound >= 0,
           MCON_ERROR_INVALID_ARGUMENT, "rigid alignment: invalid options");
-  auto report = [&](double f) {
-    if (progress && !progress(f)) fail(MCON_ERROR_CANCELLED, "rigid alignment cancelled");
-  };
+}
 
-  // Cheap score: subsample against the rasterized smoothest level.
-  const MatchLevel& coarse = levels.front();
-  const int d = coarse.target_field->dimension();
-  const DescriptorImage image(*coarse.target_field, options.raster_resolution);
+// The subsample of the cheap score and its smoothest-level values, row-major (m x d), as a plain
+// and as a mirrored candidate sees them.
+struct CoarseSample {
   std::vector<int> picked;
-  std::vector<double> picked_weight;
-  subsample_source(uv, vertex_weight, options.subsample, picked, picked_weight);
+  std::vector<double> weight;
+  int d = 0;
+  std::vector<double> values, values_reflected;
+};
+
+CoarseSample coarse_sample(const std::vector<Vec2>& uv, const std::vector<double>& vertex_weight,
+                           const MatchLevel& coarse, int subsample) {
+  CoarseSample s;
+  const int d = s.d = coarse.target_field->dimension();
+  subsample_source(uv, vertex_weight, subsample, s.picked, s.weight);
+  const std::vector<int>& picked = s.picked;
   const int m = static_cast<int>(picked.size());
-  std::vector<double> picked_values(static_cast<std::size_t>(m) * d), picked_values_reflected;
+  s.values.resize(static_cast<std::size_t>(m) * d);
   for (int k = 0; k < m; ++k)
-    for (int c = 0; c < d; ++c) picked_values[static_cast<std::size_t>(k) * d + c] = (*coarse.source_values)(picked[k], c);
-  picked_values_reflected = picked_values;
+    for (int c = 0; c < d; ++c) s.values[static_cast<std::size_t>(k) * d + c] = (*coarse.source_values)(picked[k], c);
+  s.values_reflected = s.values;
   if (coarse.source_values_reflected)
     for (int k = 0; k < m; ++k)
       for (int c = 0; c < d; ++c)
-        picked_values_reflected[static_cast<std::size_t>(k) * d + c] = (*coarse.source_values_reflected)(picked[k], c);
+        s.values_reflected[static_cast<std::size_t>(k) * d + c] = (*coarse.source_values_reflected)(picked[k], c);
+  return s;
+}
+
+// Cheap score: subsample against the rasterized smoothest level. One score per candidate.
+std::vector<double> sampled_scores(const std::vector<Vec2>& uv, const std::vector<double>& vertex_weight,
+                                   const MatchLevel& coarse, const RigidAlignmentOptions& options,
+                                   const std::function<void(double)>& report) {
+  const int d = coarse.target_field->dimension();
+  const DescriptorImage image(*coarse.target_field, options.raster_resolution);
+  const CoarseSample sample = coarse_sample(uv, vertex_weight, coarse, options.subsample);
+  const int m = static_cast<int>(sample.picked.size());
   const double inv_2s2 = 0.5 / (coarse.score.sigma * coarse.score.sigma);
 
   std::vector<double> scores(options.samples, 0.0);
@@ -220,10 +238,10 @@ RigidAlignmentResult align_rigid(const std::vector<Vec2>& uv, const std::vector<
       for (int i = start + begin; i < start + end; ++i) {
         const RigidTransform2D T = rigid_candidate(options, i);
         const Eigen::Matrix2d R = rotation(T.angle);
-        const std::vector<double>& pv = T.reflected ? picked_values_reflected : picked_values;
+        const std::vector<double>& pv = T.reflected ? sample.values_reflected : sample.values;
         double sum = 0;
         for (int k = 0; k < m; ++k) {
-          const Vec2 x = R * mirror(uv[picked[k]], T.reflected) + T.translation;
+          const Vec2 x = R * mirror(uv[sample.picked[k]], T.reflected) + T.translation;
           double w, dw, d2w;
           rim_window(x.norm(), coarse.score.band, w, dw, d2w);
           if (w <= 0) continue;
@@ -233,20 +251,19 @@ RigidAlignmentResult align_rigid(const std::vector<Vec2>& uv, const std::vector<
             const double r = value[c] - pv[static_cast<std::size_t>(k) * d + c];
             r2 += r * r;
           }
-          sum += picked_weight[k] * w * std::exp(-r2 * inv_2s2);
+          sum += sample.weight[k] * w * std::exp(-r2 * inv_2s2);
         }
         scores[i] = sum;
       }
     });
     report(0.7 * (start + count) / options.samples);
   }
+  return scores;
+}
 
-  // The best distinct candidates (descending score, ties by index).
-  std::vector<int> order(options.samples);
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return scores[a] > scores[b]; });
-  // The best distinct candidates of each orientation (both are refined, so the mirror decision
-  // compares refined optima).
+// The best distinct candidates of each orientation (both are refined, so the mirror decision
+// compares refined optima), from `order` (descending score, ties by index).
+std::vector<int> distinct_best(const std::vector<int>& order, const RigidAlignmentOptions& options) {
   std::vector<int> chosen;
   const int per_class = std::max(1, (options.refine_count + 1) / 2);
   for (int cls = 0; cls < 2; ++cls) {
@@ -270,82 +287,115 @@ RigidAlignmentResult align_rigid(const std::vector<Vec2>& uv, const std::vector<
       }
     }
   }
+  return chosen;
+}
 
-  // Refine each on the exact score of a larger subsample (parallel over candidates, each serial).
-  std::vector<int> fine;
-  std::vector<double> fine_weight;
-  subsample_source(uv, vertex_weight, options.refine_subsample, fine, fine_weight);
-  std::vector<Vec2> fine_uv(fine.size());
-  std::vector<Eigen::MatrixXd> fine_values(levels.size()), fine_values_reflected(levels.size());
-  std::vector<MatchLevel> fine_levels(levels), fine_levels_reflected(levels);
-  for (std::size_t k = 0; k < fine.size(); ++k) fine_uv[k] = uv[fine[k]];
+// The larger subsample of the exact score: its uv, weights and values per level, as a plain and
+// as a mirrored candidate sees them, each with the exact ("0 outside") and the neutral rule.
+struct FineSample {
+  std::vector<int> picked;
+  std::vector<double> weight;
+  std::vector<Vec2> uv;
+  std::vector<Eigen::MatrixXd> values, values_reflected;
+  std::vector<MatchLevel> levels, levels_reflected;    // exact
+  std::vector<MatchLevel> neutral, neutral_reflected;  // nearest rim value outside
+};
+
+FineSample fine_sample(const std::vector<Vec2>& uv, const std::vector<double>& vertex_weight,
+                       const std::vector<MatchLevel>& levels, int subsample) {
+  FineSample s;
+  const std::vector<int>& fine = s.picked;
+  subsample_source(uv, vertex_weight, subsample, s.picked, s.weight);
+  s.uv.resize(fine.size());
+  s.values.resize(levels.size());
+  s.values_reflected.resize(levels.size());
+  s.levels = levels;
+  s.levels_reflected = levels;
+  for (std::size_t k = 0; k < fine.size(); ++k) s.uv[k] = uv[fine[k]];
   for (std::size_t l = 0; l < levels.size(); ++l) {
     const Eigen::MatrixXd* refl = levels[l].source_values_reflected ? levels[l].source_values_reflected
                                                                     : levels[l].source_values;
-    fine_values[l].resize(static_cast<Eigen::Index>(fine.size()), levels[l].source_values->cols());
-    fine_values_reflected[l].resize(static_cast<Eigen::Index>(fine.size()), levels[l].source_values->cols());
+    s.values[l].resize(static_cast<Eigen::Index>(fine.size()), levels[l].source_values->cols());
+    s.values_reflected[l].resize(static_cast<Eigen::Index>(fine.size()), levels[l].source_values->cols());
     for (std::size_t k = 0; k < fine.size(); ++k) {
-      fine_values[l].row(k) = levels[l].source_values->row(fine[k]);
-      fine_values_reflected[l].row(k) = refl->row(fine[k]);
+      s.values[l].row(k) = levels[l].source_values->row(fine[k]);
+      s.values_reflected[l].row(k) = refl->row(fine[k]);
     }
-    fine_levels[l].source_values = &fine_values[l];
-    fine_levels_reflected[l].source_values = &fine_values_reflected[l];
+    s.levels[l].source_values = &s.values[l];
+    s.levels_reflected[l].source_values = &s.values_reflected[l];
   }
   // Refinement reads the target beyond its rim by the nearest rim value (matching_score.h): the
   // overlap reward of the "0 outside" score, right for choosing among candidates, would pull a
   // partially overlapping alignment toward the center. The winner is still chosen by the
   // "0 outside" score.
-  std::vector<MatchLevel> neutral_levels(fine_levels), neutral_levels_reflected(fine_levels_reflected);
-  for (MatchLevel& l : neutral_levels) l.score.outside = OutsideRule::nearest_rim;
-  for (MatchLevel& l : neutral_levels_reflected) l.score.outside = OutsideRule::nearest_rim;
+  s.neutral = s.levels;
+  s.neutral_reflected = s.levels_reflected;
+  for (MatchLevel& l : s.neutral) l.score.outside = OutsideRule::nearest_rim;
+  for (MatchLevel& l : s.neutral_reflected) l.score.outside = OutsideRule::nearest_rim;
+  return s;
+}
+
+// Damped Newton steps over (angle, translation) on the full score of `rest` (the fine
+// subsample, mirrored for a mirrored T), each step backtracked until the score rises.
+void refine_transform(const std::vector<Vec2>& rest, const std::vector<double>& weight,
+                      const std::vector<MatchLevel>& neutral, int iterations, RigidTransform2D& T) {
+  Eigen::Vector3d g;
+  Eigen::Matrix3d negH;
+  double S = full_score(rest, weight, neutral, T.angle, T.translation, &g, &negH);
+  double damping = 1e-3;
+  for (int it = 0; it < iterations; ++it) {
+    const double scale = std::max(negH.trace() / 3, 1e-12);
+    Eigen::Matrix3d A = negH + damping * scale * Eigen::Matrix3d::Identity();
+    const Eigen::Vector3d step = A.ldlt().solve(g);
+    if (!step.allFinite() || step.norm() < 1e-10) break;
+    double alpha = 1;
+    bool improved = false;
+    for (int k = 0; k < 12; ++k) {
+      const double a = T.angle + alpha * step[0];
+      const Vec2 t = T.translation + alpha * step.tail<2>();
+      const double Sn = full_score(rest, weight, neutral, a, t, nullptr, nullptr);
+      if (Sn > S) {
+        const double gain = Sn - S;
+        T.angle = a;
+        T.translation = t;
+        S = full_score(rest, weight, neutral, T.angle, T.translation, &g, &negH);
+        improved = gain > 1e-10 * std::max(S, 1e-12);
+        break;
+      }
+      alpha *= 0.5;
+    }
+    if (!improved) break;
+  }
+}
+
+// Refine each on the exact score of a larger subsample (parallel over candidates, each serial).
+void refine_candidates(const FineSample& fine, const std::vector<int>& chosen, const RigidAlignmentOptions& options,
+                       std::vector<RigidTransform2D>& refined, std::vector<double>& refined_score) {
   const int nc = static_cast<int>(chosen.size());
-  std::vector<RigidTransform2D> refined(nc);
-  std::vector<double> refined_score(nc, 0.0);
+  refined.assign(nc, RigidTransform2D{});
+  refined_score.assign(nc, 0.0);
   for_each_block(nc, 1, [&](int begin, int end, int) {
     for (int c = begin; c < end; ++c) {
       RigidTransform2D T = rigid_candidate(options, chosen[c]);
-      const std::vector<MatchLevel>& neutral = T.reflected ? neutral_levels_reflected : neutral_levels;
-      const std::vector<MatchLevel>& exact = T.reflected ? fine_levels_reflected : fine_levels;
-      std::vector<Vec2> rest(fine_uv.size());
-      for (std::size_t v = 0; v < fine_uv.size(); ++v) rest[v] = mirror(fine_uv[v], T.reflected);
-      Eigen::Vector3d g;
-      Eigen::Matrix3d negH;
-      double S = full_score(rest, fine_weight, neutral, T.angle, T.translation, &g, &negH);
-      double damping = 1e-3;
-      for (int it = 0; it < options.refine_iterations; ++it) {
-        const double scale = std::max(negH.trace() / 3, 1e-12);
-        Eigen::Matrix3d A = negH + damping * scale * Eigen::Matrix3d::Identity();
-        const Eigen::Vector3d step = A.ldlt().solve(g);
-        if (!step.allFinite() || step.norm() < 1e-10) break;
-        double alpha = 1;
-        bool improved = false;
-        for (int k = 0; k < 12; ++k) {
-          const double a = T.angle + alpha * step[0];
-          const Vec2 t = T.translation + alpha * step.tail<2>();
-          const double Sn = full_score(rest, fine_weight, neutral, a, t, nullptr, nullptr);
-          if (Sn > S) {
-            const double gain = Sn - S;
-            T.angle = a;
-            T.translation = t;
-            S = full_score(rest, fine_weight, neutral, T.angle, T.translation, &g, &negH);
-            improved = gain > 1e-10 * std::max(S, 1e-12);
-            break;
-          }
-          alpha *= 0.5;
-        }
-        if (!improved) break;
-      }
+      const std::vector<MatchLevel>& neutral = T.reflected ? fine.neutral_reflected : fine.neutral;
+      const std::vector<MatchLevel>& exact = T.reflected ? fine.levels_reflected : fine.levels;
+      std::vector<Vec2> rest(fine.uv.size());
+      for (std::size_t v = 0; v < fine.uv.size(); ++v) rest[v] = mirror(fine.uv[v], T.reflected);
+      refine_transform(rest, fine.weight, neutral, options.refine_iterations, T);
       T.angle = std::fmod(T.angle, kTwoPi);
       if (T.angle < 0) T.angle += kTwoPi;
       refined[c] = T;
-      refined_score[c] = full_score(rest, fine_weight, exact, T.angle, T.translation, nullptr, nullptr);
+      refined_score[c] = full_score(rest, fine.weight, exact, T.angle, T.translation, nullptr, nullptr);
     }
   });
-  report(1.0);
+}
 
-  // Best of each orientation; mirroring must win by a margin (nearly symmetric patches such as a
-  // nose score about the same both ways, and then the orientation-preserving map is the safe one).
+// Best of each orientation; mirroring must win by a margin (nearly symmetric patches such as a
+// nose score about the same both ways, and then the orientation-preserving map is the safe one).
+RigidAlignmentResult best_refined(const std::vector<int>& chosen, const std::vector<RigidTransform2D>& refined,
+                                  const std::vector<double>& refined_score, const RigidAlignmentOptions& options) {
   RigidAlignmentResult result;
+  const int nc = static_cast<int>(refined.size());
   int best[2] = {-1, -1};
   for (int c = 0; c < nc; ++c) {
     const int cls = refined[c].reflected ? 1 : 0;
@@ -365,6 +415,34 @@ RigidAlignmentResult align_rigid(const std::vector<Vec2>& uv, const std::vector<
   result.transform = refined[winner];
   result.score = refined_score[winner];
   result.best_sample = chosen[winner];
+  return result;
+}
+
+}  // namespace
+
+RigidAlignmentResult align_rigid(const std::vector<Vec2>& uv, const std::vector<double>& vertex_weight,
+                                 const std::vector<MatchLevel>& levels, const RigidAlignmentOptions& options,
+                                 const std::function<bool(double)>& progress) {
+  check_alignment_inputs(uv, vertex_weight, levels, options);
+  const std::function<void(double)> report = [&](double f) {
+    if (progress && !progress(f)) fail(MCON_ERROR_CANCELLED, "rigid alignment cancelled");
+  };
+
+  const std::vector<double> scores = sampled_scores(uv, vertex_weight, levels.front(), options, report);
+
+  // The best distinct candidates (descending score, ties by index).
+  std::vector<int> order(options.samples);
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return scores[a] > scores[b]; });
+  const std::vector<int> chosen = distinct_best(order, options);
+
+  const FineSample fine = fine_sample(uv, vertex_weight, levels, options.refine_subsample);
+  std::vector<RigidTransform2D> refined;
+  std::vector<double> refined_score;
+  refine_candidates(fine, chosen, options, refined, refined_score);
+  report(1.0);
+
+  RigidAlignmentResult result = best_refined(chosen, refined, refined_score, options);
   result.sampled_score = scores[order.front()];
   return result;
 }

@@ -85,13 +85,12 @@ double overlap_ratio(const SourceDisk& disk, const std::vector<Vec2>& phi, const
   return overlap;
 }
 
-}  // namespace
 
-SurfaceMap compute_surface_map(const MapDomain& source, const MapDomain& target, const SurfaceMapOptions& options) {
+// Source and target must agree in their descriptor levels, and the options must be usable.
+void check_inputs(const MapDomain& source, const MapDomain& target, const SurfaceMapOptions& options) {
   check_domain(source, "source");
   check_domain(target, "target");
   const int L = static_cast<int>(source.descriptor_levels.size());
-  const int R = static_cast<int>(options.refine_sigma_factors.size());
   require(static_cast<int>(target.descriptor_levels.size()) == L, MCON_ERROR_INVALID_ARGUMENT,
           "source and target have different numbers of descriptor levels");
   for (int l = 0; l < L; ++l)
@@ -108,61 +107,75 @@ SurfaceMap compute_surface_map(const MapDomain& source, const MapDomain& target,
             "invalid map options: refinement sigma factors must be finite and > 0");
   require(options.refine_max_iterations >= 1, MCON_ERROR_INVALID_ARGUMENT,
           "invalid map options: refine_max_iterations must be >= 1");
-  std::vector<Vec2> target_polygon;
-  {
-    const MeshTopology topo = build_topology(target.mesh);
-    require(topo.boundary_loops.size() == 1, MCON_ERROR_NOT_A_DISK, "target: expected exactly one boundary loop");
-    for (int v : topo.boundary_loops[0]) {
-      require(std::abs(target.uv[v].norm() - 1.0) <= 1e-6, MCON_ERROR_INVALID_ARGUMENT,
-              "target: uv boundary vertex " + std::to_string(v) + " is not on the unit circle");
-      target_polygon.push_back(target.uv[v]);
-    }
-    require(polygon_area(target_polygon) > 0, MCON_ERROR_INVALID_ARGUMENT,
-            "target: uv boundary is not counter-clockwise");
-  }
-  auto report = [&](double f) {
-    if (options.progress && !options.progress(f)) fail(MCON_ERROR_CANCELLED, "surface map cancelled");
-  };
-  report(0.0);
+}
 
-  // Target fields and the per-level Gaussian widths.
-  const TriangleLocator2D target_locator(target.uv, target.mesh.triangles);
+// The target's single boundary loop in uv, which must lie on the unit circle counter-clockwise.
+std::vector<Vec2> target_boundary_polygon(const MapDomain& target) {
+  std::vector<Vec2> target_polygon;
+  const MeshTopology topo = build_topology(target.mesh);
+  require(topo.boundary_loops.size() == 1, MCON_ERROR_NOT_A_DISK, "target: expected exactly one boundary loop");
+  for (int v : topo.boundary_loops[0]) {
+    require(std::abs(target.uv[v].norm() - 1.0) <= 1e-6, MCON_ERROR_INVALID_ARGUMENT,
+            "target: uv boundary vertex " + std::to_string(v) + " is not on the unit circle");
+    target_polygon.push_back(target.uv[v]);
+  }
+  require(polygon_area(target_polygon) > 0, MCON_ERROR_INVALID_ARGUMENT,
+          "target: uv boundary is not counter-clockwise");
+  return target_polygon;
+}
+
+void report_progress(const SurfaceMapOptions& options, double f) {
+  if (options.progress && !options.progress(f)) fail(MCON_ERROR_CANCELLED, "surface map cancelled");
+}
+
+// The descriptor levels as the score reads them: the target's fields, the source's values (and
+// the source as a mirrored map sees it, if chiral columns change sign) and the Gaussian widths.
+struct Levels {
   std::vector<std::unique_ptr<DescriptorField2D>> fields;
-  std::vector<MatchLevel> levels(L);
-  SurfaceMap out;
-  out.levels.resize(L + R);
+  std::vector<Eigen::MatrixXd> reflected;  // the source as a mirrored map sees it
+  std::vector<MatchLevel> match;
+};
+
+// One field per target level, the source values it is compared with and its Gaussian width.
+Levels match_levels(const MapDomain& source, const MapDomain& target, const SurfaceMapOptions& options,
+                    const TriangleLocator2D& target_locator) {
+  const int L = static_cast<int>(source.descriptor_levels.size());
+  Levels levels;
+  levels.match.resize(L);
   for (int c : options.chiral_columns)
     require(c >= 0 && c < source.descriptor_levels[0].cols(), MCON_ERROR_INVALID_ARGUMENT,
             "chiral column " + std::to_string(c) + " is not a descriptor column");
-  std::vector<Eigen::MatrixXd> reflected_levels;  // the source as a mirrored map sees it
   if (!options.chiral_columns.empty())
     for (int l = 0; l < L; ++l) {
-      reflected_levels.push_back(source.descriptor_levels[l]);
-      for (int c : options.chiral_columns) reflected_levels.back().col(c) *= -1.0;
+      levels.reflected.push_back(source.descriptor_levels[l]);
+      for (int c : options.chiral_columns) levels.reflected.back().col(c) *= -1.0;
     }
-  auto source_values = [&](int l, bool reflected) -> const Eigen::MatrixXd& {
-    return reflected && !reflected_levels.empty() ? reflected_levels[l] : source.descriptor_levels[l];
-  };
   for (int l = 0; l < L; ++l) {
-    fields.push_back(std::make_unique<DescriptorField2D>(target_locator, target.descriptor_levels[l]));
-    levels[l].source_values = &source.descriptor_levels[l];
-    if (!reflected_levels.empty()) levels[l].source_values_reflected = &reflected_levels[l];
-    levels[l].target_field = fields.back().get();
-    levels[l].score.sigma =
+    MatchLevel& level = levels.match[l];
+    levels.fields.push_back(std::make_unique<DescriptorField2D>(target_locator, target.descriptor_levels[l]));
+    level.source_values = &source.descriptor_levels[l];
+    if (!levels.reflected.empty()) level.source_values_reflected = &levels.reflected[l];
+    level.target_field = levels.fields.back().get();
+    level.score.sigma =
         options.sigma_scale * descriptor_sigma(source.descriptor_levels[l], target.descriptor_levels[l]);
-    levels[l].score.band = options.rim_band;
-    out.levels[l].sigma = levels[l].score.sigma;
+    level.score.band = options.rim_band;
   }
-  for (int r = 0; r < R; ++r) out.levels[L + r].sigma = levels[L - 1].score.sigma * options.refine_sigma_factors[r];
+  return levels;
+}
 
-  // 1. Rigid start.
-  const auto t0 = std::chrono::steady_clock::now();
-  const SourceDisk plain = make_source_disk(source.mesh, source.uv, false);
-  constexpr double kAlignShare = 0.15;
+const Eigen::MatrixXd& source_values(const MapDomain& source, const Levels& levels, int l, bool reflected) {
+  return reflected && !levels.reflected.empty() ? levels.reflected[l] : source.descriptor_levels[l];
+}
+
+constexpr double kAlignShare = 0.15;
+
+// The best rigid (possibly mirrored) start; a forced orientation takes its own best.
+RigidAlignmentResult rigid_start(const MapDomain& source, const SourceDisk& plain, const Levels& levels,
+                                 const SurfaceMapOptions& options) {
   RigidAlignmentOptions alignment_options = options.alignment;
   if (options.orientation != MapOrientation::automatic) alignment_options.allow_reflection = true;  // both scored
-  RigidAlignmentResult init = align_rigid(source.uv, plain.vertex_weight, levels, alignment_options,
-                                          [&](double f) { report(kAlignShare * f); return true; });
+  RigidAlignmentResult init = align_rigid(source.uv, plain.vertex_weight, levels.match, alignment_options,
+                                          [&](double f) { report_progress(options, kAlignShare * f); return true; });
   if (options.orientation != MapOrientation::automatic) {
     // A forced orientation takes that orientation's best refined candidate.
     const bool reverse = options.orientation == MapOrientation::reverse;
@@ -171,93 +184,110 @@ SurfaceMap compute_surface_map(const MapDomain& source, const MapDomain& target,
     init.transform = reverse ? init.best_reflected : init.best_unreflected;
     init.score = score;
   }
-  out.alignment_seconds = seconds_since(t0);
-  out.alignment = init;
+  return init;
+}
 
-  // 2. Projected Newton, smoothest level first.
-  const auto t1 = std::chrono::steady_clock::now();
+// What every Newton stage reads. Stage s < L is descriptor level s; stage s >= L is refinement
+// pass s - L at the finest level with its narrower width (sigma[s]).
+struct Stages {
+  const MapDomain& source;
+  const Levels& levels;
+  const SurfaceMapOptions& options;
+  std::vector<double> sigma;  // per stage
+  int L = 0;
+  int R = 0;
+  double level_share = 0;  // progress range of one stage
+  double level_from(int l) const { return kAlignShare + l * level_share; }
+};
+
+// The Gaussian width of each stage: each level's, then the finest level's times each refinement
+// factor.
+std::vector<double> stage_sigmas(const Levels& levels, const SurfaceMapOptions& options) {
+  const int L = static_cast<int>(levels.match.size());
+  const int R = static_cast<int>(options.refine_sigma_factors.size());
+  std::vector<double> sigma(L + R);
+  for (int l = 0; l < L; ++l) sigma[l] = levels.match[l].score.sigma;
+  for (int r = 0; r < R; ++r) sigma[L + r] = levels.match[L - 1].score.sigma * options.refine_sigma_factors[r];
+  return sigma;
+}
+
+ScoreSettings stage_score(const Stages& st, int s) {
+  ScoreSettings score = st.levels.match[std::min(s, st.L - 1)].score;
+  score.outside = OutsideRule::nearest_rim;
+  score.sigma = st.sigma[s];
+  return score;
+}
+
+// Runs stage s from x; its iterations map into the progress range [progress_from, progress_to].
+// energy_scale: the first level's start energy, the tolerance scale of later stages.
+NewtonReport run_level(const Stages& st, int s, const SourceDisk& disk, Eigen::VectorXd& x, double energy_scale,
+                       double progress_from, double progress_to) {
+  const SurfaceMapOptions& options = st.options;
+  const int l = std::min(s, st.L - 1);
+  const MapEnergy energy(disk, *st.levels.fields[l], source_values(st.source, st.levels, l, disk.reflected),
+                         stage_score(st, s), options.weights);
+  bool cancelled = false;
+  NewtonOptions newton = options.newton;
+  if (s >= st.L) newton.max_iterations = std::min(newton.max_iterations, options.refine_max_iterations);
+  newton.energy_scale = std::max(newton.energy_scale, energy_scale);
+  const int cap = std::max(newton.max_iterations, 1);
+  NewtonReport r = minimize_map_energy(energy, x, newton, [&](int it, double) {
+    const double f = progress_from + (progress_to - progress_from) * std::min(1.0, static_cast<double>(it) / cap);
+    if (options.progress && !options.progress(std::min(f, 0.999))) cancelled = true;
+    return !cancelled;
+  });
+  if (cancelled || r.reason == StopReason::cancelled) fail(MCON_ERROR_CANCELLED, "surface map cancelled");
+  return r;
+}
+
+Eigen::VectorXd start_from(const MapDomain& source, const RigidTransform2D& T) {
   const int n = source.mesh.num_vertices();
-  // Runs stage s from x (s < L: descriptor level s; else refinement pass s - L at the finest
-  // level with its narrower width); its iterations map into the progress range.
-  // energy_scale: the first level's start energy, the tolerance scale of later stages.
-  auto stage_score = [&](int s) {
-    ScoreSettings score = levels[std::min(s, L - 1)].score;
-    score.outside = OutsideRule::nearest_rim;
-    score.sigma = out.levels[s].sigma;
-    return score;
-  };
-  auto run_level = [&](int s, const SourceDisk& disk, Eigen::VectorXd& x, double energy_scale, double progress_from,
-                       double progress_to) {
-    const int l = std::min(s, L - 1);
-    const MapEnergy energy(disk, *fields[l], source_values(l, disk.reflected), stage_score(s), options.weights);
-    bool cancelled = false;
-    NewtonOptions newton = options.newton;
-    if (s >= L) newton.max_iterations = std::min(newton.max_iterations, options.refine_max_iterations);
-    newton.energy_scale = std::max(newton.energy_scale, energy_scale);
-    const int cap = std::max(newton.max_iterations, 1);
-    NewtonReport r = minimize_map_energy(energy, x, newton, [&](int it, double) {
-      const double f = progress_from + (progress_to - progress_from) * std::min(1.0, static_cast<double>(it) / cap);
-      if (options.progress && !options.progress(std::min(f, 0.999))) cancelled = true;
-      return !cancelled;
-    });
-    if (cancelled || r.reason == StopReason::cancelled) fail(MCON_ERROR_CANCELLED, "surface map cancelled");
-    return r;
-  };
-  auto start_from = [&](const RigidTransform2D& T) {
-    Eigen::VectorXd x(2 * n);
-    for (int v = 0; v < n; ++v) x.segment<2>(2 * v) = T.apply(source.uv[v]);
-    return x;
-  };
-  const double level_share = (1 - kAlignShare) / (L + R);
-  // One orientation's optimization: its disk, iterate and per-level reports.
-  struct Candidate {
-    const SourceDisk* disk;
-    Eigen::VectorXd x;
-    std::vector<NewtonReport> reports;
-    double energy_scale = 0;
-  };
-  // Runs the candidate's next level in the progress range [p0, p1].
-  auto advance = [&](Candidate& c, double p0, double p1) {
-    const int l = static_cast<int>(c.reports.size());
-    c.reports.push_back(run_level(l, *c.disk, c.x, c.energy_scale, p0, p1));
-    if (l == 0) c.energy_scale = c.reports.back().energy.front();
-  };
-  auto level_from = [&](int l) { return kAlignShare + l * level_share; };
-  const bool compare = options.orientation == MapOrientation::automatic && init.score_unreflected >= 0 &&
-                       init.score_reflected >= 0 && options.alignment.allow_reflection &&
-                       std::abs(init.score_reflected - init.score_unreflected) < options.orientation_ambiguity;
-  // The mirrored rest disk only where a mirrored candidate runs.
-  const SourceDisk mirrored = (compare || init.transform.reflected) ? make_source_disk(source.mesh, source.uv, true)
-                                                                    : SourceDisk{};
-  Candidate chosen{init.transform.reflected ? &mirrored : &plain, start_from(init.transform), {}, 0};
-  if (compare) {
-    // Both orientations, each optimized on its own; the lower energy after the compared levels
-    // decides, the mirrored one only by the relative margin.
-    Candidate cp{&plain, start_from(init.best_unreflected), {}, 0};
-    Candidate cm{&mirrored, start_from(init.best_reflected), {}, 0};
-    const int upto = std::clamp(options.compared_levels, 1, L);
-    for (int l = 0; l < upto; ++l) {
-      const double mid = level_from(l) + 0.5 * level_share;
-      advance(cp, level_from(l), mid);
-      advance(cm, mid, level_from(l + 1));
-    }
-    out.orientation_compared = true;
-    out.level0_energy_unreflected = cp.reports.front().energy.back();
-    out.level0_energy_reflected = cm.reports.front().energy.back();
-    const bool mirror_wins =
-        cm.reports.back().energy.back() < (1 - options.mirror_energy_margin) * cp.reports.back().energy.back();
-    chosen = mirror_wins ? std::move(cm) : std::move(cp);
-    out.alignment.transform = mirror_wins ? init.best_reflected : init.best_unreflected;
-    out.alignment.score = mirror_wins ? init.score_reflected : init.score_unreflected;
+  Eigen::VectorXd x(2 * n);
+  for (int v = 0; v < n; ++v) x.segment<2>(2 * v) = T.apply(source.uv[v]);
+  return x;
+}
+
+// One orientation's optimization: its disk, iterate and per-level reports.
+struct Candidate {
+  const SourceDisk* disk;
+  Eigen::VectorXd x;
+  std::vector<NewtonReport> reports;
+  double energy_scale = 0;
+};
+
+// Runs the candidate's next level in the progress range [p0, p1].
+void advance(const Stages& st, Candidate& c, double p0, double p1) {
+  const int l = static_cast<int>(c.reports.size());
+  c.reports.push_back(run_level(st, l, *c.disk, c.x, c.energy_scale, p0, p1));
+  if (l == 0) c.energy_scale = c.reports.back().energy.front();
+}
+
+// Both orientations, each optimized on its own; the lower energy after the compared levels
+// decides, the mirrored one only by the relative margin.
+Candidate better_orientation(const Stages& st, const RigidAlignmentResult& init, const SourceDisk& plain,
+                             const SourceDisk& mirrored, SurfaceMap& out) {
+  Candidate cp{&plain, start_from(st.source, init.best_unreflected), {}, 0};
+  Candidate cm{&mirrored, start_from(st.source, init.best_reflected), {}, 0};
+  const int upto = std::clamp(st.options.compared_levels, 1, st.L);
+  for (int l = 0; l < upto; ++l) {
+    const double mid = st.level_from(l) + 0.5 * st.level_share;
+    advance(st, cp, st.level_from(l), mid);
+    advance(st, cm, mid, st.level_from(l + 1));
   }
-  const SourceDisk& disk = *chosen.disk;
-  out.reflected = disk.reflected;
-  while (static_cast<int>(chosen.reports.size()) < L + R) {
-    const int l = static_cast<int>(chosen.reports.size());
-    advance(chosen, level_from(l), level_from(l + 1));
-  }
-  for (int l = 0; l < L + R; ++l) {
-    const NewtonReport& r = chosen.reports[l];
+  out.orientation_compared = true;
+  out.level0_energy_unreflected = cp.reports.front().energy.back();
+  out.level0_energy_reflected = cm.reports.front().energy.back();
+  const bool mirror_wins =
+      cm.reports.back().energy.back() < (1 - st.options.mirror_energy_margin) * cp.reports.back().energy.back();
+  out.alignment.transform = mirror_wins ? init.best_reflected : init.best_unreflected;
+  out.alignment.score = mirror_wins ? init.score_reflected : init.score_unreflected;
+  return mirror_wins ? std::move(cm) : std::move(cp);
+}
+
+// The stages' Newton reports into the map's per-level reports, energy history and totals.
+void collect_reports(const std::vector<NewtonReport>& reports, int L, SurfaceMap& out) {
+  for (int l = 0; l < static_cast<int>(reports.size()); ++l) {
+    const NewtonReport& r = reports[l];
     LevelReport& lr = out.levels[l];
     lr.iterations = r.iterations;
     lr.stop_reason = r.reason;
@@ -271,18 +301,37 @@ SurfaceMap compute_surface_map(const MapDomain& source, const MapDomain& target,
     if (l == L - 1) out.stop_reason = r.reason;  // a refinement pass ends at its short cap by design
     out.energy = r.terms;
   }
-  const Eigen::VectorXd& x = chosen.x;
-  if (R > 0)  // the reported terms (and matching score) keep the finest level's width
-    out.energy = MapEnergy(disk, *fields[L - 1], source_values(L - 1, disk.reflected), stage_score(L - 1),
-                           options.weights)
-                     .evaluate(x);
-  out.optimization_seconds = seconds_since(t1);
-  const int inverted = count_inverted(disk.triangles, x);
-  require(inverted == 0, MCON_ERROR_NUMERICAL,
-          "surface map: " + std::to_string(inverted) + " inverted triangles in the result");
-  out.matching_score = 1.0 - out.energy.value("descriptor");
+}
 
-  // 3. Both directions and the overlap.
+// Whether both orientations are optimized: automatic orientation, both scored, and their rigid
+// scores too close to tell.
+bool compare_orientations(const SurfaceMapOptions& options, const RigidAlignmentResult& init) {
+  return options.orientation == MapOrientation::automatic && init.score_unreflected >= 0 &&
+         init.score_reflected >= 0 && options.alignment.allow_reflection &&
+         std::abs(init.score_reflected - init.score_unreflected) < options.orientation_ambiguity;
+}
+
+// The candidate's remaining stages, through the last refinement pass.
+void run_remaining_levels(const Stages& st, Candidate& chosen) {
+  while (static_cast<int>(chosen.reports.size()) < st.L + st.R) {
+    const int l = static_cast<int>(chosen.reports.size());
+    advance(st, chosen, st.level_from(l), st.level_from(l + 1));
+  }
+}
+
+// The energy terms of x at the finest level's width.
+MapEnergyTerms finest_level_terms(const Stages& st, const SourceDisk& disk, const Eigen::VectorXd& x) {
+  const int L = st.L;
+  return MapEnergy(disk, *st.levels.fields[L - 1], source_values(st.source, st.levels, L - 1, disk.reflected),
+                   stage_score(st, L - 1), st.options.weights)
+      .evaluate(x);
+}
+
+// phi, the correspondences in both directions and the overlap ratio.
+void map_both_directions(const MapDomain& source, const MapDomain& target, const TriangleLocator2D& target_locator,
+                         const SourceDisk& disk, const std::vector<Vec2>& target_polygon, const Eigen::VectorXd& x,
+                         SurfaceMap& out) {
+  const int n = source.mesh.num_vertices();
   out.phi.resize(n);
   for (int v = 0; v < n; ++v) out.phi[v] = x.segment<2>(2 * v);
   out.source_to_target.resize(n);
@@ -297,7 +346,57 @@ SurfaceMap compute_surface_map(const MapDomain& source, const MapDomain& target,
     const PointLocation loc = deformed.locate(target.uv[w]);
     out.target_to_source[w] = {loc.triangle, loc.barycentric};
   }
-  report(1.0);
+}
+
+}  // namespace
+
+SurfaceMap compute_surface_map(const MapDomain& source, const MapDomain& target, const SurfaceMapOptions& options) {
+  check_inputs(source, target, options);
+  const std::vector<Vec2> target_polygon = target_boundary_polygon(target);
+  report_progress(options, 0.0);
+
+  // Target fields and the per-level Gaussian widths.
+  const TriangleLocator2D target_locator(target.uv, target.mesh.triangles);
+  const Levels levels = match_levels(source, target, options, target_locator);
+  const int L = static_cast<int>(levels.match.size());
+  const int R = static_cast<int>(options.refine_sigma_factors.size());
+  const Stages stages{source, levels, options, stage_sigmas(levels, options), L, R, (1 - kAlignShare) / (L + R)};
+  SurfaceMap out;
+  out.levels.resize(L + R);
+  for (int s = 0; s < L + R; ++s) out.levels[s].sigma = stages.sigma[s];
+
+  // 1. Rigid start.
+  const auto t0 = std::chrono::steady_clock::now();
+  const SourceDisk plain = make_source_disk(source.mesh, source.uv, false);
+  const RigidAlignmentResult init = rigid_start(source, plain, levels, options);
+  out.alignment_seconds = seconds_since(t0);
+  out.alignment = init;
+
+  // 2. Projected Newton, smoothest level first.
+  const auto t1 = std::chrono::steady_clock::now();
+  const bool compare = compare_orientations(options, init);
+  // The mirrored rest disk only where a mirrored candidate runs.
+  const SourceDisk mirrored = (compare || init.transform.reflected) ? make_source_disk(source.mesh, source.uv, true)
+                                                                    : SourceDisk{};
+  Candidate chosen = compare ? better_orientation(stages, init, plain, mirrored, out)
+                             : Candidate{init.transform.reflected ? &mirrored : &plain,
+                                         start_from(source, init.transform), {}, 0};
+  const SourceDisk& disk = *chosen.disk;
+  out.reflected = disk.reflected;
+  run_remaining_levels(stages, chosen);
+  collect_reports(chosen.reports, L, out);
+  const Eigen::VectorXd& x = chosen.x;
+  if (R > 0)  // the reported terms (and matching score) keep the finest level's width
+    out.energy = finest_level_terms(stages, disk, x);
+  out.optimization_seconds = seconds_since(t1);
+  const int inverted = count_inverted(disk.triangles, x);
+  require(inverted == 0, MCON_ERROR_NUMERICAL,
+          "surface map: " + std::to_string(inverted) + " inverted triangles in the result");
+  out.matching_score = 1.0 - out.energy.value("descriptor");
+
+  // 3. Both directions and the overlap.
+  map_both_directions(source, target, target_locator, disk, target_polygon, x, out);
+  report_progress(options, 1.0);
   return out;
 }
 

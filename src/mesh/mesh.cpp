@@ -24,12 +24,10 @@ int find_root(std::vector<int>& parent, int i) {
   return i;
 }
 
-void validate_impl(const TriMesh& mesh, bool allow_isolated) {
+// Finite positions; triangle indices in range and distinct.
+void check_positions_and_indices(const TriMesh& mesh) {
   const int nv = mesh.num_vertices();
   const int nt = mesh.num_triangles();
-  require(nv > 0 && nt > 0, MCON_ERROR_EMPTY_MESH,
-          "mesh is empty (" + std::to_string(nv) + " vertices, " + std::to_string(nt) + " triangles)");
-
   for (int v = 0; v < nv; ++v) {
     const Vec3& p = mesh.positions[v];
     if (!(std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z())))
@@ -48,7 +46,10 @@ void validate_impl(const TriMesh& mesh, bool allow_isolated) {
                                           std::to_string(tri[0]) + ", " + std::to_string(tri[1]) + ", " +
                                           std::to_string(tri[2]) + ")");
   }
-  for (int t = 0; t < nt; ++t) {
+}
+
+void check_triangle_areas(const TriMesh& mesh) {
+  for (int t = 0; t < mesh.num_triangles(); ++t) {
     const Tri& tri = mesh.triangles[t];
     const Vec3 &a = mesh.positions[tri[0]], &b = mesh.positions[tri[1]], &c = mesh.positions[tri[2]];
     const double longest = std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
@@ -57,8 +58,11 @@ void validate_impl(const TriMesh& mesh, bool allow_isolated) {
     if (!(twice_area > 1e-12 * longest))
       fail(MCON_ERROR_DEGENERATE_TRIANGLE, "triangle " + std::to_string(t) + " has zero area");
   }
+}
 
-  // Directed edges: each may appear once; its reverse at most once.
+// Directed edges: each may appear once; its reverse at most once.
+void check_directed_edges(const TriMesh& mesh) {
+  const int nt = mesh.num_triangles();
   std::unordered_map<std::uint64_t, int> directed;
   directed.reserve(static_cast<std::size_t>(nt) * 3);
   for (int t = 0; t < nt; ++t) {
@@ -75,9 +79,13 @@ void validate_impl(const TriMesh& mesh, bool allow_isolated) {
       }
     }
   }
+}
 
-  // Vertex fans: the triangles around a vertex must form one fan, i.e. be connected through the
-  // edges incident to that vertex.
+// Vertex fans: the triangles around a vertex must form one fan, i.e. be connected through the
+// edges incident to that vertex.
+void check_vertex_fans(const TriMesh& mesh, bool allow_isolated) {
+  const int nv = mesh.num_vertices();
+  const int nt = mesh.num_triangles();
   std::vector<std::vector<int>> vertex_triangles(nv);
   for (int t = 0; t < nt; ++t)
     for (int v : mesh.triangles[t]) vertex_triangles[v].push_back(t);
@@ -109,6 +117,17 @@ void validate_impl(const TriMesh& mesh, bool allow_isolated) {
       fail(MCON_ERROR_NON_MANIFOLD_VERTEX, "vertex " + std::to_string(v) + " joins " + std::to_string(fans) +
                                                " separate fans of triangles (non-manifold vertex)");
   }
+}
+
+void validate_impl(const TriMesh& mesh, bool allow_isolated) {
+  const int nv = mesh.num_vertices();
+  const int nt = mesh.num_triangles();
+  require(nv > 0 && nt > 0, MCON_ERROR_EMPTY_MESH,
+          "mesh is empty (" + std::to_string(nv) + " vertices, " + std::to_string(nt) + " triangles)");
+  check_positions_and_indices(mesh);
+  check_triangle_areas(mesh);
+  check_directed_edges(mesh);
+  check_vertex_fans(mesh, allow_isolated);
 }
 
 template <typename Scalar>

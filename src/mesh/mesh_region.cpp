@@ -5,9 +5,12 @@
 #include <queue>
 
 namespace mcon {
+namespace {
 
-MeshRegion mesh_region_around(const TriMesh& host, const std::vector<std::vector<int>>& vertex_triangles,
-                              int center_vertex, int center_triangle, const Vec3& center_point, double bound) {
+// Dijkstra from the center (a vertex, or the corners of its triangle at their Euclidean
+// distance): the vertices within the bound, in settling order.
+std::vector<int> vertices_within(const TriMesh& host, const std::vector<std::vector<int>>& vertex_triangles,
+                                 int center_vertex, int center_triangle, const Vec3& center_point, double bound) {
   const int n = host.num_vertices();
   const double inf = std::numeric_limits<double>::infinity();
   std::vector<double> dist(n, inf);
@@ -41,12 +44,16 @@ MeshRegion mesh_region_around(const TriMesh& host, const std::vector<std::vector
       for (int w : host.triangles[t])
         if (!settled[w]) relax(w, d + (host.positions[w] - host.positions[v]).norm());
   }
+  return inside;
+}
 
-  // Region triangles: every host triangle with a vertex within the bound (this keeps the region
-  // closed around the bound, and connected: Dijkstra only walks from the center).
-  MeshRegion region;
-  region.host_to_vertex.assign(n, -1);
-  std::vector<char> tri_taken(host.num_triangles(), 0);
+// Region triangles: every host triangle with a vertex within the bound (this keeps the region
+// closed around the bound, and connected: Dijkstra only walks from the center). Marks the taken
+// host triangles in tri_taken.
+void collect_triangles(const TriMesh& host, const std::vector<std::vector<int>>& vertex_triangles,
+                       const std::vector<int>& inside, MeshRegion& region, std::vector<char>& tri_taken) {
+  region.host_to_vertex.assign(host.num_vertices(), -1);
+  tri_taken.assign(host.num_triangles(), 0);
   for (int v : inside)
     for (int t : vertex_triangles[v]) {
       if (tri_taken[t]) continue;
@@ -64,6 +71,12 @@ MeshRegion mesh_region_around(const TriMesh& host, const std::vector<std::vector
       region.mesh.triangles.push_back(tri);
       region.triangle_to_host.push_back(t);
     }
+}
+
+// Which region vertices have a host triangle outside the region (on the cut) or lie on the
+// host's own boundary; and whether there is no cut at all.
+void mark_cut_and_boundary(const TriMesh& host, const std::vector<std::vector<int>>& vertex_triangles,
+                           const std::vector<char>& tri_taken, MeshRegion& region) {
   region.vertex_on_cut.assign(region.vertex_to_host.size(), 0);
   region.vertex_on_host_boundary.assign(region.vertex_to_host.size(), 0);
   bool any_cut = false;
@@ -86,6 +99,18 @@ MeshRegion mesh_region_around(const TriMesh& host, const std::vector<std::vector
     region.vertex_on_host_boundary[rv] = distinct > static_cast<long>(vertex_triangles[hv].size());
   }
   region.is_whole_component = !any_cut;
+}
+
+}  // namespace
+
+MeshRegion mesh_region_around(const TriMesh& host, const std::vector<std::vector<int>>& vertex_triangles,
+                              int center_vertex, int center_triangle, const Vec3& center_point, double bound) {
+  const std::vector<int> inside =
+      vertices_within(host, vertex_triangles, center_vertex, center_triangle, center_point, bound);
+  MeshRegion region;
+  std::vector<char> tri_taken;
+  collect_triangles(host, vertex_triangles, inside, region, tri_taken);
+  mark_cut_and_boundary(host, vertex_triangles, tri_taken, region);
   return region;
 }
 

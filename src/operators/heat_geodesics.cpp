@@ -67,6 +67,47 @@ TriangleGradient triangle_gradient(const std::array<double, 3>& l) {
 
 std::string str(long v) { return std::to_string(v); }
 
+void check_input(const TriMesh& mesh, const HeatGeodesicsOptions& options) {
+  const int n = mesh.num_vertices(), nt = mesh.num_triangles();
+  require(n > 0 && nt > 0, MCON_ERROR_EMPTY_MESH,
+          "heat geodesics: mesh is empty (" + str(n) + " vertices, " + str(nt) + " triangles)");
+  if (!(std::isfinite(options.time_factor) && options.time_factor > 0))
+    fail(MCON_ERROR_INVALID_ARGUMENT,
+         "heat geodesics: time_factor must be finite and > 0, got " + std::to_string(options.time_factor));
+  // Cheap guards so a mesh that skipped validate_mesh fails cleanly instead of crashing;
+  // manifoldness is checked by build_topology below.
+  for (int v = 0; v < n; ++v)
+    if (!mesh.positions[v].allFinite())
+      fail(MCON_ERROR_NON_FINITE, "heat geodesics: vertex " + str(v) + " has a non-finite coordinate");
+  for (int t = 0; t < nt; ++t)
+    for (int v : mesh.triangles[t])
+      if (v < 0 || v >= n)
+        fail(MCON_ERROR_INDEX_OUT_OF_RANGE,
+             "heat geodesics: triangle " + str(t) + " uses vertex " + str(v) + " of " + str(n));
+}
+
+// Dirichlet heat operator: u = 0 on boundary vertices, i.e. identity rows and columns there.
+SparseMatrix dirichlet_operator(const SparseMatrix& heat, const std::vector<char>& on_boundary) {
+  SparseMatrix dirichlet = heat;
+  dirichlet.prune([&](Eigen::Index i, Eigen::Index j, double) {
+    return i == j || (!on_boundary[i] && !on_boundary[j]);
+  });
+  for (int v = 0; v < static_cast<int>(on_boundary.size()); ++v)
+    if (on_boundary[v]) dirichlet.coeffRef(v, v) = 1.0;
+  return dirichlet;
+}
+
+// III. L is singular (constants per component): fix the pinned vertex of each component to 0.
+// This is exact, not a regularization: the right-hand side sums to 0 over every component.
+SparseMatrix pinned_poisson(const SparseMatrix& L, const std::vector<int>& pinned, int n) {
+  SparseMatrix poisson = L;
+  std::vector<char> is_pinned(n, 0);
+  for (int v : pinned) is_pinned[v] = 1;
+  poisson.prune([&](Eigen::Index i, Eigen::Index j, double) { return i == j || (!is_pinned[i] && !is_pinned[j]); });
+  for (int v : pinned) poisson.coeffRef(v, v) = 1.0;
+  return poisson;
+}
+
 }  // namespace
 
 struct HeatGeodesics::Impl {
@@ -84,6 +125,10 @@ struct HeatGeodesics::Impl {
   Solver heat_neumann, heat_dirichlet, poisson;
 
   Eigen::ComputationInfo factor(Solver& solver, const SparseMatrix& symmetric) const;
+  void find_components(const TriMesh& mesh, const MeshTopology& topology, const HeatGeodesicsOptions& options);
+  SparseMatrix build_operators(const TriMesh& mesh, const MeshTopology& topology, const HeatGeodesicsOptions& options,
+                               Eigen::VectorXd& areas);
+  void factor_all(const SparseMatrix& heat, const SparseMatrix& dirichlet, const SparseMatrix& poisson);
   Eigen::VectorXd solve_with(const Solver& solver, const Eigen::VectorXd& rhs) const {
     return inverse_order * solver.solve(order * rhs);
   }
@@ -96,59 +141,69 @@ struct HeatGeodesics::Impl {
   void shift(Eigen::VectorXd& phi, const std::vector<char>& has_source, SourceValue value_at_source) const;
 };
 
+// Components (through shared edges; on a manifold mesh a vertex's triangles are one fan, so
+// every vertex belongs to exactly one) and boundary vertices.
+void HeatGeodesics::Impl::find_components(const TriMesh& mesh, const MeshTopology& topology,
+                                          const HeatGeodesicsOptions& options) {
+  const int n = mesh.num_vertices(), nt = mesh.num_triangles();
+  std::vector<int> triangle_component;
+  const int num_components = triangle_components(mesh, topology, triangle_component);
+  component.assign(n, -1);
+  for (int t = 0; t < nt; ++t)
+    for (int v : mesh.triangles[t]) component[v] = triangle_component[t];
+  pinned.assign(num_components, -1);
+  for (int v = 0; v < n; ++v) {
+    if (component[v] < 0)
+      fail(MCON_ERROR_ISOLATED_VERTEX, "heat geodesics: vertex " + str(v) + " is not used by any triangle");
+    if (pinned[component[v]] < 0) pinned[component[v]] = v;
+  }
+  on_boundary.assign(n, 0);
+  for (const auto& loop : topology.boundary_loops)
+    for (int v : loop) on_boundary[v] = 1;
+  average_boundary = options.boundary_average && !topology.boundary_loops.empty();
+}
+
+// The operators' triangulation: intrinsic Delaunay (same vertices, boundary and components) or
+// the mesh itself. Returns the cotan Laplacian L on it, with the lumped vertex areas.
+SparseMatrix HeatGeodesics::Impl::build_operators(const TriMesh& mesh, const MeshTopology& topology,
+                                                  const HeatGeodesicsOptions& options, Eigen::VectorXd& areas) {
+  const int nt = mesh.num_triangles();
+  IntrinsicTriangulation triangulation = intrinsic_triangulation(mesh, topology);
+  if (options.intrinsic_delaunay) make_delaunay(triangulation);
+  triangles = triangulation.triangles;
+  gradients.resize(nt);
+  for (int f = 0; f < nt; ++f) gradients[f] = triangle_gradient(triangulation.lengths[f]);
+  SparseMatrix L = options.intrinsic_delaunay ? cotan_laplacian(triangulation) : cotan_laplacian(mesh);
+  areas = options.intrinsic_delaunay ? vertex_areas(triangulation) : vertex_areas(mesh);
+  min_area = areas.minCoeff();
+  require(min_area > 0, MCON_ERROR_DEGENERATE_TRIANGLE, "heat geodesics: a vertex has zero area");
+  return L;
+}
+
+// The factorizations are independent: run them side by side (in the caller's task arena).
+void HeatGeodesics::Impl::factor_all(const SparseMatrix& heat, const SparseMatrix& dirichlet,
+                                     const SparseMatrix& poisson_matrix) {
+  Eigen::ComputationInfo info[3] = {Eigen::Success, Eigen::Success, Eigen::Success};
+  tbb::parallel_invoke([&] { info[0] = factor(heat_neumann, heat); },
+                       [&] { info[1] = average_boundary ? factor(heat_dirichlet, dirichlet) : Eigen::Success; },
+                       [&] { info[2] = factor(poisson, poisson_matrix); });
+  const char* what[3] = {"the heat operator", "the Dirichlet heat operator", "the cotan Laplacian"};
+  for (int k = 0; k < 3; ++k)
+    if (info[k] != Eigen::Success)
+      fail(MCON_ERROR_NUMERICAL, std::string("heat geodesics: factorizing ") + what[k] + " failed (degenerate triangles?)");
+}
+
 HeatGeodesics::HeatGeodesics(const TriMesh& mesh, const HeatGeodesicsOptions& options) : impl_(new Impl) {
   Impl& m = *impl_;
-  const int n = mesh.num_vertices(), nt = mesh.num_triangles();
-  require(n > 0 && nt > 0, MCON_ERROR_EMPTY_MESH,
-          "heat geodesics: mesh is empty (" + str(n) + " vertices, " + str(nt) + " triangles)");
-  if (!(std::isfinite(options.time_factor) && options.time_factor > 0))
-    fail(MCON_ERROR_INVALID_ARGUMENT,
-         "heat geodesics: time_factor must be finite and > 0, got " + std::to_string(options.time_factor));
-  // Cheap guards so a mesh that skipped validate_mesh fails cleanly instead of crashing;
-  // manifoldness is checked by build_topology below.
-  for (int v = 0; v < n; ++v)
-    if (!mesh.positions[v].allFinite())
-      fail(MCON_ERROR_NON_FINITE, "heat geodesics: vertex " + str(v) + " has a non-finite coordinate");
-  for (int t = 0; t < nt; ++t)
-    for (int v : mesh.triangles[t])
-      if (v < 0 || v >= n)
-        fail(MCON_ERROR_INDEX_OUT_OF_RANGE,
-             "heat geodesics: triangle " + str(t) + " uses vertex " + str(v) + " of " + str(n));
-
-  m.num_vertices = n;
+  check_input(mesh, options);
+  m.num_vertices = mesh.num_vertices();
   m.positions = mesh.positions;
   m.mesh_triangles = mesh.triangles;
 
-  // Components (through shared edges; on a manifold mesh a vertex's triangles are one fan, so
-  // every vertex belongs to exactly one) and boundary vertices.
   const MeshTopology topology = build_topology(mesh);
-  std::vector<int> triangle_component;
-  const int num_components = triangle_components(mesh, topology, triangle_component);
-  m.component.assign(n, -1);
-  for (int t = 0; t < nt; ++t)
-    for (int v : mesh.triangles[t]) m.component[v] = triangle_component[t];
-  m.pinned.assign(num_components, -1);
-  for (int v = 0; v < n; ++v) {
-    if (m.component[v] < 0)
-      fail(MCON_ERROR_ISOLATED_VERTEX, "heat geodesics: vertex " + str(v) + " is not used by any triangle");
-    if (m.pinned[m.component[v]] < 0) m.pinned[m.component[v]] = v;
-  }
-  m.on_boundary.assign(n, 0);
-  for (const auto& loop : topology.boundary_loops)
-    for (int v : loop) m.on_boundary[v] = 1;
-  m.average_boundary = options.boundary_average && !topology.boundary_loops.empty();
-
-  // The operators' triangulation: intrinsic Delaunay (same vertices, boundary and components) or
-  // the mesh itself.
-  IntrinsicTriangulation triangulation = intrinsic_triangulation(mesh, topology);
-  if (options.intrinsic_delaunay) make_delaunay(triangulation);
-  m.triangles = triangulation.triangles;
-  m.gradients.resize(nt);
-  for (int f = 0; f < nt; ++f) m.gradients[f] = triangle_gradient(triangulation.lengths[f]);
-  const SparseMatrix L = options.intrinsic_delaunay ? cotan_laplacian(triangulation) : cotan_laplacian(mesh);
-  const Eigen::VectorXd areas = options.intrinsic_delaunay ? vertex_areas(triangulation) : vertex_areas(mesh);
-  m.min_area = areas.minCoeff();
-  require(m.min_area > 0, MCON_ERROR_DEGENERATE_TRIANGLE, "heat geodesics: a vertex has zero area");
+  m.find_components(mesh, topology, options);
+  Eigen::VectorXd areas;
+  const SparseMatrix L = m.build_operators(mesh, topology, options, areas);
   const double h = mean_edge_length(mesh);
   const double t = options.time_factor * h * h;
 
@@ -161,35 +216,9 @@ HeatGeodesics::HeatGeodesics(const TriMesh& mesh, const HeatGeodesicsOptions& op
     m.inverse_order = inverse;
     m.order = inverse.inverse();
   }
-
-  // Dirichlet heat operator: u = 0 on boundary vertices, i.e. identity rows and columns there.
-  SparseMatrix dirichlet;
-  if (m.average_boundary) {
-    dirichlet = heat;
-    dirichlet.prune([&](Eigen::Index i, Eigen::Index j, double) {
-      return i == j || (!m.on_boundary[i] && !m.on_boundary[j]);
-    });
-    for (int v = 0; v < n; ++v)
-      if (m.on_boundary[v]) dirichlet.coeffRef(v, v) = 1.0;
-  }
-
-  // III. L is singular (constants per component): fix the pinned vertex of each component to 0.
-  // This is exact, not a regularization: the right-hand side sums to 0 over every component.
-  SparseMatrix poisson = L;
-  std::vector<char> is_pinned(n, 0);
-  for (int v : m.pinned) is_pinned[v] = 1;
-  poisson.prune([&](Eigen::Index i, Eigen::Index j, double) { return i == j || (!is_pinned[i] && !is_pinned[j]); });
-  for (int v : m.pinned) poisson.coeffRef(v, v) = 1.0;
-
-  // The factorizations are independent: run them side by side (in the caller's task arena).
-  Eigen::ComputationInfo info[3] = {Eigen::Success, Eigen::Success, Eigen::Success};
-  tbb::parallel_invoke([&] { info[0] = m.factor(m.heat_neumann, heat); },
-                       [&] { info[1] = m.average_boundary ? m.factor(m.heat_dirichlet, dirichlet) : Eigen::Success; },
-                       [&] { info[2] = m.factor(m.poisson, poisson); });
-  const char* what[3] = {"the heat operator", "the Dirichlet heat operator", "the cotan Laplacian"};
-  for (int k = 0; k < 3; ++k)
-    if (info[k] != Eigen::Success)
-      fail(MCON_ERROR_NUMERICAL, std::string("heat geodesics: factorizing ") + what[k] + " failed (degenerate triangles?)");
+  const SparseMatrix dirichlet = m.average_boundary ? dirichlet_operator(heat, m.on_boundary) : SparseMatrix();
+  const SparseMatrix poisson = pinned_poisson(L, m.pinned, m.num_vertices);
+  m.factor_all(heat, dirichlet, poisson);
 }
 
 Eigen::ComputationInfo HeatGeodesics::Impl::factor(Solver& solver, const SparseMatrix& symmetric) const {

@@ -72,22 +72,19 @@ double tan_half_angle(const Vec3& u, const Vec3& v) {
   return denom > 0 ? u.cross(v).norm() / denom : 0.0;
 }
 
-}  // namespace
+using RowMajorSparse = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 
-std::vector<Vec2> disk_parametrization(const TriMesh& mesh, const std::vector<int>& boundary_loop,
-                                      const DiskParametrizationOptions& options) {
+void check_options(const DiskParametrizationOptions& options) {
   require(options.stretch_iterations >= 0 && options.stretch_exponent > 0 && options.stretch_exponent <= 1 &&
               options.stretch_threshold >= 0 && std::isfinite(options.stretch_threshold),
           MCON_ERROR_INVALID_ARGUMENT,
           "disk parametrization: stretch_iterations must be >= 0, stretch_exponent in (0, 1] and "
           "stretch_threshold finite and >= 0");
-  const MeshTopology topo = build_topology(mesh);
-  check_boundary_loop(mesh, topo, boundary_loop);
-  const int nv = mesh.num_vertices();
-  const int nb = static_cast<int>(boundary_loop.size());
+}
 
-  // Boundary: unit circle by cumulative arc length, CCW, boundary_loop[0] at angle 0.
-  std::vector<Vec2> uv(nv, Vec2::Zero());
+// Boundary: unit circle by cumulative arc length, CCW, boundary_loop[0] at angle 0.
+void boundary_on_circle(const TriMesh& mesh, const std::vector<int>& boundary_loop, std::vector<Vec2>& uv) {
+  const int nb = static_cast<int>(boundary_loop.size());
   std::vector<double> cumulative(nb + 1, 0.0);
   for (int k = 0; k < nb; ++k)
     cumulative[k + 1] =
@@ -99,25 +96,29 @@ std::vector<Vec2> disk_parametrization(const TriMesh& mesh, const std::vector<in
     const double angle = two_pi * cumulative[k] / perimeter;
     uv[boundary_loop[k]] = Vec2(std::cos(angle), std::sin(angle));
   }
+}
 
-  // Interior unknowns.
+// Interior unknowns: per vertex its unknown's index, -1 on the boundary.
+std::vector<int> interior_unknowns(int nv, const std::vector<int>& boundary_loop, int& ni) {
   std::vector<int> unknown(nv, -1);
   std::vector<char> on_boundary(nv, 0);
   for (int v : boundary_loop) on_boundary[v] = 1;
-  int ni = 0;
+  ni = 0;
   for (int v = 0; v < nv; ++v)
     if (!on_boundary[v]) unknown[v] = ni++;
-  if (ni == 0) return uv;
+  return unknown;
+}
 
-  // Floater's mean-value weights (eq. of Floater 2003): corner angle a at i in triangle (i, j, k)
-  // adds tan(a/2) / |x_j - x_i| to w_ij and tan(a/2) / |x_k - x_i| to w_ik, so an interior edge
-  // collects the two angles at i beside it.
+// Floater's mean-value weights (eq. of Floater 2003): corner angle a at i in triangle (i, j, k)
+// adds tan(a/2) / |x_j - x_i| to w_ij and tan(a/2) / |x_k - x_i| to w_ik, so an interior edge
+// collects the two angles at i beside it.
+RowMajorSparse mean_value_weights(const TriMesh& mesh, const std::vector<int>& unknown, int ni) {
   std::vector<Eigen::Triplet<double>> weights;
   weights.reserve(static_cast<std::size_t>(mesh.num_triangles()) * 6);
   for (const Tri& tri : mesh.triangles) {
     for (int c = 0; c < 3; ++c) {
       const int i = tri[c], j = tri[(c + 1) % 3], k = tri[(c + 2) % 3];
-      if (on_boundary[i]) continue;
+      if (unknown[i] < 0) continue;  // on the boundary
       const Vec3 u = mesh.positions[j] - mesh.positions[i];
       const Vec3 v = mesh.positions[k] - mesh.positions[i];
       const double t = tan_half_angle(u, v);
@@ -128,137 +129,193 @@ std::vector<Vec2> disk_parametrization(const TriMesh& mesh, const std::vector<in
       weights.emplace_back(unknown[i], k, t / lv);
     }
   }
-  Eigen::SparseMatrix<double, Eigen::RowMajor> w(ni, nv);
+  RowMajorSparse w(ni, mesh.num_vertices());
   w.setFromTriplets(weights.begin(), weights.end());
+  return w;
+}
 
-  // Solves the row-normalized convex-combination system for the weights `w` into uv.
-  auto solve = [&](const Eigen::SparseMatrix<double, Eigen::RowMajor>& wm) {
-    // Row-normalized system: u_i - sum_j lambda_ij u_j = 0, boundary terms moved to the right.
-    std::vector<Eigen::Triplet<double>> triplets;
-    triplets.reserve(static_cast<std::size_t>(wm.nonZeros()) + ni);
-    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(ni, 2);
-    for (int r = 0; r < ni; ++r) {
-      double sum = 0;
-      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(wm, r); it; ++it) sum += it.value();
-      require(sum > 0 && std::isfinite(sum), MCON_ERROR_NUMERICAL,
-              "an interior vertex has no positive mean-value weight (degenerate neighbourhood)");
-      triplets.emplace_back(r, r, 1.0);
-      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(wm, r); it; ++it) {
-        const int j = static_cast<int>(it.col());
-        const double lambda = it.value() / sum;
-        if (unknown[j] >= 0)
-          triplets.emplace_back(r, unknown[j], -lambda);
-        else
-          rhs.row(r) += lambda * uv[j].transpose();
-      }
+// Row-normalized system: u_i - sum_j lambda_ij u_j = 0, boundary terms moved to the right.
+void convex_combination_system(const RowMajorSparse& wm, const std::vector<int>& unknown, int ni,
+                               const std::vector<Vec2>& uv, Eigen::SparseMatrix<double>& a, Eigen::MatrixXd& rhs) {
+  std::vector<Eigen::Triplet<double>> triplets;
+  triplets.reserve(static_cast<std::size_t>(wm.nonZeros()) + ni);
+  rhs = Eigen::MatrixXd::Zero(ni, 2);
+  for (int r = 0; r < ni; ++r) {
+    double sum = 0;
+    for (RowMajorSparse::InnerIterator it(wm, r); it; ++it) sum += it.value();
+    require(sum > 0 && std::isfinite(sum), MCON_ERROR_NUMERICAL,
+            "an interior vertex has no positive mean-value weight (degenerate neighbourhood)");
+    triplets.emplace_back(r, r, 1.0);
+    for (RowMajorSparse::InnerIterator it(wm, r); it; ++it) {
+      const int j = static_cast<int>(it.col());
+      const double lambda = it.value() / sum;
+      if (unknown[j] >= 0)
+        triplets.emplace_back(r, unknown[j], -lambda);
+      else
+        rhs.row(r) += lambda * uv[j].transpose();
     }
-    Eigen::SparseMatrix<double> a(ni, ni);
-    a.setFromTriplets(triplets.begin(), triplets.end());
-    a.makeCompressed();
-
-    auto acceptable = [&](const Eigen::MatrixXd& x) {
-      if (!x.allFinite()) return false;
-      const double residual = (a * x - rhs).norm();
-      return residual <= 1e-8 * (1.0 + rhs.norm());
-    };
-    Eigen::MatrixXd x;
-    bool solved = false;
-    Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu;
-    lu.compute(a);
-    if (lu.info() == Eigen::Success) {
-      x = lu.solve(rhs);
-      solved = lu.info() == Eigen::Success && acceptable(x);
-    }
-    if (!solved) {
-      // Fallback only: the matrix is an M-matrix (diagonally dominant), so BiCGSTAB converges.
-      Eigen::BiCGSTAB<Eigen::SparseMatrix<double>, Eigen::IncompleteLUT<double>> iterative;
-      iterative.setTolerance(1e-12);
-      iterative.setMaxIterations(std::max(1000, 4 * ni));
-      iterative.compute(a);
-      if (iterative.info() == Eigen::Success) {
-        x = iterative.solve(rhs);
-        solved = iterative.info() == Eigen::Success && acceptable(x);
-      }
-    }
-    require(solved, MCON_ERROR_NUMERICAL, "disk parametrization: the mean-value Laplace system could not be solved");
-    for (int v = 0; v < nv; ++v)
-      if (unknown[v] >= 0) uv[v] = x.row(unknown[v]).transpose();
-  };
-  solve(w);
-
-  // Stretch reduction (Yoshizawa, Belyaev, Seidel 2004): w_ij <- w_ij / sigma_j with sigma_j
-  // the area-weighted L2 stretch (Sander et al. 2001) around vertex j, repeated while the total
-  // stretch falls. The weights stay positive, so every iterate is still a Tutte embedding
-  // (Floater 2003: positive convex combinations with a convex boundary are injective).
-  // The exponent damps each round (1 is YBS's update). Measured (eval-mapping --classes hand,
-  // seed 1, 2 pairs): mean eps x 100 32.9 with the plain map; 12.4 with exponent 1 (10 rounds,
-  // overshoots and stops early); 2.0 with 0.5 and up to 30 rounds (18 used).
-  if (options.stretch_iterations > 0) {
-    const int nt = mesh.num_triangles();
-    double area3 = 0;
-    std::vector<double> a3(nt);
-    for (int t = 0; t < nt; ++t) {
-      const Tri& tr = mesh.triangles[t];
-      a3[t] = 0.5 * (mesh.positions[tr[1]] - mesh.positions[tr[0]]).cross(mesh.positions[tr[2]] - mesh.positions[tr[0]]).norm();
-      area3 += a3[t];
-    }
-    auto stretch = [&](const std::vector<Vec2>& p, std::vector<double>& vertex_sigma) {
-      double area2 = 0;
-      std::vector<double> s2(nt, 0.0);
-      for (int t = 0; t < nt; ++t) {
-        const Tri& tr = mesh.triangles[t];
-        const Vec2 &p1 = p[tr[0]], &p2 = p[tr[1]], &p3 = p[tr[2]];
-        const double A = 0.5 * ((p2.x() - p1.x()) * (p3.y() - p1.y()) - (p3.x() - p1.x()) * (p2.y() - p1.y()));
-        area2 += A;
-        if (!(A > 0)) { s2[t] = std::numeric_limits<double>::infinity(); continue; }
-        const Vec3 &q1 = mesh.positions[tr[0]], &q2 = mesh.positions[tr[1]], &q3 = mesh.positions[tr[2]];
-        const Vec3 ss = (q1 * (p2.y() - p3.y()) + q2 * (p3.y() - p1.y()) + q3 * (p1.y() - p2.y())) / (2 * A);
-        const Vec3 st = (q1 * (p3.x() - p2.x()) + q2 * (p1.x() - p3.x()) + q3 * (p2.x() - p1.x())) / (2 * A);
-        s2[t] = 0.5 * (ss.squaredNorm() + st.squaredNorm());
-      }
-      const double norm2 = area2 / area3;  // sigma = 1: equal-area scaling
-      std::vector<double> num(nv, 0.0), den(nv, 0.0);
-      double total = 0;
-      for (int t = 0; t < nt; ++t) {
-        total += a3[t] * s2[t];
-        for (int c = 0; c < 3; ++c) {
-          num[mesh.triangles[t][c]] += a3[t] * s2[t];
-          den[mesh.triangles[t][c]] += a3[t];
-        }
-      }
-      vertex_sigma.assign(nv, 1.0);
-      for (int v = 0; v < nv; ++v)
-        if (den[v] > 0) vertex_sigma[v] = std::sqrt(num[v] / den[v] * norm2);
-      return std::sqrt(total / area3 * norm2);
-    };
-    std::vector<double> sigma;
-    double best = stretch(uv, sigma);
-    if (!(best > options.stretch_threshold)) return uv;
-    std::vector<Vec2> best_uv = uv;
-    Eigen::SparseMatrix<double, Eigen::RowMajor> wk = w;
-    for (int it = 0; it < options.stretch_iterations && std::isfinite(best); ++it) {
-      for (int r = 0; r < wk.outerSize(); ++r) {
-        double sum = 0;
-        for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator e(wk, r); e; ++e) {
-          e.valueRef() /= std::pow(std::max(sigma[e.col()], 1e-12), options.stretch_exponent);
-          sum += e.value();
-        }
-        // Rows sum to 1 again (the system is row-normalized anyway), so that repeated rounds
-        // cannot underflow the weights.
-        for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator e(wk, r); e; ++e) e.valueRef() /= sum;
-      }
-      try {
-        solve(wk);
-      } catch (const Error&) {
-        break;  // a failed round keeps the best iterate so far (the plain map solved)
-      }
-      const double now = stretch(uv, sigma);
-      if (!(now < best)) break;
-      best = now;
-      best_uv = uv;
-    }
-    uv = best_uv;
   }
+  a.resize(ni, ni);
+  a.setFromTriplets(triplets.begin(), triplets.end());
+  a.makeCompressed();
+}
+
+// Sparse LU, and BiCGSTAB if that fails; NUMERICAL if neither gives a small residual.
+Eigen::MatrixXd solve_system(const Eigen::SparseMatrix<double>& a, const Eigen::MatrixXd& rhs) {
+  const int ni = static_cast<int>(a.rows());
+  auto acceptable = [&](const Eigen::MatrixXd& x) {
+    if (!x.allFinite()) return false;
+    const double residual = (a * x - rhs).norm();
+    return residual <= 1e-8 * (1.0 + rhs.norm());
+  };
+  Eigen::MatrixXd x;
+  bool solved = false;
+  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu;
+  lu.compute(a);
+  if (lu.info() == Eigen::Success) {
+    x = lu.solve(rhs);
+    solved = lu.info() == Eigen::Success && acceptable(x);
+  }
+  if (!solved) {
+    // Fallback only: the matrix is an M-matrix (diagonally dominant), so BiCGSTAB converges.
+    Eigen::BiCGSTAB<Eigen::SparseMatrix<double>, Eigen::IncompleteLUT<double>> iterative;
+    iterative.setTolerance(1e-12);
+    iterative.setMaxIterations(std::max(1000, 4 * ni));
+    iterative.compute(a);
+    if (iterative.info() == Eigen::Success) {
+      x = iterative.solve(rhs);
+      solved = iterative.info() == Eigen::Success && acceptable(x);
+    }
+  }
+  require(solved, MCON_ERROR_NUMERICAL, "disk parametrization: the mean-value Laplace system could not be solved");
+  return x;
+}
+
+// Solves the row-normalized convex-combination system for the weights `wm` into uv.
+void solve_interior(const RowMajorSparse& wm, const std::vector<int>& unknown, int ni, std::vector<Vec2>& uv) {
+  Eigen::SparseMatrix<double> a;
+  Eigen::MatrixXd rhs;
+  convex_combination_system(wm, unknown, ni, uv, a, rhs);
+  const Eigen::MatrixXd x = solve_system(a, rhs);
+  for (int v = 0; v < static_cast<int>(uv.size()); ++v)
+    if (unknown[v] >= 0) uv[v] = x.row(unknown[v]).transpose();
+}
+
+// The 3D triangle areas the stretch is weighted by, and their sum.
+struct AreaWeights {
+  std::vector<double> a3;
+  double area3 = 0;
+};
+
+AreaWeights triangle_areas(const TriMesh& mesh) {
+  const int nt = mesh.num_triangles();
+  AreaWeights w;
+  w.a3.resize(nt);
+  for (int t = 0; t < nt; ++t) {
+    const Tri& tr = mesh.triangles[t];
+    w.a3[t] = 0.5 * (mesh.positions[tr[1]] - mesh.positions[tr[0]]).cross(mesh.positions[tr[2]] - mesh.positions[tr[0]]).norm();
+    w.area3 += w.a3[t];
+  }
+  return w;
+}
+
+// The total area-weighted L2 stretch (Sander et al. 2001) of the map p (1: equal-area), and each
+// vertex's stretch in vertex_sigma.
+double l2_stretch(const TriMesh& mesh, const AreaWeights& areas, const std::vector<Vec2>& p,
+                  std::vector<double>& vertex_sigma) {
+  const int nt = mesh.num_triangles(), nv = mesh.num_vertices();
+  const std::vector<double>& a3 = areas.a3;
+  const double area3 = areas.area3;
+  double area2 = 0;
+  std::vector<double> s2(nt, 0.0);
+  for (int t = 0; t < nt; ++t) {
+    const Tri& tr = mesh.triangles[t];
+    const Vec2 &p1 = p[tr[0]], &p2 = p[tr[1]], &p3 = p[tr[2]];
+    const double A = 0.5 * ((p2.x() - p1.x()) * (p3.y() - p1.y()) - (p3.x() - p1.x()) * (p2.y() - p1.y()));
+    area2 += A;
+    if (!(A > 0)) { s2[t] = std::numeric_limits<double>::infinity(); continue; }
+    const Vec3 &q1 = mesh.positions[tr[0]], &q2 = mesh.positions[tr[1]], &q3 = mesh.positions[tr[2]];
+    const Vec3 ss = (q1 * (p2.y() - p3.y()) + q2 * (p3.y() - p1.y()) + q3 * (p1.y() - p2.y())) / (2 * A);
+    const Vec3 st = (q1 * (p3.x() - p2.x()) + q2 * (p1.x() - p3.x()) + q3 * (p2.x() - p1.x())) / (2 * A);
+    s2[t] = 0.5 * (ss.squaredNorm() + st.squaredNorm());
+  }
+  const double norm2 = area2 / area3;  // sigma = 1: equal-area scaling
+  std::vector<double> num(nv, 0.0), den(nv, 0.0);
+  double total = 0;
+  for (int t = 0; t < nt; ++t) {
+    total += a3[t] * s2[t];
+    for (int c = 0; c < 3; ++c) {
+      num[mesh.triangles[t][c]] += a3[t] * s2[t];
+      den[mesh.triangles[t][c]] += a3[t];
+    }
+  }
+  vertex_sigma.assign(nv, 1.0);
+  for (int v = 0; v < nv; ++v)
+    if (den[v] > 0) vertex_sigma[v] = std::sqrt(num[v] / den[v] * norm2);
+  return std::sqrt(total / area3 * norm2);
+}
+
+// w_ij <- w_ij / sigma_j^exponent.
+void divide_by_stretch(RowMajorSparse& wk, const std::vector<double>& sigma, double exponent) {
+  for (int r = 0; r < wk.outerSize(); ++r) {
+    double sum = 0;
+    for (RowMajorSparse::InnerIterator e(wk, r); e; ++e) {
+      e.valueRef() /= std::pow(std::max(sigma[e.col()], 1e-12), exponent);
+      sum += e.value();
+    }
+    // Rows sum to 1 again (the system is row-normalized anyway), so that repeated rounds
+    // cannot underflow the weights.
+    for (RowMajorSparse::InnerIterator e(wk, r); e; ++e) e.valueRef() /= sum;
+  }
+}
+
+// Stretch reduction (Yoshizawa, Belyaev, Seidel 2004): w_ij <- w_ij / sigma_j with sigma_j
+// the area-weighted L2 stretch (Sander et al. 2001) around vertex j, repeated while the total
+// stretch falls. The weights stay positive, so every iterate is still a Tutte embedding
+// (Floater 2003: positive convex combinations with a convex boundary are injective).
+// The exponent damps each round (1 is YBS's update). Measured (eval-mapping --classes hand,
+// seed 1, 2 pairs): mean eps x 100 32.9 with the plain map; 12.4 with exponent 1 (10 rounds,
+// overshoots and stops early); 2.0 with 0.5 and up to 30 rounds (18 used).
+void reduce_stretch(const TriMesh& mesh, const RowMajorSparse& w, const std::vector<int>& unknown, int ni,
+                    const DiskParametrizationOptions& options, std::vector<Vec2>& uv) {
+  const AreaWeights areas = triangle_areas(mesh);
+  std::vector<double> sigma;
+  double best = l2_stretch(mesh, areas, uv, sigma);
+  if (!(best > options.stretch_threshold)) return;
+  std::vector<Vec2> best_uv = uv;
+  RowMajorSparse wk = w;
+  for (int it = 0; it < options.stretch_iterations && std::isfinite(best); ++it) {
+    divide_by_stretch(wk, sigma, options.stretch_exponent);
+    try {
+      solve_interior(wk, unknown, ni, uv);
+    } catch (const Error&) {
+      break;  // a failed round keeps the best iterate so far (the plain map solved)
+    }
+    const double now = l2_stretch(mesh, areas, uv, sigma);
+    if (!(now < best)) break;
+    best = now;
+    best_uv = uv;
+  }
+  uv = best_uv;
+}
+
+}  // namespace
+
+std::vector<Vec2> disk_parametrization(const TriMesh& mesh, const std::vector<int>& boundary_loop,
+                                      const DiskParametrizationOptions& options) {
+  check_options(options);
+  const MeshTopology topo = build_topology(mesh);
+  check_boundary_loop(mesh, topo, boundary_loop);
+  const int nv = mesh.num_vertices();
+
+  std::vector<Vec2> uv(nv, Vec2::Zero());
+  boundary_on_circle(mesh, boundary_loop, uv);
+  int ni = 0;
+  const std::vector<int> unknown = interior_unknowns(nv, boundary_loop, ni);
+  if (ni == 0) return uv;
+  const RowMajorSparse w = mean_value_weights(mesh, unknown, ni);
+  solve_interior(w, unknown, ni, uv);
+  if (options.stretch_iterations > 0) reduce_stretch(mesh, w, unknown, ni, options, uv);
   return uv;
 }
 

@@ -6,6 +6,7 @@
 #include <numeric>
 #include <string>
 #include <unordered_map>
+#include <utility>
 
 #include "patch/disk_parametrization.h"
 #include "base/error.h"
@@ -92,6 +93,429 @@ std::vector<int> split_nonmanifold_vertices(TriMesh& mesh) {
   return origin;
 }
 
+// 0. Where the center lies on the host.
+Vec3 center_point_on_host(const TriMesh& host, const PatchCenter& c) {
+  if (c.vertex >= 0) return host.positions[c.vertex];
+  const Tri& tri = host.triangles[c.triangle];
+  const Vec3 b = c.barycentric / c.barycentric.sum();
+  return b[0] * host.positions[tri[0]] + b[1] * host.positions[tri[1]] + b[2] * host.positions[tri[2]];
+}
+
+// 1. A bounded region around the center, and geodesic distance on it.
+MeshRegion region_around_center(const TriMesh& host, const PatchCenter& c, const Vec3& center_point, double r) {
+  std::vector<std::vector<int>> host_vertex_triangles(host.num_vertices());
+  for (int t = 0; t < host.num_triangles(); ++t)
+    for (int v : host.triangles[t]) host_vertex_triangles[v].push_back(t);
+  return mesh_region_around(host, host_vertex_triangles, c.vertex, c.triangle, center_point, kRegionFactor * r);
+}
+
+Eigen::VectorXd distance_from_center(const MeshRegion& region, const PatchCenter& c) {
+  HeatGeodesics heat(region.mesh);
+  if (c.vertex >= 0) return heat.from_vertices({region.host_to_vertex[c.vertex]});
+  const auto it = std::find(region.triangle_to_host.begin(), region.triangle_to_host.end(), c.triangle);
+  return heat.from_point(static_cast<int>(it - region.triangle_to_host.begin()), c.barycentric / c.barycentric.sum());
+}
+
+// The region cut by the geodesic circle d = r: what stages 3 to 5 read.
+struct IsoRegion {
+  const MeshRegion& region;
+  MeshTopology topo;
+  Eigen::VectorXd d;       // geodesic distance from the center, snapped (stage 2)
+  std::vector<Side> side;  // each vertex's side of the circle
+  double r = 0;
+  int center_vertex = -1;  // the center's region vertex, -1 if it lies inside a triangle
+
+  bool has(int t, Side s) const {
+    for (int v : region.mesh.triangles[t])
+      if (side[v] == s) return true;
+    return false;
+  }
+  bool edge_has(int e, Side s) const { return side[topo.edges[e][0]] == s || side[topo.edges[e][1]] == s; }
+};
+
+// 2. Snap iso-line crossings that fall close to a vertex onto that vertex (no slivers).
+IsoRegion cut_at_radius(const MeshRegion& region, Eigen::VectorXd d, const PatchCenter& c, double r,
+                        double snap_fraction) {
+  const TriMesh& rm = region.mesh;
+  IsoRegion iso{region, build_topology(rm), {}, {}, r, -1};
+  std::vector<char> snap(rm.num_vertices(), 0);
+  for (const auto& e : iso.topo.edges) {
+    const double da = d[e[0]], db = d[e[1]];
+    if ((da < r) == (db < r) || !std::isfinite(da) || !std::isfinite(db)) continue;
+    const double t = (r - da) / (db - da);
+    if (t < snap_fraction) snap[e[0]] = 1;
+    if (t > 1.0 - snap_fraction) snap[e[1]] = 1;
+  }
+  for (int v = 0; v < rm.num_vertices(); ++v)
+    if (snap[v]) d[v] = r;
+  iso.side.resize(rm.num_vertices());
+  for (int v = 0; v < rm.num_vertices(); ++v)
+    iso.side[v] = d[v] < r ? Side::kIn : (d[v] == r ? Side::kOn : Side::kOut);
+  iso.d = std::move(d);
+  iso.center_vertex = c.vertex >= 0 ? region.host_to_vertex[c.vertex] : -1;
+  require(iso.center_vertex < 0 || iso.side[iso.center_vertex] == Side::kIn, MCON_ERROR_INVALID_ARGUMENT,
+          "radius " + std::to_string(r) + " is too small for the mesh resolution at the center");
+  return iso;
+}
+
+// 3. The disk's triangles: those with an inside corner, connected to the center through
+//    edges that are (partly) inside.
+std::vector<char> disk_triangles(const IsoRegion& iso, const PatchCenter& c) {
+  const TriMesh& rm = iso.region.mesh;
+  const MeshTopology& rt = iso.topo;
+  const int nt = rm.num_triangles();
+  std::vector<char> kept(nt, 0);
+  std::vector<int> stack;
+  for (int t = 0; t < nt; ++t) {
+    const bool seed = c.vertex >= 0
+                          ? std::find(rm.triangles[t].begin(), rm.triangles[t].end(), iso.center_vertex) !=
+                                rm.triangles[t].end()
+                          : iso.region.triangle_to_host[t] == c.triangle;
+    if (seed && iso.has(t, Side::kIn)) {
+      kept[t] = 1;
+      stack.push_back(t);
+    }
+  }
+  require(!stack.empty(), MCON_ERROR_INVALID_ARGUMENT,
+          "radius " + std::to_string(iso.r) + " is too small for the mesh resolution at the center");
+  while (!stack.empty()) {
+    const int t = stack.back();
+    stack.pop_back();
+    for (int e : rt.triangle_edges[t]) {
+      if (iso.edge_has(e, Side::kOut) && !iso.edge_has(e, Side::kIn)) continue;  // touches the disk in a point
+      for (int u : rt.edge_triangles[e])
+        if (u >= 0 && !kept[u] && iso.has(u, Side::kIn)) {
+          kept[u] = 1;
+          stack.push_back(u);
+        }
+    }
+  }
+  return kept;
+}
+
+// One connected part of what lies outside the disk.
+struct PartInfo {
+  bool touches_cut = false;  // reaches beyond the region, or the host's own boundary
+  double area = 0;
+  Vec3 weighted_centroid = Vec3::Zero();
+  std::vector<int> triangles;  // whole triangles of the part
+};
+
+// The connected parts of the complement of the kept triangles (plus the kept triangles that
+// reach outside); `part` gets each triangle's part, -1 for none.
+std::vector<PartInfo> flood_outside_parts(const IsoRegion& iso, const std::vector<char>& kept, std::vector<int>& part) {
+  const TriMesh& rm = iso.region.mesh;
+  const MeshTopology& rt = iso.topo;
+  const int nt = rm.num_triangles();
+  part.assign(nt, -1);
+  std::vector<char> in_complement(nt, 0);
+  for (int t = 0; t < nt; ++t) in_complement[t] = !kept[t] || iso.has(t, Side::kOut);
+  std::vector<PartInfo> parts;
+  std::vector<int> stack;
+  for (int seed = 0; seed < nt; ++seed) {
+    if (!in_complement[seed] || part[seed] >= 0) continue;
+    const int id = static_cast<int>(parts.size());
+    parts.emplace_back();
+    part[seed] = id;
+    stack.push_back(seed);
+    while (!stack.empty()) {
+      const int t = stack.back();
+      stack.pop_back();
+      PartInfo& info = parts[id];
+      if (!kept[t]) {
+        info.area += triangle_area(rm, t);
+        info.triangles.push_back(t);
+        const Tri& tt = rm.triangles[t];
+        info.weighted_centroid += triangle_area(rm, t) *
+                                  (rm.positions[tt[0]] + rm.positions[tt[1]] + rm.positions[tt[2]]) / 3.0;
+      }
+      for (int v : rm.triangles[t])
+        info.touches_cut |= iso.region.vertex_on_cut[v] != 0 || iso.region.vertex_on_host_boundary[v] != 0;
+      for (int e : rt.triangle_edges[t])
+        for (int u : rt.edge_triangles[e]) {
+          if (u < 0 || u == t || !in_complement[u] || part[u] >= 0) continue;
+          if (kept[t] && kept[u] && !iso.edge_has(e, Side::kOut)) continue;  // an edge inside the disk
+          part[u] = id;
+          stack.push_back(u);
+        }
+    }
+  }
+  return parts;
+}
+
+// How much a part's outward normals face its own centroid, scale-free (see kMinPocketConcavity).
+double part_concavity(const TriMesh& rm, const PartInfo& p) {
+  double concavity = 0;
+  if (p.area > 0) {
+    const Vec3 c0 = p.weighted_centroid / p.area;
+    for (int t : p.triangles) {
+      const Tri& tt = rm.triangles[t];
+      const Vec3 x = (rm.positions[tt[0]] + rm.positions[tt[1]] + rm.positions[tt[2]]) / 3.0;
+      concavity += triangle_area(rm, t) * triangle_normal(rm, t).dot(c0 - x);
+    }
+    concavity /= p.area * std::sqrt(p.area);  // scale-free
+  }
+  return concavity;
+}
+
+// Per region triangle its outside part (-1: none), and per part whether it is a pocket.
+struct OutsideParts {
+  std::vector<int> part;
+  std::vector<char> is_pocket;
+};
+
+// 4. What lies outside the disk, in connected parts. Exactly one part reaches beyond the
+//    region (or, on a closed surface seen whole, is the largest); the others are enclosed
+//    pockets. A second big outer part means the disk wrapped around into an annulus.
+OutsideParts outside_parts(const IsoRegion& iso, const std::vector<char>& kept) {
+  OutsideParts out;
+  const std::vector<PartInfo> parts = flood_outside_parts(iso, kept, out.part);
+  out.is_pocket.assign(parts.size(), 0);
+  int largest = -1;
+  for (int i = 0; i < static_cast<int>(parts.size()); ++i)
+    if (largest < 0 || parts[i].area > parts[largest].area) largest = i;
+  int outer_parts = 0;
+  for (int i = 0; i < static_cast<int>(parts.size()); ++i) {
+    const PartInfo& p = parts[i];
+    const bool enclosed = !p.touches_cut && !(iso.region.is_whole_component && i == largest);
+    const double concavity = part_concavity(iso.region.mesh, p);
+    out.is_pocket[i] = enclosed && concavity > kMinPocketConcavity;
+    if (!out.is_pocket[i]) ++outer_parts;
+  }
+  if (outer_parts > 1)
+    fail(MCON_ERROR_NOT_A_DISK,
+         "not a disk: the geodesic disk wraps around into an annulus (its outside falls apart into " +
+             std::to_string(outer_parts) + " parts that are not cavities, e.g. around a limb); use a smaller radius");
+  return out;
+}
+
+// The patch while it is assembled, and what the later stages need to know about its vertices.
+struct PatchDraft {
+  Patch patch;
+  std::vector<int> vertex_of_region;  // per region vertex: its patch vertex, -1 if none yet
+  std::unordered_map<std::uint64_t, int> vertex_of_crossing;  // per cut region edge: its patch vertex
+  std::vector<char> is_cut_vertex;    // per patch vertex: it lies on the geodesic circle
+};
+
+int region_vertex(PatchDraft& draft, const IsoRegion& iso, int v) {
+  if (draft.vertex_of_region[v] < 0) {
+    draft.vertex_of_region[v] = draft.patch.mesh.num_vertices();
+    draft.patch.mesh.positions.push_back(iso.region.mesh.positions[v]);
+    const int hv = iso.region.vertex_to_host[v];
+    draft.patch.host_vertex.push_back({hv, hv, 0.0});
+    draft.is_cut_vertex.push_back(iso.side[v] == Side::kOn);
+  }
+  return draft.vertex_of_region[v];
+}
+
+int crossing_vertex(PatchDraft& draft, const IsoRegion& iso, int a, int b) {
+  const MeshRegion& region = iso.region;
+  const Eigen::VectorXd& d = iso.d;
+  const auto key = edge_key(a, b);
+  auto it = draft.vertex_of_crossing.find(key);
+  if (it != draft.vertex_of_crossing.end()) return it->second;
+  if (region.vertex_to_host[a] > region.vertex_to_host[b]) std::swap(a, b);  // t from the lower host index
+  const double t = (iso.r - d[a]) / (d[b] - d[a]);
+  TriMesh& pm = draft.patch.mesh;
+  const int id = pm.num_vertices();
+  pm.positions.push_back((1 - t) * region.mesh.positions[a] + t * region.mesh.positions[b]);
+  draft.patch.host_vertex.push_back({region.vertex_to_host[a], region.vertex_to_host[b], t});
+  draft.is_cut_vertex.push_back(1);
+  draft.vertex_of_crossing.emplace(key, id);
+  return id;
+}
+
+// Clip against d <= r (Sutherland-Hodgman on one triangle): 3 or 4 corners.
+void add_clipped_triangle(PatchDraft& draft, const IsoRegion& iso, int t) {
+  const std::vector<Side>& side = iso.side;
+  const Tri& tri = iso.region.mesh.triangles[t];
+  const int host_t = iso.region.triangle_to_host[t];
+  TriMesh& pm = draft.patch.mesh;
+  int poly[4];
+  int count = 0;
+  for (int k = 0; k < 3; ++k) {
+    const int a = tri[k], b = tri[(k + 1) % 3];
+    if (side[a] != Side::kOut) poly[count++] = region_vertex(draft, iso, a);
+    if ((side[a] == Side::kIn && side[b] == Side::kOut) || (side[a] == Side::kOut && side[b] == Side::kIn))
+      poly[count++] = crossing_vertex(draft, iso, a, b);
+  }
+  if (count == 3) {
+    pm.triangles.push_back({poly[0], poly[1], poly[2]});
+    draft.patch.host_triangle.push_back(host_t);
+  } else if (count == 4) {
+    // Split the quad along its shorter diagonal.
+    const double d02 = (pm.positions[poly[0]] - pm.positions[poly[2]]).squaredNorm();
+    const double d13 = (pm.positions[poly[1]] - pm.positions[poly[3]]).squaredNorm();
+    if (d02 <= d13) {
+      pm.triangles.push_back({poly[0], poly[1], poly[2]});
+      pm.triangles.push_back({poly[0], poly[2], poly[3]});
+    } else {
+      pm.triangles.push_back({poly[0], poly[1], poly[3]});
+      pm.triangles.push_back({poly[1], poly[2], poly[3]});
+    }
+    draft.patch.host_triangle.push_back(host_t);
+    draft.patch.host_triangle.push_back(host_t);
+  }
+}
+
+// 5. Assemble: whole triangles inside (and pockets, if filling), clipped triangles on the cut.
+PatchDraft assemble_patch(const IsoRegion& iso, const std::vector<char>& kept, const OutsideParts& outside,
+                          bool fill_holes) {
+  const TriMesh& rm = iso.region.mesh;
+  PatchDraft draft;
+  draft.vertex_of_region.assign(rm.num_vertices(), -1);
+  for (int t = 0; t < rm.num_triangles(); ++t) {
+    const bool pocket = outside.part[t] >= 0 && outside.is_pocket[outside.part[t]] && fill_holes;
+    if (!kept[t] && !pocket) continue;
+    const Tri& tri = rm.triangles[t];
+    if (pocket || !iso.has(t, Side::kOut)) {
+      draft.patch.mesh.triangles.push_back(
+          {region_vertex(draft, iso, tri[0]), region_vertex(draft, iso, tri[1]), region_vertex(draft, iso, tri[2])});
+      draft.patch.host_triangle.push_back(iso.region.triangle_to_host[t]);
+      continue;
+    }
+    add_clipped_triangle(draft, iso, t);
+  }
+  return draft;
+}
+
+// 6. Pinch points become separate vertices, then the boundary loops decide.
+MeshTopology split_pinch_points(PatchDraft& draft) {
+  Patch& patch = draft.patch;
+  const std::vector<int> origin = split_nonmanifold_vertices(patch.mesh);
+  for (std::size_t v = patch.host_vertex.size(); v < origin.size(); ++v) {
+    patch.host_vertex.push_back(patch.host_vertex[origin[v]]);
+    draft.is_cut_vertex.push_back(draft.is_cut_vertex[origin[v]]);
+  }
+  return build_topology(patch.mesh);
+}
+
+// The boundary loops other than the outer one (on the geodesic circle, else the longest): the
+// holes to fill. Throws NOT_A_DISK for an annulus, a whole closed surface or unfilled holes.
+std::vector<int> holes_inside(const MeshTopology& pt, const std::vector<char>& is_cut_vertex, bool fill_holes) {
+  std::vector<int> cut_loops, other_loops;
+  for (int i = 0; i < static_cast<int>(pt.boundary_loops.size()); ++i) {
+    bool on_cut = false;
+    for (int v : pt.boundary_loops[i]) on_cut |= is_cut_vertex[v] != 0;
+    (on_cut ? cut_loops : other_loops).push_back(i);
+  }
+  if (pt.boundary_loops.empty())
+    fail(MCON_ERROR_NOT_A_DISK, "not a disk: the geodesic disk covers a whole closed surface; use a smaller radius");
+  if (cut_loops.size() > 1)
+    fail(MCON_ERROR_NOT_A_DISK,
+         "not a disk: " + std::to_string(cut_loops.size()) + " boundary loops on the geodesic circle" +
+             (fill_holes ? std::string(" (the disk wraps around into an annulus)")
+                         : std::string(" (enclosed pockets: enable hole filling)")));
+  int outer = cut_loops.empty() ? -1 : cut_loops[0];
+  if (outer < 0) {  // the disk reaches the host's own boundary all round: take the longest loop
+    for (int i : other_loops)
+      if (outer < 0 || pt.boundary_loops[i].size() > pt.boundary_loops[outer].size()) outer = i;
+  }
+  std::vector<int> holes;
+  for (int i = 0; i < static_cast<int>(pt.boundary_loops.size()); ++i)
+    if (i != outer) holes.push_back(i);
+  if (!holes.empty() && !fill_holes)
+    fail(MCON_ERROR_NOT_A_DISK, "not a disk: " + std::to_string(holes.size()) +
+                                    " holes of the host mesh inside the geodesic disk (enable hole filling)");
+  return holes;
+}
+
+// 7. Cap each inner hole with a fan around its centroid, flagged as filled (host triangle -1).
+void cap_holes(PatchDraft& draft, const MeshTopology& pt, const std::vector<int>& holes) {
+  Patch& patch = draft.patch;
+  TriMesh& pm = patch.mesh;
+  for (int h : holes) {
+    const std::vector<int>& loop = pt.boundary_loops[h];
+    const int m = static_cast<int>(loop.size());
+    if (m == 3) {
+      pm.triangles.push_back({loop[2], loop[1], loop[0]});
+      patch.host_triangle.push_back(-1);
+      continue;
+    }
+    Vec3 centroid = Vec3::Zero();
+    for (int v : loop) centroid += pm.positions[v];
+    centroid /= m;
+    const int cv = pm.num_vertices();
+    pm.positions.push_back(centroid);
+    patch.host_vertex.push_back({-1, -1, 0.0});
+    draft.is_cut_vertex.push_back(0);
+    for (int i = 0; i < m; ++i) {  // the loop has the mesh on its left: the cap runs the other way
+      pm.triangles.push_back({loop[(i + 1) % m], loop[i], cv});
+      patch.host_triangle.push_back(-1);
+    }
+  }
+}
+
+// The capped patch must be one disk (one piece, one boundary loop, Euler characteristic 1);
+// its boundary loop is the patch's.
+void require_one_disk(Patch& patch, const MeshTopology& pt) {
+  const TriMesh& pm = patch.mesh;
+  const int chi = euler_characteristic(pm, pt);
+  {
+    std::vector<int> comp;
+    const int components = triangle_components(pm, pt, comp);
+    require(components == 1, MCON_ERROR_NOT_A_DISK,
+            "not a disk: " + std::to_string(components) + " separate pieces");
+  }
+  require(pt.boundary_loops.size() == 1 && chi == 1, MCON_ERROR_NOT_A_DISK,
+          "not a disk: the geodesic disk has a handle (Euler characteristic " + std::to_string(chi) + ", " +
+              std::to_string(pt.boundary_loops.size()) + " boundary loops); use a smaller radius");
+  validate_mesh(pm);
+  patch.boundary_loop = pt.boundary_loops[0];
+}
+
+// 8. Where the center lies in the patch: at patch vertex pv ...
+void center_at_vertex(Patch& patch, int pv) {
+  const TriMesh& pm = patch.mesh;
+  for (int t = 0; t < pm.num_triangles() && patch.center.triangle < 0; ++t)
+    for (int k = 0; k < 3; ++k)
+      if (pm.triangles[t][k] == pv) {
+        patch.center.triangle = t;
+        patch.center.barycentric = Vec3::Zero();
+        patch.center.barycentric[k] = 1.0;
+      }
+}
+
+// ... or in the piece of host triangle `host_t` that holds it best (largest smallest weight).
+void center_in_triangle(Patch& patch, int host_t, const Vec3& center_point) {
+  const TriMesh& pm = patch.mesh;
+  double best = -1e300;
+  for (int t = 0; t < pm.num_triangles(); ++t) {
+    if (patch.host_triangle[t] != host_t) continue;
+    const Tri& tri = pm.triangles[t];
+    const Vec3 a = pm.positions[tri[0]], e1 = pm.positions[tri[1]] - a, e2 = pm.positions[tri[2]] - a;
+    const Vec3 p = center_point - a;
+    const double d11 = e1.dot(e1), d12 = e1.dot(e2), d22 = e2.dot(e2), p1 = p.dot(e1), p2 = p.dot(e2);
+    const double det = d11 * d22 - d12 * d12;
+    const double u = (d22 * p1 - d12 * p2) / det, v = (d11 * p2 - d12 * p1) / det;
+    const Vec3 b(1 - u - v, u, v);
+    if (b.minCoeff() > best) {
+      best = b.minCoeff();
+      patch.center.triangle = t;
+      patch.center.barycentric = b.cwiseMax(0.0) / b.cwiseMax(0.0).sum();
+    }
+  }
+}
+
+// 9. Normalize to geodesic radius 1 around the center, ...
+void normalize_to_unit_radius(Patch& patch, const Vec3& center_point, double r) {
+  patch.center_position = center_point;
+  patch.radius = r;
+  for (Vec3& p : patch.mesh.positions) p = (p - center_point) / r;
+}
+
+// ... parametrize, measure.
+void parametrize_and_measure(Patch& patch) {
+  const TriMesh& pm = patch.mesh;
+  patch.uv = disk_parametrization(pm, patch.boundary_loop);
+  patch.param_flipped_triangles = count_flipped_triangles(pm, patch.uv);
+  {
+    HeatGeodesics heat(pm);
+    const Eigen::VectorXd pd = heat.from_point(patch.center.triangle, patch.center.barycentric);
+    patch.max_geodesic_distance = pd.maxCoeff();
+  }
+}
+
 }  // namespace
 
 int Patch::filled_triangles() const {
@@ -107,349 +531,37 @@ Patch extract_geodesic_disk(const TriMesh& host, const PatchOptions& options) {
   report(0.0);
   const double r = options.radius;
   const PatchCenter& c = options.center;
+  const Vec3 center_point = center_point_on_host(host, c);
 
-  std::vector<std::vector<int>> host_vertex_triangles(host.num_vertices());
-  for (int t = 0; t < host.num_triangles(); ++t)
-    for (int v : host.triangles[t]) host_vertex_triangles[v].push_back(t);
-  Vec3 center_point;
-  if (c.vertex >= 0) {
-    center_point = host.positions[c.vertex];
-  } else {
-    const Tri& tri = host.triangles[c.triangle];
-    const Vec3 b = c.barycentric / c.barycentric.sum();
-    center_point = b[0] * host.positions[tri[0]] + b[1] * host.positions[tri[1]] + b[2] * host.positions[tri[2]];
-  }
-
-  // 1. A bounded region around the center, and geodesic distance on it.
-  const MeshRegion region =
-      mesh_region_around(host, host_vertex_triangles, c.vertex, c.triangle, center_point, kRegionFactor * r);
+  const MeshRegion region = region_around_center(host, c, center_point, r);  // 1.
   report(0.1);
-  const TriMesh& rm = region.mesh;
-  Eigen::VectorXd d;
-  {
-    HeatGeodesics heat(rm);
-    if (c.vertex >= 0) {
-      d = heat.from_vertices({region.host_to_vertex[c.vertex]});
-    } else {
-      const auto it = std::find(region.triangle_to_host.begin(), region.triangle_to_host.end(), c.triangle);
-      d = heat.from_point(static_cast<int>(it - region.triangle_to_host.begin()), c.barycentric / c.barycentric.sum());
-    }
-  }
+  Eigen::VectorXd d = distance_from_center(region, c);
   report(0.4);
-  const MeshTopology rt = build_topology(rm);
-
-  // 2. Snap iso-line crossings that fall close to a vertex onto that vertex (no slivers).
-  std::vector<char> snap(rm.num_vertices(), 0);
-  for (const auto& e : rt.edges) {
-    const double da = d[e[0]], db = d[e[1]];
-    if ((da < r) == (db < r) || !std::isfinite(da) || !std::isfinite(db)) continue;
-    const double t = (r - da) / (db - da);
-    if (t < options.snap_fraction) snap[e[0]] = 1;
-    if (t > 1.0 - options.snap_fraction) snap[e[1]] = 1;
-  }
-  for (int v = 0; v < rm.num_vertices(); ++v)
-    if (snap[v]) d[v] = r;
-  std::vector<Side> side(rm.num_vertices());
-  for (int v = 0; v < rm.num_vertices(); ++v) side[v] = d[v] < r ? Side::kIn : (d[v] == r ? Side::kOn : Side::kOut);
-  const int center_region_vertex =
-      c.vertex >= 0 ? region.host_to_vertex[c.vertex] : -1;
-  require(center_region_vertex < 0 || side[center_region_vertex] == Side::kIn, MCON_ERROR_INVALID_ARGUMENT,
-          "radius " + std::to_string(r) + " is too small for the mesh resolution at the center");
-
-  // 3. The disk's triangles: those with an inside corner, connected to the center through
-  //    edges that are (partly) inside.
-  const int nt = rm.num_triangles();
-  auto has = [&](int t, Side s) {
-    for (int v : rm.triangles[t])
-      if (side[v] == s) return true;
-    return false;
-  };
-  auto edge_has = [&](int e, Side s) { return side[rt.edges[e][0]] == s || side[rt.edges[e][1]] == s; };
-  std::vector<char> kept(nt, 0);
-  {
-    std::vector<int> stack;
-    for (int t = 0; t < nt; ++t) {
-      const bool seed = c.vertex >= 0
-                            ? std::find(rm.triangles[t].begin(), rm.triangles[t].end(), center_region_vertex) !=
-                                  rm.triangles[t].end()
-                            : region.triangle_to_host[t] == c.triangle;
-      if (seed && has(t, Side::kIn)) {
-        kept[t] = 1;
-        stack.push_back(t);
-      }
-    }
-    require(!stack.empty(), MCON_ERROR_INVALID_ARGUMENT,
-            "radius " + std::to_string(r) + " is too small for the mesh resolution at the center");
-    while (!stack.empty()) {
-      const int t = stack.back();
-      stack.pop_back();
-      for (int e : rt.triangle_edges[t]) {
-        if (edge_has(e, Side::kOut) && !edge_has(e, Side::kIn)) continue;  // touches the disk in a point
-        for (int u : rt.edge_triangles[e])
-          if (u >= 0 && !kept[u] && has(u, Side::kIn)) {
-            kept[u] = 1;
-            stack.push_back(u);
-          }
-      }
-    }
-  }
-  double kept_area = 0;
-  for (int t = 0; t < nt; ++t)
-    if (kept[t]) kept_area += triangle_area(rm, t);
-
-  // 4. What lies outside the disk, in connected parts. Exactly one part reaches beyond the
-  //    region (or, on a closed surface seen whole, is the largest); the others are enclosed
-  //    pockets. A second big outer part means the disk wrapped around into an annulus.
-  std::vector<int> part(nt, -1);
-  std::vector<char> part_is_pocket;
-  {
-    std::vector<char> in_complement(nt, 0);
-    for (int t = 0; t < nt; ++t) in_complement[t] = !kept[t] || has(t, Side::kOut);
-    struct PartInfo {
-      bool touches_cut = false;  // reaches beyond the region, or the host's own boundary
-      double area = 0;
-      Vec3 weighted_centroid = Vec3::Zero();
-      std::vector<int> triangles;  // whole triangles of the part
-    };
-    std::vector<PartInfo> parts;
-    std::vector<int> stack;
-    for (int seed = 0; seed < nt; ++seed) {
-      if (!in_complement[seed] || part[seed] >= 0) continue;
-      const int id = static_cast<int>(parts.size());
-      parts.emplace_back();
-      part[seed] = id;
-      stack.push_back(seed);
-      while (!stack.empty()) {
-        const int t = stack.back();
-        stack.pop_back();
-        PartInfo& info = parts[id];
-        if (!kept[t]) {
-          info.area += triangle_area(rm, t);
-          info.triangles.push_back(t);
-          const Tri& tt = rm.triangles[t];
-          info.weighted_centroid += triangle_area(rm, t) *
-                                    (rm.positions[tt[0]] + rm.positions[tt[1]] + rm.positions[tt[2]]) / 3.0;
-        }
-        for (int v : rm.triangles[t])
-          info.touches_cut |= region.vertex_on_cut[v] != 0 || region.vertex_on_host_boundary[v] != 0;
-        for (int e : rt.triangle_edges[t])
-          for (int u : rt.edge_triangles[e]) {
-            if (u < 0 || u == t || !in_complement[u] || part[u] >= 0) continue;
-            if (kept[t] && kept[u] && !edge_has(e, Side::kOut)) continue;  // an edge inside the disk
-            part[u] = id;
-            stack.push_back(u);
-          }
-      }
-    }
-    part_is_pocket.assign(parts.size(), 0);
-    int largest = -1;
-    for (int i = 0; i < static_cast<int>(parts.size()); ++i)
-      if (largest < 0 || parts[i].area > parts[largest].area) largest = i;
-    int outer_parts = 0;
-    for (int i = 0; i < static_cast<int>(parts.size()); ++i) {
-      const PartInfo& p = parts[i];
-      const bool enclosed = !p.touches_cut && !(region.is_whole_component && i == largest);
-      double concavity = 0;
-      if (p.area > 0) {
-        const Vec3 c0 = p.weighted_centroid / p.area;
-        for (int t : p.triangles) {
-          const Tri& tt = rm.triangles[t];
-          const Vec3 x = (rm.positions[tt[0]] + rm.positions[tt[1]] + rm.positions[tt[2]]) / 3.0;
-          concavity += triangle_area(rm, t) * triangle_normal(rm, t).dot(c0 - x);
-        }
-        concavity /= p.area * std::sqrt(p.area);  // scale-free
-      }
-      part_is_pocket[i] = enclosed && concavity > kMinPocketConcavity;
-      if (!part_is_pocket[i]) ++outer_parts;
-    }
-    if (outer_parts > 1)
-      fail(MCON_ERROR_NOT_A_DISK,
-           "not a disk: the geodesic disk wraps around into an annulus (its outside falls apart into " +
-               std::to_string(outer_parts) + " parts that are not cavities, e.g. around a limb); use a smaller radius");
-  }
+  const IsoRegion iso = cut_at_radius(region, std::move(d), c, r, options.snap_fraction);  // 2.
+  const std::vector<char> kept = disk_triangles(iso, c);                                  // 3.
+  const OutsideParts outside = outside_parts(iso, kept);                                  // 4.
   report(0.55);
 
-  // 5. Assemble: whole triangles inside (and pockets, if filling), clipped triangles on the cut.
-  Patch patch;
-  TriMesh& pm = patch.mesh;
-  std::vector<int> vertex_of_region(rm.num_vertices(), -1);
-  std::unordered_map<std::uint64_t, int> vertex_of_crossing;
-  std::vector<char> is_cut_vertex;
-  auto region_vertex = [&](int v) {
-    if (vertex_of_region[v] < 0) {
-      vertex_of_region[v] = pm.num_vertices();
-      pm.positions.push_back(rm.positions[v]);
-      const int hv = region.vertex_to_host[v];
-      patch.host_vertex.push_back({hv, hv, 0.0});
-      is_cut_vertex.push_back(side[v] == Side::kOn);
-    }
-    return vertex_of_region[v];
-  };
-  auto crossing_vertex = [&](int a, int b) {
-    const auto key = edge_key(a, b);
-    auto it = vertex_of_crossing.find(key);
-    if (it != vertex_of_crossing.end()) return it->second;
-    if (region.vertex_to_host[a] > region.vertex_to_host[b]) std::swap(a, b);  // t from the lower host index
-    const double t = (r - d[a]) / (d[b] - d[a]);
-    const int id = pm.num_vertices();
-    pm.positions.push_back((1 - t) * rm.positions[a] + t * rm.positions[b]);
-    patch.host_vertex.push_back({region.vertex_to_host[a], region.vertex_to_host[b], t});
-    is_cut_vertex.push_back(1);
-    vertex_of_crossing.emplace(key, id);
-    return id;
-  };
-  for (int t = 0; t < nt; ++t) {
-    const bool pocket = part[t] >= 0 && part_is_pocket[part[t]] && options.fill_holes;
-    if (!kept[t] && !pocket) continue;
-    const Tri& tri = rm.triangles[t];
-    const int host_t = region.triangle_to_host[t];
-    if (pocket || !has(t, Side::kOut)) {
-      pm.triangles.push_back({region_vertex(tri[0]), region_vertex(tri[1]), region_vertex(tri[2])});
-      patch.host_triangle.push_back(host_t);
-      continue;
-    }
-    // Clip against d <= r (Sutherland-Hodgman on one triangle): 3 or 4 corners.
-    int poly[4];
-    int count = 0;
-    for (int k = 0; k < 3; ++k) {
-      const int a = tri[k], b = tri[(k + 1) % 3];
-      if (side[a] != Side::kOut) poly[count++] = region_vertex(a);
-      if ((side[a] == Side::kIn && side[b] == Side::kOut) || (side[a] == Side::kOut && side[b] == Side::kIn))
-        poly[count++] = crossing_vertex(a, b);
-    }
-    if (count == 3) {
-      pm.triangles.push_back({poly[0], poly[1], poly[2]});
-      patch.host_triangle.push_back(host_t);
-    } else if (count == 4) {
-      // Split the quad along its shorter diagonal.
-      const double d02 = (pm.positions[poly[0]] - pm.positions[poly[2]]).squaredNorm();
-      const double d13 = (pm.positions[poly[1]] - pm.positions[poly[3]]).squaredNorm();
-      if (d02 <= d13) {
-        pm.triangles.push_back({poly[0], poly[1], poly[2]});
-        pm.triangles.push_back({poly[0], poly[2], poly[3]});
-      } else {
-        pm.triangles.push_back({poly[0], poly[1], poly[3]});
-        pm.triangles.push_back({poly[1], poly[2], poly[3]});
-      }
-      patch.host_triangle.push_back(host_t);
-      patch.host_triangle.push_back(host_t);
-    }
-  }
-
-  // 6. Pinch points become separate vertices, then the boundary loops decide.
-  {
-    const std::vector<int> origin = split_nonmanifold_vertices(pm);
-    for (std::size_t v = patch.host_vertex.size(); v < origin.size(); ++v) {
-      patch.host_vertex.push_back(patch.host_vertex[origin[v]]);
-      is_cut_vertex.push_back(is_cut_vertex[origin[v]]);
-    }
-  }
-  MeshTopology pt = build_topology(pm);
-  std::vector<int> cut_loops, other_loops;
-  for (int i = 0; i < static_cast<int>(pt.boundary_loops.size()); ++i) {
-    bool on_cut = false;
-    for (int v : pt.boundary_loops[i]) on_cut |= is_cut_vertex[v] != 0;
-    (on_cut ? cut_loops : other_loops).push_back(i);
-  }
-  if (pt.boundary_loops.empty())
-    fail(MCON_ERROR_NOT_A_DISK, "not a disk: the geodesic disk covers a whole closed surface; use a smaller radius");
-  if (cut_loops.size() > 1)
-    fail(MCON_ERROR_NOT_A_DISK,
-         "not a disk: " + std::to_string(cut_loops.size()) + " boundary loops on the geodesic circle" +
-             (options.fill_holes ? std::string(" (the disk wraps around into an annulus)")
-                                 : std::string(" (enclosed pockets: enable hole filling)")));
-  int outer = cut_loops.empty() ? -1 : cut_loops[0];
-  if (outer < 0) {  // the disk reaches the host's own boundary all round: take the longest loop
-    for (int i : other_loops)
-      if (outer < 0 || pt.boundary_loops[i].size() > pt.boundary_loops[outer].size()) outer = i;
-  }
-  std::vector<int> holes;
-  for (int i = 0; i < static_cast<int>(pt.boundary_loops.size()); ++i)
-    if (i != outer) holes.push_back(i);
-  if (!holes.empty() && !options.fill_holes)
-    fail(MCON_ERROR_NOT_A_DISK, "not a disk: " + std::to_string(holes.size()) +
-                                    " holes of the host mesh inside the geodesic disk (enable hole filling)");
-
-  // 7. Cap each inner hole with a fan around its centroid, flagged as filled (host triangle -1).
-  for (int h : holes) {
-    const std::vector<int>& loop = pt.boundary_loops[h];
-    const int m = static_cast<int>(loop.size());
-    if (m == 3) {
-      pm.triangles.push_back({loop[2], loop[1], loop[0]});
-      patch.host_triangle.push_back(-1);
-      continue;
-    }
-    Vec3 centroid = Vec3::Zero();
-    for (int v : loop) centroid += pm.positions[v];
-    centroid /= m;
-    const int cv = pm.num_vertices();
-    pm.positions.push_back(centroid);
-    patch.host_vertex.push_back({-1, -1, 0.0});
-    is_cut_vertex.push_back(0);
-    for (int i = 0; i < m; ++i) {  // the loop has the mesh on its left: the cap runs the other way
-      pm.triangles.push_back({loop[(i + 1) % m], loop[i], cv});
-      patch.host_triangle.push_back(-1);
-    }
-  }
-  if (!holes.empty()) pt = build_topology(pm);
-  const int chi = euler_characteristic(pm, pt);
-  {
-    std::vector<int> comp;
-    const int components = triangle_components(pm, pt, comp);
-    require(components == 1, MCON_ERROR_NOT_A_DISK,
-            "not a disk: " + std::to_string(components) + " separate pieces");
-  }
-  require(pt.boundary_loops.size() == 1 && chi == 1, MCON_ERROR_NOT_A_DISK,
-          "not a disk: the geodesic disk has a handle (Euler characteristic " + std::to_string(chi) + ", " +
-              std::to_string(pt.boundary_loops.size()) + " boundary loops); use a smaller radius");
-  validate_mesh(pm);
-  patch.boundary_loop = pt.boundary_loops[0];
+  PatchDraft draft = assemble_patch(iso, kept, outside, options.fill_holes);  // 5.
+  MeshTopology pt = split_pinch_points(draft);                                // 6.
+  const std::vector<int> holes = holes_inside(pt, draft.is_cut_vertex, options.fill_holes);
+  cap_holes(draft, pt, holes);  // 7.
+  if (!holes.empty()) pt = build_topology(draft.patch.mesh);
+  Patch& patch = draft.patch;
+  require_one_disk(patch, pt);
   report(0.7);
 
-  // 8. Where the center lies in the patch.
-  if (c.vertex >= 0) {
-    const int pv = vertex_of_region[center_region_vertex];
-    for (int t = 0; t < pm.num_triangles() && patch.center.triangle < 0; ++t)
-      for (int k = 0; k < 3; ++k)
-        if (pm.triangles[t][k] == pv) {
-          patch.center.triangle = t;
-          patch.center.barycentric = Vec3::Zero();
-          patch.center.barycentric[k] = 1.0;
-        }
-  } else {
-    double best = -1e300;
-    for (int t = 0; t < pm.num_triangles(); ++t) {
-      if (patch.host_triangle[t] != c.triangle) continue;
-      const Tri& tri = pm.triangles[t];
-      const Vec3 a = pm.positions[tri[0]], e1 = pm.positions[tri[1]] - a, e2 = pm.positions[tri[2]] - a;
-      const Vec3 p = center_point - a;
-      const double d11 = e1.dot(e1), d12 = e1.dot(e2), d22 = e2.dot(e2), p1 = p.dot(e1), p2 = p.dot(e2);
-      const double det = d11 * d22 - d12 * d12;
-      const double u = (d22 * p1 - d12 * p2) / det, v = (d11 * p2 - d12 * p1) / det;
-      const Vec3 b(1 - u - v, u, v);
-      if (b.minCoeff() > best) {
-        best = b.minCoeff();
-        patch.center.triangle = t;
-        patch.center.barycentric = b.cwiseMax(0.0) / b.cwiseMax(0.0).sum();
-      }
-    }
-  }
+  if (c.vertex >= 0)  // 8.
+    center_at_vertex(patch, draft.vertex_of_region[iso.center_vertex]);
+  else
+    center_in_triangle(patch, c.triangle, center_point);
   require(patch.center.triangle >= 0, MCON_ERROR_UNKNOWN, "the center was lost while cutting the patch");
 
-  // 9. Normalize to geodesic radius 1 around the center, parametrize, measure.
-  patch.center_position = center_point;
-  patch.radius = r;
-  for (Vec3& p : pm.positions) p = (p - center_point) / r;
+  normalize_to_unit_radius(patch, center_point, r);  // 9.
   report(0.8);
-  patch.uv = disk_parametrization(pm, patch.boundary_loop);
-  patch.param_flipped_triangles = count_flipped_triangles(pm, patch.uv);
-  {
-    HeatGeodesics heat(pm);
-    const Eigen::VectorXd pd = heat.from_point(patch.center.triangle, patch.center.barycentric);
-    patch.max_geodesic_distance = pd.maxCoeff();
-  }
+  parametrize_and_measure(patch);
   report(1.0);
-  return patch;
+  return std::move(draft.patch);
 }
 
 }  // namespace mcon

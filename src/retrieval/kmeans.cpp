@@ -202,13 +202,13 @@ void assign_to_centers(const double* points, std::size_t n, std::size_t d, const
   });
 }
 
-KMeansResult kmeans(const double* points, std::size_t n, std::size_t d, const KMeansOptions& options) {
-  check_points(points, n, d);
+namespace {
+
+void check_options(const KMeansOptions& options, std::size_t d) {
   require(options.max_iterations >= 0, MCON_ERROR_INVALID_ARGUMENT, "k-means: max_iterations must be >= 0");
   require(options.max_training_points >= 1, MCON_ERROR_INVALID_ARGUMENT,
           "k-means: max_training_points must be at least 1");
-  const bool given = !options.initial_centers.empty();
-  if (given) {
+  if (!options.initial_centers.empty()) {
     require(options.initial_centers.size() % d == 0, MCON_ERROR_INVALID_ARGUMENT,
             "k-means: initial_centers must hold k * d values");
     for (double v : options.initial_centers)
@@ -217,30 +217,26 @@ KMeansResult kmeans(const double* points, std::size_t n, std::size_t d, const KM
     require(options.k >= 1, MCON_ERROR_INVALID_ARGUMENT,
             "k-means: k must be at least 1 (got " + std::to_string(options.k) + ")");
   }
+}
 
-  // Training set: all points, or a deterministic subsample gathered contiguously.
-  KMeansResult result;
-  result.dimension = static_cast<int>(d);
-  std::vector<double> sample;
-  const double* x = points;
-  std::size_t m = n;
-  if (n > options.max_training_points) {
-    const std::vector<std::size_t> picked = deterministic_subsample(n, options.max_training_points, options.seed);
-    m = picked.size();
-    sample.resize(m * d);
-    for (std::size_t i = 0; i < m; ++i) std::copy(points + picked[i] * d, points + (picked[i] + 1) * d, &sample[i * d]);
-    x = sample.data();
-  }
-  result.training_points = m;
+// Training set: all points, or a deterministic subsample gathered contiguously into `sample`.
+// Returns the training points; m is their count.
+const double* training_set(const double* points, std::size_t n, std::size_t d, const KMeansOptions& options,
+                           std::vector<double>& sample, std::size_t& m) {
+  m = n;
+  if (n <= options.max_training_points) return points;
+  const std::vector<std::size_t> picked = deterministic_subsample(n, options.max_training_points, options.seed);
+  m = picked.size();
+  sample.resize(m * d);
+  for (std::size_t i = 0; i < m; ++i) std::copy(points + picked[i] * d, points + (picked[i] + 1) * d, &sample[i * d]);
+  return sample.data();
+}
 
-  std::vector<double> centers = given ? options.initial_centers : kmeans_plus_plus(x, m, d, options.k, options.seed);
-  std::size_t k = centers.size() / d;
-
-  std::vector<int> assignment(m, -1);
-  std::vector<double> d2(m);
-  std::vector<double> centers_t = transpose_centers(centers.data(), k, d);
-  assign_step(x, m, d, centers_t, k, assignment, d2);
-  while (result.iterations < options.max_iterations) {
+// Lloyd iterations from the current assignment until it no longer changes or the iteration cap.
+void lloyd_iterations(const double* x, std::size_t m, std::size_t d, std::size_t k, int max_iterations,
+                      std::vector<double>& centers, std::vector<int>& assignment, std::vector<double>& d2,
+                      KMeansResult& result) {
+  while (result.iterations < max_iterations) {
     // Update: every center moves to the mean of its points; empty ones are re-seeded.
     const std::vector<double> sums = cluster_sums(x, m, d, k, assignment);
     std::vector<std::size_t> empty;
@@ -255,14 +251,18 @@ KMeansResult kmeans(const double* points, std::size_t n, std::size_t d, const KM
     if (!empty.empty()) result.reseeded_clusters += reseed_empty(x, m, d, empty, centers, d2);
     ++result.iterations;
 
-    centers_t = transpose_centers(centers.data(), k, d);
+    const std::vector<double> centers_t = transpose_centers(centers.data(), k, d);
     if (assign_step(x, m, d, centers_t, k, assignment, d2) == 0) {
       result.converged = true;
       break;
     }
   }
+}
 
-  // Drop clusters that stayed empty (only possible with fewer distinct points than k).
+// Drop clusters that stayed empty (only possible with fewer distinct points than k). Returns
+// the number of clusters left.
+std::size_t drop_empty_clusters(std::size_t k, std::size_t d, std::vector<double>& centers,
+                                std::vector<int>& assignment) {
   std::vector<int> remap(k, -1);
   std::vector<char> used(k, 0);
   for (int a : assignment) used[static_cast<std::size_t>(a)] = 1;
@@ -275,8 +275,32 @@ KMeansResult kmeans(const double* points, std::size_t n, std::size_t d, const KM
   if (kept != k) {
     centers.resize(kept * d);
     for (int& a : assignment) a = remap[static_cast<std::size_t>(a)];
-    k = kept;
   }
+  return kept;
+}
+
+}  // namespace
+
+KMeansResult kmeans(const double* points, std::size_t n, std::size_t d, const KMeansOptions& options) {
+  check_points(points, n, d);
+  check_options(options, d);
+  const bool given = !options.initial_centers.empty();
+
+  KMeansResult result;
+  result.dimension = static_cast<int>(d);
+  std::vector<double> sample;
+  std::size_t m = n;
+  const double* x = training_set(points, n, d, options, sample, m);
+  result.training_points = m;
+
+  std::vector<double> centers = given ? options.initial_centers : kmeans_plus_plus(x, m, d, options.k, options.seed);
+  std::size_t k = centers.size() / d;
+
+  std::vector<int> assignment(m, -1);
+  std::vector<double> d2(m);
+  assign_step(x, m, d, transpose_centers(centers.data(), k, d), k, assignment, d2);
+  lloyd_iterations(x, m, d, k, options.max_iterations, centers, assignment, d2, result);
+  k = drop_empty_clusters(k, d, centers, assignment);
 
   std::vector<double> unused;
   result.inertia = chunked_sum(d2, unused);

@@ -47,6 +47,66 @@ SegmentExit first_exit(const Vec3& l0, const Vec3& d, int entry) {
   return out;
 }
 
+// One polyline's walk over the target: the pieces of it inside the overlap, and where the walk is.
+struct Trace {
+  std::vector<std::vector<TracePoint>> pieces;
+  bool open = false;          // the last piece is still being traced
+  int breaks = 0;             // times the walk left the target
+  bool starts_inside = false;
+  int cur = -1;               // target triangle of the walk, -1 outside
+  int entry = -1;             // corner of `cur` opposite the edge the walk came in through
+
+  void append(int t, const Vec3& b, const Vec2& uv);
+};
+
+void Trace::append(int t, const Vec3& b, const Vec2& uv) {
+  std::vector<TracePoint>& piece = pieces.back();
+  // The same point again (a segment starting on an edge, or passing a vertex): keep one, in
+  // the triangle of the segment that follows it.
+  if (!piece.empty() && (piece.back().uv - uv).norm() <= 1e-14) {
+    piece.back().triangle = t;
+    piece.back().barycentric = clamp_barycentric(b);
+    return;
+  }
+  piece.push_back({t, clamp_barycentric(b), uv});
+}
+
+// A closed polyline that starts inside and is still inside at its end.
+void join_loop_ends(Trace& tr) {
+  auto& pieces = tr.pieces;
+  if (tr.breaks == 0 && pieces.size() == 1) {
+    // The whole loop survived: drop the repeated first point; the one before it now carries
+    // the triangle of the closing segment.
+    if (pieces[0].size() >= 2) pieces[0].pop_back();
+  } else if (pieces.size() >= 2) {
+    // The piece that reaches the start again continues into the first piece.
+    std::vector<TracePoint> merged = std::move(pieces.back());
+    pieces.pop_back();
+    merged.pop_back();
+    merged.insert(merged.end(), pieces[0].begin(), pieces[0].end());
+    pieces[0] = std::move(merged);
+  }
+}
+
+// The traced pieces of input polyline `pi` as target polylines (closed if the whole loop survived).
+void emit_pieces(const Trace& tr, bool closed, std::size_t pi, const TriMesh& T, std::vector<TracedPolyline>& result) {
+  const bool closed_out = closed && tr.starts_inside && tr.breaks == 0 && tr.pieces.size() == 1;
+  for (const auto& piece : tr.pieces) {
+    if (piece.size() < 2) continue;
+    TracedPolyline out;
+    out.closed = closed_out && piece.size() >= 3;
+    if (closed_out && !out.closed) continue;
+    out.input = static_cast<int>(pi);
+    for (const TracePoint& q : piece) {
+      out.points.push_back({q.triangle, q.barycentric});
+      const Tri& t = T.triangles[q.triangle];
+      out.positions.push_back(q.barycentric[0] * T.positions[t[0]] + q.barycentric[1] * T.positions[t[1]] +
+                              q.barycentric[2] * T.positions[t[2]]);
+    }
+    result.push_back(std::move(out));
+  }
+}
+
 }  // namespace
 
 struct PolylineTransfer::Impl {
@@ -138,7 +198,81 @@ struct PolylineTransfer::Impl {
     s_out = std::max(best, s_min);
     return true;
   }
+
+  Trace start_trace(const Vec2& p0, int source_triangle) const;
+  void trace_segment(const Vec2& a, const Vec2& b, std::size_t pi, Trace& tr) const;
 };
+
+// The walk's start: inside (a first piece) if the polyline's first point has an image on the target.
+Trace PolylineTransfer::Impl::start_trace(const Vec2& p0, int source_triangle) const {
+  Trace tr;
+  const PointLocation loc = locate(p0, source_triangle);
+  if (loc.triangle >= 0) {
+    tr.pieces.emplace_back();
+    tr.open = true;
+    tr.starts_inside = true;
+    tr.cur = loc.triangle;
+    tr.append(tr.cur, loc.barycentric, p0);
+  }
+  return tr;
+}
+
+// Walks the segment a -> b (of polyline `pi`) over the target, triangle by triangle: a piece
+// ends where the walk leaves the target disk and a new one starts where it enters again.
+void PolylineTransfer::Impl::trace_segment(const Vec2& a, const Vec2& b, std::size_t pi, Trace& tr) const {
+  const std::size_t step_cap = 4 * map.target.triangles.size() + 16;
+  if ((b - a).norm() <= 1e-15) return;
+  int& cur = tr.cur;
+  int& entry = tr.entry;
+  double s = 0;
+  std::array<int, 2> left_edge{-1, -1};
+  std::size_t steps = 0;
+  while (true) {
+    require(++steps <= step_cap, MCON_ERROR_NUMERICAL,
+            "polyline " + std::to_string(pi) + ": the walk over the target did not terminate");
+    if (cur < 0) {
+      double se = 0;
+      int t = -1, kk = -1;
+      if (!find_entry(a, b, s, left_edge, se, t, kk)) break;  // this segment stays outside
+      tr.pieces.emplace_back();
+      tr.open = true;
+      cur = t;
+      entry = kk;
+      s = se;
+      const Vec2 x = a + s * (b - a);
+      tr.append(cur, bary(cur, x), x);
+      continue;
+    }
+    const Vec3 l0 = bary(cur, a), l1 = bary(cur, b), d = l1 - l0;
+    const SegmentExit exit = first_exit(l0, d, entry);
+    const int edge = exit.edge;
+    double s_exit = exit.s;
+    if (edge < 0 || s_exit >= 1.0) {  // b lies in this triangle
+      tr.append(cur, l1, b);
+      entry = -1;
+      break;
+    }
+    s_exit = std::max(s_exit, s);
+    const Vec2 x = a + s_exit * (b - a);
+    const int next = neighbor[cur][edge];
+    if (next < 0) {  // leaving the target disk: the rest of this piece is outside the overlap
+      tr.append(cur, l0 + s_exit * d, x);
+      tr.open = false;
+      ++tr.breaks;
+      left_edge = {cur, edge};
+      cur = -1;
+      entry = -1;
+      // Re-enter only strictly later: a segment grazing a boundary vertex could otherwise
+      // "enter" through the other boundary edge at the same point and circle the vertex.
+      s = s_exit + 1e-9;
+      continue;
+    }
+    entry = corner_facing(next, cur);
+    cur = next;
+    s = s_exit;
+    tr.append(cur, bary(cur, x), x);
+  }
+}
 
 PolylineTransfer::PolylineTransfer(const MapView& map) {
   check_map_view(map);
@@ -167,10 +301,7 @@ SurfacePoint PolylineTransfer::map_point(const SurfacePoint& p) const {
 
 std::vector<TracedPolyline> PolylineTransfer::map_polylines(const std::vector<PolylineInput>& inputs) const {
   const Impl& I = *impl_;
-  const TriMesh& T = I.map.target;
   std::vector<TracedPolyline> result;
-  const std::size_t step_cap = 4 * T.triangles.size() + 16;
-
   for (std::size_t pi = 0; pi < inputs.size(); ++pi) {
     const PolylineInput& in = inputs[pi];
     require(in.points.size() >= 2, MCON_ERROR_INVALID_ARGUMENT,
@@ -180,116 +311,10 @@ std::vector<TracedPolyline> PolylineTransfer::map_polylines(const std::vector<Po
     for (const SurfacePoint& q : in.points) p.push_back(phi_of(q));
     if (in.closed) p.push_back(p.front());
 
-    std::vector<std::vector<TracePoint>> pieces;
-    bool open = false;  // the last piece is still being traced
-    int breaks = 0;     // times the walk left the target
-    bool starts_inside = false;
-    auto append = [&](int t, const Vec3& b, const Vec2& uv) {
-      std::vector<TracePoint>& piece = pieces.back();
-      // The same point again (a segment starting on an edge, or passing a vertex): keep one, in
-      // the triangle of the segment that follows it.
-      if (!piece.empty() && (piece.back().uv - uv).norm() <= 1e-14) {
-        piece.back().triangle = t;
-        piece.back().barycentric = clamp_barycentric(b);
-        return;
-      }
-      piece.push_back({t, clamp_barycentric(b), uv});
-    };
-
-    int cur = -1;    // target triangle of the walk, -1 outside
-    int entry = -1;  // corner of `cur` opposite the edge the walk came in through
-    {
-      const PointLocation loc = I.locate(p[0], in.points[0].triangle);
-      if (loc.triangle >= 0) {
-        pieces.emplace_back();
-        open = true;
-        starts_inside = true;
-        cur = loc.triangle;
-        append(cur, loc.barycentric, p[0]);
-      }
-    }
-    for (std::size_t k = 0; k + 1 < p.size(); ++k) {
-      const Vec2 a = p[k], b = p[k + 1];
-      if ((b - a).norm() <= 1e-15) continue;
-      double s = 0;
-      std::array<int, 2> left_edge{-1, -1};
-      std::size_t steps = 0;
-      while (true) {
-        require(++steps <= step_cap, MCON_ERROR_NUMERICAL,
-                "polyline " + std::to_string(pi) + ": the walk over the target did not terminate");
-        if (cur < 0) {
-          double se = 0;
-          int t = -1, kk = -1;
-          if (!I.find_entry(a, b, s, left_edge, se, t, kk)) break;  // this segment stays outside
-          pieces.emplace_back();
-          open = true;
-          cur = t;
-          entry = kk;
-          s = se;
-          const Vec2 x = a + s * (b - a);
-          append(cur, I.bary(cur, x), x);
-          continue;
-        }
-        const Vec3 l0 = I.bary(cur, a), l1 = I.bary(cur, b), d = l1 - l0;
-        const SegmentExit exit = first_exit(l0, d, entry);
-        const int edge = exit.edge;
-        double s_exit = exit.s;
-        if (edge < 0 || s_exit >= 1.0) {  // b lies in this triangle
-          append(cur, l1, b);
-          entry = -1;
-          break;
-        }
-        s_exit = std::max(s_exit, s);
-        const Vec2 x = a + s_exit * (b - a);
-        const int next = I.neighbor[cur][edge];
-        if (next < 0) {  // leaving the target disk: the rest of this piece is outside the overlap
-          append(cur, l0 + s_exit * d, x);
-          open = false;
-          ++breaks;
-          left_edge = {cur, edge};
-          cur = -1;
-          entry = -1;
-          // Re-enter only strictly later: a segment grazing a boundary vertex could otherwise
-          // "enter" through the other boundary edge at the same point and circle the vertex.
-          s = s_exit + 1e-9;
-          continue;
-        }
-        entry = I.corner_facing(next, cur);
-        cur = next;
-        s = s_exit;
-        append(cur, I.bary(cur, x), x);
-      }
-    }
-
-    if (in.closed && starts_inside && open) {
-      if (breaks == 0 && pieces.size() == 1) {
-        // The whole loop survived: drop the repeated first point; the one before it now carries
-        // the triangle of the closing segment.
-        if (pieces[0].size() >= 2) pieces[0].pop_back();
-      } else if (pieces.size() >= 2) {
-        // The piece that reaches the start again continues into the first piece.
-        std::vector<TracePoint> merged = std::move(pieces.back());
-        pieces.pop_back();
-        merged.pop_back();
-        merged.insert(merged.end(), pieces[0].begin(), pieces[0].end());
-        pieces[0] = std::move(merged);
-      }
-    }
-    const bool closed_out = in.closed && starts_inside && breaks == 0 && pieces.size() == 1;
-    for (const auto& piece : pieces) {
-      if (piece.size() < 2) continue;
-      TracedPolyline out;
-      out.closed = closed_out && piece.size() >= 3;
-      if (closed_out && !out.closed) continue;
-      out.input = static_cast<int>(pi);
-      for (const TracePoint& q : piece) {
-        out.points.push_back({q.triangle, q.barycentric});
-        const Tri& t = T.triangles[q.triangle];
-        out.positions.push_back(q.barycentric[0] * T.positions[t[0]] + q.barycentric[1] * T.positions[t[1]] +
-                                q.barycentric[2] * T.positions[t[2]]);
-      }
-      result.push_back(std::move(out));
-    }
+    Trace tr = I.start_trace(p[0], in.points[0].triangle);
+    for (std::size_t k = 0; k + 1 < p.size(); ++k) I.trace_segment(p[k], p[k + 1], pi, tr);
+    if (in.closed && tr.starts_inside && tr.open) join_loop_ends(tr);
+    emit_pieces(tr, in.closed, pi, I.map.target, result);
   }
   return result;
 }
