@@ -7,16 +7,12 @@
 #include <unordered_set>
 
 #include "base/error.h"
+#include "mesh/edge_key.h"
 #include "io/mesh_io.h"
 #include "io/writer_input.h"
 
 namespace mcon::io {
 namespace {
-
-std::uint64_t edge_key(int a, int b) {
-  if (a > b) std::swap(a, b);
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
-}
 
 // Both sides of an edge: (triangle, VCG edge index), the first from the lower triangle index.
 struct EdgeSides {

@@ -7,7 +7,7 @@
 
 #include "operators/cotan_laplacian.h"
 #include "base/error.h"
-#include "base/fixed_chunks.h"
+#include "base/parallel_blocks.h"
 #include "retrieval/retrieval_descriptors.h"
 
 namespace mcon {
@@ -203,7 +203,7 @@ ConstraintLibrary build_library_retrieval(const ConstraintLibrary& library, cons
   std::atomic<std::size_t> done{0};
   std::atomic<bool> cancelled{false};
   report(options.progress, 0.0);
-  fixed_chunk_for(count, 1, [&](std::size_t begin, std::size_t end) {
+  for_each_block(count, 1, [&](std::size_t begin, std::size_t end, std::size_t) {
     for (std::size_t i = begin; i < end; ++i) {
       if (cancelled.load()) return;
       described[i] = describe_library_entry(entries[i], recompute.empty() ? dimension : 0, recompute, options.rings);
@@ -230,7 +230,7 @@ ConstraintLibrary build_library_retrieval(const ConstraintLibrary& library, cons
   // 3. Every entry's histogram (eq. 3.1 per ring).
   std::vector<MacroConstraint> out = entries;
   done.store(0);
-  fixed_chunk_for(count, 1, [&](std::size_t begin, std::size_t end) {
+  for_each_block(count, 1, [&](std::size_t begin, std::size_t end, std::size_t) {
     for (std::size_t i = begin; i < end; ++i) {
       if (cancelled.load()) return;
       if (!recompute.empty()) out[i].descriptors = to_float_rows(described[i].values);

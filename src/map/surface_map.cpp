@@ -41,7 +41,6 @@ void check_domain(const MapDomain& d, const char* name) {
   }
 }
 
-double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 double polygon_area(const std::vector<Vec2>& p) {
   double a = 0;

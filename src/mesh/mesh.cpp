@@ -8,13 +8,10 @@
 #include <unordered_map>
 
 #include "base/error.h"
+#include "mesh/edge_key.h"
 
 namespace mcon {
 namespace {
-
-std::uint64_t edge_key(int a, int b) {
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
-}
 
 int find_root(std::vector<int>& parent, int i) {
   while (parent[i] != i) {
@@ -69,7 +66,7 @@ void check_directed_edges(const TriMesh& mesh) {
     const Tri& tri = mesh.triangles[t];
     for (int i = 0; i < 3; ++i) {
       const int a = tri[i], b = tri[(i + 1) % 3];
-      auto [it, inserted] = directed.emplace(edge_key(a, b), t);
+      auto [it, inserted] = directed.emplace(directed_edge_key(a, b), t);
       if (!inserted) {
         fail(MCON_ERROR_NON_MANIFOLD_EDGE, "edge (" + std::to_string(a) + ", " + std::to_string(b) +
                                                ") is used by triangles " + std::to_string(it->second) + " and " +

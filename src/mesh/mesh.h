@@ -15,6 +15,9 @@ using Vec2 = Eigen::Vector2d;
 using Vec3 = Eigen::Vector3d;
 using Tri = std::array<int, 3>;
 
+// The z component of the 2D cross product: twice the signed area of (0, a, b).
+inline double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
 struct TriMesh {
   std::vector<Vec3> positions;
   std::vector<Tri> triangles;

@@ -11,7 +11,6 @@ namespace mcon {
 
 namespace {
 
-double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 // Closest point of triangle (a, b, c) to p as barycentric coordinates (Ericson, Real-Time
 // Collision Detection, 5.1.5); works for either orientation.

@@ -10,6 +10,7 @@
 
 #include "patch/disk_parametrization.h"
 #include "base/error.h"
+#include "mesh/edge_key.h"
 #include "operators/heat_geodesics.h"
 #include "mesh/mesh_region.h"
 #include "mesh/mesh_topology.h"
@@ -26,11 +27,6 @@ constexpr double kRegionFactor = 3.0;
 constexpr double kMinPocketConcavity = 0.05;
 
 enum class Side : std::uint8_t { kIn, kOn, kOut };
-
-std::uint64_t edge_key(int a, int b) {
-  if (a > b) std::swap(a, b);
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
-}
 
 void check_options(const TriMesh& host, const PatchOptions& o) {
   require(std::isfinite(o.radius) && o.radius > 0, MCON_ERROR_INVALID_ARGUMENT,

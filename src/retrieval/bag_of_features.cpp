@@ -8,7 +8,7 @@
 #include "retrieval/center_distances.h"
 #include "descriptors/descriptor_normalization.h"
 #include "base/error.h"
-#include "base/fixed_chunks.h"
+#include "base/parallel_blocks.h"
 #include "retrieval/kmeans.h"
 
 namespace mcon {
@@ -103,7 +103,7 @@ Eigen::MatrixXd soft_assignment(const Eigen::MatrixXd& normalized_values, const 
   const std::size_t n = static_cast<std::size_t>(x.rows());
   RowMatrix theta(x.rows(), static_cast<Eigen::Index>(k));
   const SoftAssigner assign(vocabulary, k, d, sigma);
-  fixed_chunk_for(n, kVertexChunk, [&](std::size_t begin, std::size_t end) {
+  for_each_block(n, kVertexChunk, [&](std::size_t begin, std::size_t end, std::size_t) {
     std::vector<double> dist(k);
     for (std::size_t v = begin; v < end; ++v) assign(x.data() + v * d, dist.data(), theta.data() + v * k);
   });
@@ -205,7 +205,7 @@ std::vector<float> bag_of_features(const RetrievalConfig& config, const PatchDes
   const std::size_t length = k * rings;
 
   // Theta(P) = sum_v theta(v) A_v per ring, summed over a fixed vertex partition.
-  const std::vector<double> histogram = fixed_chunk_reduce(
+  const std::vector<double> histogram = deterministic_reduce(
       static_cast<std::size_t>(n), kVertexChunk, std::vector<double>(length, 0.0),
       [&](std::size_t begin, std::size_t end) {
         std::vector<double> part(length, 0.0), dist(k), theta(k);

@@ -9,7 +9,7 @@
 #include "retrieval/center_distances.h"
 #include "base/counter_rng.h"
 #include "base/error.h"
-#include "base/fixed_chunks.h"
+#include "base/parallel_blocks.h"
 
 namespace mcon {
 namespace {
@@ -33,8 +33,8 @@ double squared_distance(const double* a, const double* b, std::size_t d) {
 // Sum of values[0..n) over the fixed partition, plus the per-chunk sums.
 double chunked_sum(const std::vector<double>& values, std::vector<double>& chunk_sums) {
   const std::size_t n = values.size();
-  chunk_sums.assign(chunk_count(n, kChunk), 0.0);
-  fixed_chunk_for(n, kChunk, [&](std::size_t begin, std::size_t end) {
+  chunk_sums.assign(block_count(n, kChunk), 0.0);
+  for_each_block(n, kChunk, [&](std::size_t begin, std::size_t end, std::size_t) {
     double s = 0;
     for (std::size_t i = begin; i < end; ++i) s += values[i];
     chunk_sums[begin / kChunk] = s;
@@ -56,7 +56,7 @@ std::vector<double> kmeans_plus_plus(const double* x, std::size_t m, std::size_t
   std::vector<double> chunk_sums;
   for (int c = 1;; ++c) {
     const double* newest = centers.data() + static_cast<std::size_t>(c - 1) * d;
-    fixed_chunk_for(m, kChunk, [&](std::size_t begin, std::size_t end) {
+    for_each_block(m, kChunk, [&](std::size_t begin, std::size_t end, std::size_t) {
       for (std::size_t i = begin; i < end; ++i) d2[i] = std::min(d2[i], squared_distance(x + i * d, newest, d));
     });
     if (c == k) break;
@@ -94,7 +94,7 @@ std::vector<double> kmeans_plus_plus(const double* x, std::size_t m, std::size_t
 // Assigns all m points; returns how many assignments changed.
 std::size_t assign_step(const double* x, std::size_t m, std::size_t d, const std::vector<double>& centers_t,
                         std::size_t k, std::vector<int>& assignment, std::vector<double>& d2) {
-  return fixed_chunk_reduce(
+  return deterministic_reduce(
       m, kChunk, std::size_t{0},
       [&](std::size_t begin, std::size_t end) {
         std::vector<double> dist(k);
@@ -115,7 +115,7 @@ std::size_t assign_step(const double* x, std::size_t m, std::size_t d, const std
 std::vector<double> cluster_sums(const double* x, std::size_t m, std::size_t d, std::size_t k,
                                  const std::vector<int>& assignment) {
   const std::size_t width = k * (d + 1);
-  return fixed_chunk_reduce(
+  return deterministic_reduce(
       m, kChunk, std::vector<double>(width, 0.0),
       [&](std::size_t begin, std::size_t end) {
         std::vector<double> s(width, 0.0);
@@ -144,7 +144,7 @@ int reseed_empty(const double* x, std::size_t m, std::size_t d, const std::vecto
       if (d2[i] > 0 && (far == m || d2[i] > d2[far])) far = i;
     if (far == m) break;  // every point sits on a center: nothing distinct left
     std::copy(x + far * d, x + (far + 1) * d, centers.begin() + static_cast<std::ptrdiff_t>(c * d));
-    fixed_chunk_for(m, kChunk, [&](std::size_t begin, std::size_t end) {
+    for_each_block(m, kChunk, [&](std::size_t begin, std::size_t end, std::size_t) {
       for (std::size_t i = begin; i < end; ++i) d2[i] = std::min(d2[i], squared_distance(x + i * d, x + far * d, d));
     });
     ++reseeded;
@@ -191,7 +191,7 @@ std::vector<std::size_t> deterministic_subsample(std::size_t n, std::size_t coun
 void assign_to_centers(const double* points, std::size_t n, std::size_t d, const double* centers, std::size_t k,
                        int* assignment, double* squared_distance_out) {
   const std::vector<double> centers_t = transpose_centers(centers, k, d);
-  fixed_chunk_for(n, kChunk, [&](std::size_t begin, std::size_t end) {
+  for_each_block(n, kChunk, [&](std::size_t begin, std::size_t end, std::size_t) {
     std::vector<double> dist(k);
     for (std::size_t i = begin; i < end; ++i) {
       squared_distances_to_centers(points + i * d, centers_t.data(), k, d, dist.data());

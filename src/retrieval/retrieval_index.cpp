@@ -6,7 +6,7 @@
 #include <string>
 
 #include "base/error.h"
-#include "base/fixed_chunks.h"
+#include "base/parallel_blocks.h"
 
 namespace mcon {
 namespace {
@@ -56,9 +56,9 @@ std::vector<RetrievalHit> top_n_l1(const float* entries, std::size_t count, std:
   // Each chunk keeps its own best n; the chunks' lists are merged in chunk order. Every entry's
   // distance is computed the same way whatever the chunking, and (distance, entry) is a total
   // order, so the result does not depend on the thread count.
-  const std::size_t chunks = chunk_count(count, kEntryChunk);
+  const std::size_t chunks = block_count(count, kEntryChunk);
   std::vector<std::vector<RetrievalHit>> best(chunks);
-  fixed_chunk_for(count, kEntryChunk, [&](std::size_t begin, std::size_t end) {
+  for_each_block(count, kEntryChunk, [&](std::size_t begin, std::size_t end, std::size_t) {
     std::vector<RetrievalHit>& hits = best[begin / kEntryChunk];
     hits.resize(end - begin);
     for (std::size_t e = begin; e < end; ++e) {

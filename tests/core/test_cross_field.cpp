@@ -60,7 +60,6 @@ SurfacePoint locate(const TriMesh& m, double x, double y) {
     const Tri& tri = m.triangles[t];
     const Vec2 a = m.positions[tri[0]].head<2>(), b = m.positions[tri[1]].head<2>(), c = m.positions[tri[2]].head<2>();
     const Vec2 p(x, y);
-    auto cross2 = [](const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y() * v.x(); };
     const double area = cross2(b - a, c - a);
     const double l0 = cross2(b - p, c - p) / area, l1 = cross2(c - p, a - p) / area, l2 = cross2(a - p, b - p) / area;
     if (l0 >= -1e-12 && l1 >= -1e-12 && l2 >= -1e-12) {
