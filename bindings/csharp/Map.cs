@@ -26,10 +26,10 @@ namespace Macrocon
         /// normalized over both patches and scaled by GuidanceWeight. Both null: none.</summary>
         public double[] SourceGuidance, TargetGuidance;
         public int GuidanceDimension;
-        public double GuidanceWeight = 1.0;
+        public double? GuidanceWeight;
         /// <summary>Gaussian width factor of the refinement pass after the finest level: 0 turns it
         /// off, otherwise in (0, 1].</summary>
-        public double RefineSigmaFactor = 0.5;
+        public double? RefineSigmaFactor;
     }
 
     /// <summary>Polylines re-traced on a target patch (every segment inside one target triangle).</summary>
@@ -95,7 +95,7 @@ namespace Macrocon
             if (settings.MaxIterations.HasValue) o.max_iterations = settings.MaxIterations.Value;
             o.allow_reflection = settings.AllowReflection ? 1u : 0u;
             o.orientation = (uint)settings.Orientation;
-            o.refine_sigma_factor = settings.RefineSigmaFactor;
+            if (settings.RefineSigmaFactor.HasValue) o.refine_sigma_factor = settings.RefineSigmaFactor.Value;
             if ((settings.SourceGuidance == null) != (settings.TargetGuidance == null))
                 throw new ArgumentException("SourceGuidance and TargetGuidance must be given together");
             if (settings.SourceGuidance != null)
@@ -106,7 +106,7 @@ namespace Macrocon
                     throw new ArgumentException("guidance needs GuidanceDimension >= 1 values per source and per target vertex (" +
                                                 source.VertexCount + " and " + target.VertexCount + " vertices)");
                 o.guidance_dimension = (uint)d;
-                o.guidance_weight = settings.GuidanceWeight;
+                if (settings.GuidanceWeight.HasValue) o.guidance_weight = settings.GuidanceWeight.Value;
             }
             else if (settings.GuidanceDimension != 0)
                 throw new ArgumentException("GuidanceDimension without SourceGuidance / TargetGuidance");

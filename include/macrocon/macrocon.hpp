@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <exception>
 #include <functional>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -743,12 +744,13 @@ class PolylineSet {
   Ref ref_;
 };
 
-// Options of Map::compute; the C struct mcon_map_options works too.
+// Options of Map::compute; the C struct mcon_map_options works too. Members left empty keep
+// mcon_map_options_init's defaults.
 struct MapOptions {
   std::uint64_t seed = 0;
-  std::uint32_t alignment_samples = 10000;
+  std::optional<std::uint32_t> alignment_samples;
   bool allow_reflection = true;  // restricts automatic only
-  std::uint32_t max_iterations = 100;
+  std::optional<std::uint32_t> max_iterations;
   // Fraction in [0, 1]; return false to cancel (Error with MCON_ERROR_CANCELLED). An exception it
   // throws cancels the computation and is rethrown from Map::compute.
   std::function<bool(double)> progress;
@@ -759,9 +761,9 @@ struct MapOptions {
   // target_guidance; both empty: none.
   std::uint32_t guidance_dimension = 0;
   std::vector<double> source_guidance, target_guidance;
-  double guidance_weight = 1.0;
+  std::optional<double> guidance_weight;
   // Gaussian width factor of the refinement pass after the finest level (0: no pass; (0, 1]).
-  double refine_sigma_factor = 0.5;
+  std::optional<double> refine_sigma_factor;
 };
 
 // The re-embedding map Phi of a source patch onto a target patch, and transfers through it.
@@ -771,15 +773,15 @@ class Map {
     mcon_map_options c;
     check(mcon_map_options_init(&c));
     c.seed = options.seed;
-    c.alignment_samples = options.alignment_samples;
+    if (options.alignment_samples) c.alignment_samples = *options.alignment_samples;
     c.allow_reflection = options.allow_reflection ? 1u : 0u;
-    c.max_iterations = options.max_iterations;
+    if (options.max_iterations) c.max_iterations = *options.max_iterations;
     c.orientation = static_cast<std::uint32_t>(options.orientation);
     c.guidance_dimension = options.guidance_dimension;
     c.source_guidance = options.source_guidance.empty() ? nullptr : options.source_guidance.data();
     c.target_guidance = options.target_guidance.empty() ? nullptr : options.target_guidance.data();
-    c.guidance_weight = options.guidance_weight;
-    c.refine_sigma_factor = options.refine_sigma_factor;
+    if (options.guidance_weight) c.guidance_weight = *options.guidance_weight;
+    if (options.refine_sigma_factor) c.refine_sigma_factor = *options.refine_sigma_factor;
     if (options.guidance_dimension != 0 &&
         (options.source_guidance.size() != source.vertex_count() * options.guidance_dimension ||
          options.target_guidance.size() != target.vertex_count() * options.guidance_dimension))

@@ -141,7 +141,11 @@ TEST(CppMap, RefineSigmaFactorReachesTheCApi) {
   const NosePair pair;
   const auto& [ctx, body, source, target] = pair;
   macrocon::MapOptions o = fast();
-  EXPECT_EQ(o.refine_sigma_factor, 0.5);
+  // The wrapper restates no default: unset members keep mcon_map_options_init's (0.5 here).
+  EXPECT_FALSE(o.refine_sigma_factor.has_value());
+  mcon_map_options c;
+  ASSERT_EQ(mcon_map_options_init(&c), MCON_OK);
+  EXPECT_EQ(c.refine_sigma_factor, 0.5);
   EXPECT_EQ(macrocon::Map::compute(source, target, o).info().levels, 4u);
   o.refine_sigma_factor = 0;
   EXPECT_EQ(macrocon::Map::compute(source, target, o).info().levels, 3u);

@@ -542,7 +542,7 @@ static class Tests
                   "bad orientation");
             // The refinement pass after the finest level: a stage of its own by default, off with 0.
             settings.Orientation = MapOrientation.Automatic;
-            Check(new MapSettings().RefineSigmaFactor == 0.5, "default refinement factor");
+            Check(!new MapSettings().RefineSigmaFactor.HasValue, "the default refinement factor is the library's");
             Check(a.Levels == 4, "default levels " + a.Levels);
             settings.RefineSigmaFactor = 0;
             using (var map = Map.Compute(source, target, settings)) Check(map.Info.Levels == 3, "no refinement: 3 levels");

@@ -148,8 +148,8 @@ class Map(_Handle):
         orientation: str = "automatic",
         source_guidance=None,
         target_guidance=None,
-        guidance_weight: float = 1.0,
-        refine_sigma_factor: float = 0.5,
+        guidance_weight: Optional[float] = None,
+        refine_sigma_factor: Optional[float] = None,
     ) -> "Map":
         """orientation: "automatic" (the descriptors decide; allow_reflection restricts it),
         "preserve" or "reverse" (forced, e.g. a "flip" that recomputes with the orientation
@@ -162,7 +162,9 @@ class Map(_Handle):
         scaled by guidance_weight. Give both or neither.
 
         refine_sigma_factor: Gaussian width factor of the refinement pass after the finest level
-        (default 0.5; 0 turns the pass off; else in (0, 1])."""
+        (0 turns the pass off; else in (0, 1]).
+
+        Options left at None keep mcon_map_options_init's defaults."""
         require_type(source, Patch, "source")
         require_type(target, Patch, "target")
         if not isinstance(orientation, str) or orientation not in _ORIENTATIONS:
@@ -176,7 +178,8 @@ class Map(_Handle):
         if max_iterations is not None:
             o.max_iterations = int(max_iterations)
         o.orientation = int(_ORIENTATIONS[orientation])
-        o.refine_sigma_factor = float(refine_sigma_factor)
+        if refine_sigma_factor is not None:
+            o.refine_sigma_factor = float(refine_sigma_factor)
         if (source_guidance is None) != (target_guidance is None):
             raise ValueError("source_guidance and target_guidance must be given together")
         if source_guidance is not None:
@@ -192,7 +195,8 @@ class Map(_Handle):
             o.source_guidance, o.source_guidance_stride = ptr(gs), ss
             o.target_guidance, o.target_guidance_stride = ptr(gt), st
             o.guidance_dimension = gs.shape[1]
-            o.guidance_weight = float(guidance_weight)
+            if guidance_weight is not None:
+                o.guidance_weight = float(guidance_weight)
         cb = _Progress(progress)
         o.progress = cb.c_fn
         handle = ctypes.c_void_p()
