@@ -19,9 +19,9 @@
 #include <string>
 
 #include "base/error.h"
+#include "base/whole_file.h"
 #include "library/library_file.h"
 #include "macrocon_library_generated.h"
-#include "base/mapped_file.h"
 
 namespace mcon {
 namespace {
@@ -277,9 +277,12 @@ ConstraintLibrary load_library_from_buffer(const void* data, std::size_t size) {
 }
 
 ConstraintLibrary load_library_from_file(const std::string& path) {
-  const MappedFile file(path, kLibraryMinBytes, kLibraryMaxBytes, MCON_ERROR_INVALID_LIBRARY);
+  // Read, not mapped: verification and copying must see the same bytes, whatever another process
+  // does to the file meanwhile (a mapped file truncated under its reader raises SIGBUS).
+  const std::vector<std::uint8_t> bytes =
+      read_whole_file(path, kLibraryMinBytes, kLibraryMaxBytes, MCON_ERROR_INVALID_LIBRARY);
   try {
-    return load_library_from_buffer(file.data(), file.size());
+    return load_library_from_buffer(bytes.data(), bytes.size());
   } catch (const Error& e) {
     throw Error(e.status(), "'" + path + "': " + e.what());
   }

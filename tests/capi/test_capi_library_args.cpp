@@ -4,13 +4,17 @@
 // was (checked by comparing its saved bytes).
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <thread>
 
 #include "capi/test_capi_library_util.h"
 
@@ -398,6 +402,54 @@ TEST_F(LibraryArgs, ForgedAndTruncatedFilesAreInvalidLibraries) {
   EXPECT_EQ(out, nullptr);
   std::remove(path.c_str());
   EXPECT_STATUS(mcon_library_open(ctx_.get(), temp_path("does-not-exist.mclb").c_str(), &out), MCON_ERROR_IO);
+}
+
+TEST_F(LibraryArgs, OpeningAFileRewrittenInPlaceNeverCrashes) {
+  // A writer truncating and refilling the file while mcon_library_open reads it: every open
+  // returns a handle or a status, never dies of a signal (in a child, so a crash fails this test).
+  const std::string path = temp_path("rewritten.mclb");
+  write_bytes(path, bytes_);
+  std::fflush(nullptr);
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    std::atomic<bool> stop{false};
+    std::thread writer([&] {
+      const int fd = ::open(path.c_str(), O_WRONLY);
+      std::uint32_t x = 7;
+      while (fd >= 0 && !stop.load()) {
+        x = x * 1664525u + 1013904223u;
+        const std::size_t cut = x % bytes_.size();
+        if (::ftruncate(fd, static_cast<off_t>(cut)) != 0 ||
+            ::pwrite(fd, bytes_.data() + cut, bytes_.size() - cut, static_cast<off_t>(cut)) < 0 ||
+            ::ftruncate(fd, 0) != 0 || ::pwrite(fd, bytes_.data(), bytes_.size(), 0) < 0)
+          break;
+      }
+      if (fd >= 0) ::close(fd);
+    });
+    int code = 0, refused = 0;
+    const auto start = std::chrono::steady_clock::now();
+    for (int i = 0; i < 3000 && std::chrono::steady_clock::now() - start < std::chrono::milliseconds(1500); ++i) {
+      mcon_library l = nullptr;
+      const mcon_status s = mcon_library_open(ctx_.get(), path.c_str(), &l);
+      if (s == MCON_OK) {
+        mcon_library_release(l);
+      } else if (s == MCON_ERROR_INVALID_LIBRARY || s == MCON_ERROR_IO) {
+        ++refused;
+      } else {
+        code = 20;
+      }
+    }
+    stop.store(true);
+    writer.join();
+    ::_exit(code != 0 ? code : refused > 0 ? 0 : 21);  // 21: no open saw a torn file
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0)
+      << (WIFSIGNALED(status) ? "killed by signal " + std::to_string(WTERMSIG(status))
+                              : "exit status " + std::to_string(WEXITSTATUS(status)));
+  std::remove(path.c_str());
 }
 
 TEST_F(LibraryArgs, SavingWhereItCannotFailsWithIoAndKeepsTheOldFile) {
