@@ -171,6 +171,13 @@ void validate_retrieval_config(const RetrievalConfig& c, mcon_status status) {
   const Checker check(status, "retrieval config");
   const std::size_t d = c.dimension, k = c.vocabulary_size;
   check(!c.descriptor.empty(), "descriptor name is empty");
+  const std::uint32_t builtin = builtin_descriptor_values(c.descriptor);
+  check(builtin > 0 || is_custom_descriptor(c.descriptor),
+        "unknown descriptor " + quoted(c.descriptor) + " (this build knows curv9, hks, wks and custom:<name>)");
+  // 0: no descriptors computed yet (an empty library); otherwise the descriptor's own dimension.
+  check(builtin == 0 || d == 0 || d == builtin,
+        "descriptor " + quoted(c.descriptor) + " has " + std::to_string(builtin) +
+            " values per vertex, the library declares dimension " + std::to_string(d));
   check(c.rings >= 1 && c.rings <= kMaxRings,
         "rings is " + std::to_string(c.rings) + ", expected 1.." + std::to_string(kMaxRings));
   check.length(c.normalization_mean.size(), d, 1, "normalization_mean", "dimension " + std::to_string(d));

@@ -420,6 +420,66 @@ TEST(ConstraintLibraryHostile, InconsistentLengths) {
                   MCON_ERROR_INVALID_LIBRARY, "source_origin has 0 values, expected 3");
 }
 
+namespace {
+
+// The library's descriptor dimension changed to `d` everywhere it shows (normalization,
+// vocabulary, every entry's descriptors), so only the descriptor's own dimension can disagree.
+void set_dimension(fb::LibraryT& l, std::uint32_t d) {
+  fb::RetrievalConfigT& c = *l.retrieval;
+  c.dimension = d;
+  c.normalization_mean.assign(d, 0.5);
+  c.normalization_scale.assign(d, 2.0);
+  c.vocabulary.assign(static_cast<std::size_t>(c.vocabulary_size) * d, 0.25);
+  for (auto& e : l.entries) e->descriptors.assign(e->positions.size() / 3 * d, 0.125f);
+}
+
+}  // namespace
+
+TEST(ConstraintLibraryHostile, UnknownDescriptorNamesAndWrongDimensions) {
+  expect_rejected(load_forged([](fb::LibraryT& l) { l.retrieval->descriptor = "bogus"; }), MCON_ERROR_INVALID_LIBRARY,
+                  "retrieval config: unknown descriptor 'bogus' (this build knows curv9, hks, wks and custom:<name>)");
+  expect_rejected(load_forged([](fb::LibraryT& l) { l.retrieval->descriptor = "custom:"; }),
+                  MCON_ERROR_INVALID_LIBRARY, "unknown descriptor 'custom:'");
+  expect_rejected(load_forged([](fb::LibraryT& l) { l.retrieval->descriptor = "CURV9"; }), MCON_ERROR_INVALID_LIBRARY,
+                  "unknown descriptor 'CURV9'");
+  // A built-in descriptor fixes the dimension: curv9 is 9 values per vertex, hks and wks 100.
+  expect_rejected(load_forged([](fb::LibraryT& l) {
+                    l.retrieval->descriptor = "curv9";
+                    set_dimension(l, 5);
+                  }),
+                  MCON_ERROR_INVALID_LIBRARY,
+                  "retrieval config: descriptor 'curv9' has 9 values per vertex, the library declares dimension 5");
+  expect_rejected(load_forged([](fb::LibraryT& l) {
+                    l.retrieval->descriptor = "hks";
+                    set_dimension(l, 9);
+                  }),
+                  MCON_ERROR_INVALID_LIBRARY, "descriptor 'hks' has 100 values per vertex, the library declares dimension 9");
+  expect_rejected(load_forged([](fb::LibraryT& l) {
+                    l.retrieval->descriptor = "wks";
+                    set_dimension(l, 9);
+                  }),
+                  MCON_ERROR_INVALID_LIBRARY, "descriptor 'wks' has 100 values per vertex");
+  // The same forgeries with the right dimension load; custom descriptors have any dimension.
+  EXPECT_EQ(load_forged([](fb::LibraryT& l) {
+              l.retrieval->descriptor = "curv9";
+              set_dimension(l, 9);
+            }).status,
+            MCON_OK);
+  EXPECT_EQ(load_forged([](fb::LibraryT& l) {
+              l.retrieval->descriptor = "custom:my descriptor";
+              set_dimension(l, 5);
+            }).status,
+            MCON_OK);
+  // Callers building a library in memory get the same checks.
+  RetrievalConfig c = sample_config();
+  c.descriptor = "hks";
+  expect_rejected(outcome_of([&] { ConstraintLibrary lib(c); }), MCON_ERROR_INVALID_ARGUMENT,
+                  "descriptor 'hks' has 100 values per vertex, the library declares dimension 2");
+  c.descriptor = "bogus";
+  expect_rejected(outcome_of([&] { ConstraintLibrary lib(c); }), MCON_ERROR_INVALID_ARGUMENT,
+                  "unknown descriptor 'bogus'");
+}
+
 TEST(ConstraintLibraryHostile, BadBarycentrics) {
   expect_rejected(load_forged([](fb::LibraryT& l) { l.entries[0]->center_barycentric = {0.5, 0.5, 0.5}; }),
                   MCON_ERROR_INVALID_LIBRARY, "center has barycentric weights summing to 1.5");
