@@ -13,6 +13,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <thread>
 
@@ -339,6 +340,34 @@ TEST_F(LibraryArgs, BadConstraintsAndFieldsAreRefusedWithoutChange) {
   // The same entry without the mistakes is accepted.
   EXPECT_STATUS(add([](EntryContent&) {}), MCON_OK);
   EXPECT_EQ(library_count(lib_.get()), 3u);
+}
+
+TEST_F(LibraryArgs, StringsThatAreNotUtf8AreRefused) {
+  auto add = [&](auto change) {
+    EntryContent c;
+    fill_entry(c, patch_.get(), "ok", "ok");
+    change(c);
+    return mcon_library_add_entry(lib_.get(), &c.desc, nullptr);
+  };
+  const char* bad = "caf\xc3";  // a lead byte without its continuation
+  const std::vector<std::pair<std::function<void(EntryContent&)>, std::string>> cases = {
+      {[&](EntryContent& c) { c.desc.name = bad; }, "desc.name is not valid UTF-8 (byte 0xc3 at offset 3)"},
+      {[&](EntryContent& c) { c.desc.class_label = bad; }, "desc.class_label is not valid UTF-8"},
+      {[&](EntryContent& c) { c.desc.author = bad; }, "desc.author is not valid UTF-8"},
+      {[&](EntryContent& c) { c.desc.licence = bad; }, "desc.licence is not valid UTF-8"},
+      {[&](EntryContent& c) { c.tags[1] = bad; }, "desc.tags[1] is not valid UTF-8"},
+      {[&](EntryContent& c) { c.fields[3].name = "\xff" "uv"; }, "fields[3].name is not valid UTF-8 (byte 0xff at offset 0)"},
+  };
+  for (const auto& [change, message] : cases) {
+    EXPECT_STATUS(add(change), MCON_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(last_message().find(message), std::string::npos) << last_message();
+  }
+  expect_unchanged();
+  // Non-ASCII UTF-8 is fine, and reads back byte for byte.
+  EXPECT_STATUS(add([](EntryContent& c) { c.desc.name = "Gr\xc3\xb6\xc3\x9f" "e \xe2\x82\xac"; }), MCON_OK);
+  char name[64] = {};
+  ASSERT_EQ(mcon_library_get_entry_string(lib_.get(), 2, MCON_ENTRY_NAME, 0, name, sizeof name, nullptr), MCON_OK);
+  EXPECT_STREQ(name, "Gr\xc3\xb6\xc3\x9f" "e \xe2\x82\xac");
 }
 
 TEST_F(LibraryArgs, BadCustomDescriptors) {

@@ -442,6 +442,8 @@ TEST(ConstraintLibraryHostile, UnknownDescriptorNamesAndWrongDimensions) {
                   MCON_ERROR_INVALID_LIBRARY, "unknown descriptor 'custom:'");
   expect_rejected(load_forged([](fb::LibraryT& l) { l.retrieval->descriptor = "CURV9"; }), MCON_ERROR_INVALID_LIBRARY,
                   "unknown descriptor 'CURV9'");
+  expect_rejected(load_forged([](fb::LibraryT& l) { l.retrieval->descriptor = std::string("curv9\0x", 7); }),
+                  MCON_ERROR_INVALID_LIBRARY, "descriptor 'curv9\\x00x' contains a NUL byte at offset 5");
   // A built-in descriptor fixes the dimension: curv9 is 9 values per vertex, hks and wks 100.
   expect_rejected(load_forged([](fb::LibraryT& l) {
                     l.retrieval->descriptor = "curv9";
@@ -478,6 +480,45 @@ TEST(ConstraintLibraryHostile, UnknownDescriptorNamesAndWrongDimensions) {
   c.descriptor = "bogus";
   expect_rejected(outcome_of([&] { ConstraintLibrary lib(c); }), MCON_ERROR_INVALID_ARGUMENT,
                   "unknown descriptor 'bogus'");
+}
+
+TEST(ConstraintLibraryHostile, EveryStringIsUtf8WithoutNul) {
+  const std::string bad_utf8 = "ab\xc3(";  // a lead byte without its continuation
+  const std::string nul("ab\0cd", 5);
+  using Edit = std::function<void(fb::LibraryT&, const std::string&)>;
+  const std::vector<std::pair<Edit, std::string>> places = {
+      {[](fb::LibraryT& l, const std::string& s) { l.name = s; }, "library name"},
+      {[](fb::LibraryT& l, const std::string& s) { l.description = s; }, "library description"},
+      {[](fb::LibraryT& l, const std::string& s) { l.retrieval->descriptor = "custom:" + s; }, "retrieval config: descriptor"},
+      {[](fb::LibraryT& l, const std::string& s) { l.entries[1]->name = s; }, "entry 1 'ab"},
+      {[](fb::LibraryT& l, const std::string& s) { l.entries[0]->class_label = s; }, "entry 0 'nose_07': class_label"},
+      {[](fb::LibraryT& l, const std::string& s) { l.entries[0]->tags[1]->text = s; }, "entry 0 'nose_07': tag 1"},
+      {[](fb::LibraryT& l, const std::string& s) { l.entries[0]->author = s; }, "entry 0 'nose_07': author"},
+      {[](fb::LibraryT& l, const std::string& s) { l.entries[0]->licence = s; }, "entry 0 'nose_07': licence"},
+      {[](fb::LibraryT& l, const std::string& s) { l.entries[0]->fields[2]->name = s; }, "entry 0 'nose_07': field 2 'ab"},
+  };
+  for (const auto& [edit, where] : places) {
+    SCOPED_TRACE(where);
+    expect_rejected(load_forged([&](fb::LibraryT& l) { edit(l, bad_utf8); }), MCON_ERROR_INVALID_LIBRARY, where);
+    expect_rejected(load_forged([&](fb::LibraryT& l) { edit(l, bad_utf8); }), MCON_ERROR_INVALID_LIBRARY,
+                    "is not valid UTF-8 (byte 0xc3 at offset");
+    expect_rejected(load_forged([&](fb::LibraryT& l) { edit(l, nul); }), MCON_ERROR_INVALID_LIBRARY,
+                    "contains a NUL byte at offset");
+    EXPECT_EQ(load_forged([&](fb::LibraryT& l) { edit(l, "Gr\xc3\xb6\xc3\x9f" "e \xe2\x82\xac"); }).status, MCON_OK);
+  }
+  // Field names that differ only after a NUL would be the same name to every C caller.
+  expect_rejected(load_forged([](fb::LibraryT& l) { l.entries[0]->fields[1]->name = std::string("sizing\0x", 8); }),
+                  MCON_ERROR_INVALID_LIBRARY, "field 1 'sizing\\x00x' name contains a NUL byte at offset 6");
+  // Messages show such names escaped, never raw.
+  expect_rejected(load_forged([](fb::LibraryT& l) { l.entries[1]->name = "eye\x1b[2J\xff"; }),
+                  MCON_ERROR_INVALID_LIBRARY, "entry 1 'eye\\x1b[2J\\xff': name is not valid UTF-8");
+  // add_entry runs the same checks for callers.
+  ConstraintLibrary lib(sample_config());
+  MacroConstraint e = sample_entry(lib.retrieval(), 0, 1, true);
+  e.author = "\xff";
+  expect_rejected(outcome_of([&] { lib.add_entry(e); }), MCON_ERROR_INVALID_ARGUMENT,
+                  "author is not valid UTF-8 (byte 0xff at offset 0)");
+  EXPECT_EQ(lib.size(), 0u);
 }
 
 TEST(ConstraintLibraryHostile, BadBarycentrics) {
