@@ -360,7 +360,8 @@ MCON_API mcon_status mcon_library_retain(mcon_library library);
 MCON_API mcon_status mcon_library_release(mcon_library library);
 
 /* Writes atomically (temporary file, flush, rename): if saving fails (MCON_ERROR_IO), the file
- * that was at `path` before is untouched. Same library, same bytes. */
+ * that was at `path` before is untouched. Same library, same bytes. Temporaries of crashed saves
+ * of this file (their writer's pid gone) are removed. */
 MCON_API mcon_status mcon_library_save(mcon_library library, const char* path);
 /* The file's bytes into a caller buffer; *out_size receives the size needed. With out_data NULL
  * only the size is reported; otherwise capacity (bytes) must be >= that size. */

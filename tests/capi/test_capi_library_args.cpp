@@ -512,4 +512,31 @@ TEST_F(LibraryArgs, SavingWhereItCannotFailsWithIoAndKeepsTheOldFile) {
   ::rmdir(dir.c_str());
 }
 
+TEST_F(LibraryArgs, SavingIntoAnUnreadableDirectoryFailsBeforeReplacingTheFile) {
+  // Writable but not readable (0333): the directory cannot be opened for its fsync. That must be
+  // found before the rename, so MCON_ERROR_IO leaves the old file as it was.
+  const std::string dir = temp_path("unreadable_dir");
+  ::mkdir(dir.c_str(), 0755);
+  const std::string path = dir + "/lib.mclb";
+  LibraryPtr old = make_library(ctx_.get());
+  ASSERT_EQ(mcon_library_save(old.get(), path.c_str()), MCON_OK) << last_message();
+  const std::vector<uint8_t> before = read_bytes(path);
+  ASSERT_EQ(::chmod(dir.c_str(), 0333), 0);
+  std::fflush(nullptr);
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {  // root ignores permission bits: drop to 'nobody'
+    if (::geteuid() == 0 && (::setgid(65534) != 0 || ::setuid(65534) != 0)) ::_exit(10);
+    if (mcon_library_save(lib_.get(), path.c_str()) != MCON_ERROR_IO) ::_exit(11);
+    ::_exit(last_message().find("nothing was replaced") != std::string::npos ? 0 : 12);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
+  ASSERT_EQ(::chmod(dir.c_str(), 0755), 0);
+  EXPECT_EQ(read_bytes(path), before);
+  std::remove(path.c_str());
+  EXPECT_EQ(::rmdir(dir.c_str()), 0);  // empty: the temporary file was removed too
+}
+
 }  // namespace

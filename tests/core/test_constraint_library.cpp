@@ -20,6 +20,7 @@
 #include <set>
 #include <thread>
 
+#include "base/atomic_file.h"
 #include "base/error.h"
 #include "library/library_file.h"
 #include "library_samples.h"
@@ -759,6 +760,60 @@ TEST(ConstraintLibrarySave, ReadOnlyDirectoryFailsWithIoAndKeepsTheOldFile) {
   ASSERT_EQ(::chmod(dir.path().c_str(), 0700), 0);
   EXPECT_EQ(read_bytes(path), before);
   EXPECT_EQ(dir.list(), std::set<std::string>{"lib.mcl"});
+}
+
+TEST(ConstraintLibrarySave, UnreadableDirectoryFailsBeforeTheFileIsReplaced) {
+  // A directory its writer may write but not read (0333): syncing the rename needs the directory
+  // open for reading, and that must fail before the rename, so the old file stays.
+  TempDir dir;
+  const std::string path = dir.file("lib.mcl");
+  save_library_atomic(tiny_library(), path);
+  const Bytes before = read_bytes(path);
+  ASSERT_EQ(::chmod(dir.path().c_str(), 0333), 0);
+  // In a child: root ignores permission bits, so a root test run drops to 'nobody' first.
+  const int code = run_in_child([&] {
+    if (::geteuid() == 0 && (::setgid(65534) != 0 || ::setuid(65534) != 0)) return 10;
+    const Outcome o = outcome_of([&] { save_library_atomic(sample_library(), path); });
+    std::fprintf(stderr, "%s\n", o.message.c_str());
+    if (o.status != MCON_ERROR_IO) return 11;
+    return o.message.find("nothing was replaced") != std::string::npos ? 0 : 12;
+  });
+  EXPECT_EQ(code, 0);
+  ASSERT_EQ(::chmod(dir.path().c_str(), 0700), 0);
+  EXPECT_EQ(read_bytes(path), before);
+  EXPECT_EQ(dir.list(), std::set<std::string>{"lib.mcl"});  // the temporary file was removed
+}
+
+TEST(ConstraintLibrarySave, RemovesTemporariesOfDeadWritersOnly) {
+  TempDir dir;
+  const std::string path = dir.file("lib.mcl");
+  save_library_atomic(tiny_library(), path);
+  // A writer that died during a save (its pid reaped) and one still running (a sleeping child).
+  const pid_t dead = ::fork();
+  if (dead == 0) ::_exit(0);
+  ASSERT_GT(dead, 0);
+  ASSERT_EQ(::waitpid(dead, nullptr, 0), dead);
+  const pid_t alive = ::fork();
+  if (alive == 0) {
+    ::pause();
+    ::_exit(0);
+  }
+  ASSERT_GT(alive, 0);
+  const std::string stale = temporary_file_stem(path, dead) + "0";
+  const std::string live = temporary_file_stem(path, alive) + "3";
+  // The same pid written on another host (a directory shared over NFS): not ours to judge.
+  std::string foreign = temporary_file_stem(path, dead) + "1";
+  const std::size_t tag = foreign.rfind(".tmp.") + 5;
+  foreign[tag] = foreign[tag] == '0' ? '1' : '0';
+  const std::string other_file = temporary_file_stem(dir.file("other.mcl"), dead) + "0";
+  const std::string unrelated = dir.file(".lib.mcl.tmp.notes");
+  for (const std::string& p : {stale, live, foreign, other_file, unrelated}) write_bytes(p, {1, 2, 3});
+  save_library_atomic(sample_library(), path);
+  ::kill(alive, SIGKILL);
+  ::waitpid(alive, nullptr, 0);
+  auto name = [](const std::string& p) { return p.substr(p.find_last_of('/') + 1); };
+  EXPECT_EQ(dir.list(), (std::set<std::string>{"lib.mcl", name(live), name(foreign), name(other_file), name(unrelated)}));
+  expect_identical(sample_library(), load_library_from_file(path));
 }
 
 TEST(ConstraintLibrarySave, FailedWriteMidwayKeepsTheOldFileAndRemovesTheTemporary) {
