@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <exception>
+#include <new>
 #include <string>
 
 #include "command.h"
@@ -43,6 +44,9 @@ int main(int argc, char** argv) {
     } catch (const mcon::Error& e) {
       const char* status = mcon::status_name(e.status());
       std::fprintf(stderr, "macrocon %s: error (%s): %s\n", name.c_str(), status ? status : "?", e.what());
+      return 1;
+    } catch (const std::bad_alloc&) {
+      std::fprintf(stderr, "macrocon %s: error (MCON_ERROR_OUT_OF_MEMORY): out of memory\n", name.c_str());
       return 1;
     } catch (const std::exception& e) {
       std::fprintf(stderr, "macrocon %s: error: %s\n", name.c_str(), e.what());
