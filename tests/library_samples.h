@@ -12,10 +12,10 @@
 
 namespace mcon::test_samples {
 
-// d = 2, k = 3, two rings: histograms of 6 values.
+// d = 2, k = 3, two rings: histograms of 6 values. A custom descriptor: built-in ones fix d.
 inline RetrievalConfig sample_config() {
   RetrievalConfig c;
-  c.descriptor = "curv9";
+  c.descriptor = "custom:test";
   c.dimension = 2;
   c.normalization_mean = {0.5, -0.0};
   c.normalization_scale = {2.0, 0.125};

@@ -349,7 +349,7 @@ MCON_API mcon_status mcon_library_entry_desc_init(mcon_library_entry_desc* desc)
 
 /* An empty library (descriptor CURV9, no vocabulary yet). */
 MCON_API mcon_status mcon_library_create(mcon_context context, mcon_library* out_library);
-/* Memory-maps and validates a library file: MCON_ERROR_IO (cannot read), MCON_ERROR_INVALID_LIBRARY
+/* Reads and validates a library file: MCON_ERROR_IO (cannot read), MCON_ERROR_INVALID_LIBRARY
  * (corrupt, truncated or inconsistent; the message says what and where), MCON_ERROR_UNSUPPORTED
  * (a newer format version). `path` is UTF-8. */
 MCON_API mcon_status mcon_library_open(mcon_context context, const char* path, mcon_library* out_library);
@@ -360,7 +360,8 @@ MCON_API mcon_status mcon_library_retain(mcon_library library);
 MCON_API mcon_status mcon_library_release(mcon_library library);
 
 /* Writes atomically (temporary file, flush, rename): if saving fails (MCON_ERROR_IO), the file
- * that was at `path` before is untouched. Same library, same bytes. */
+ * that was at `path` before is untouched. Same library, same bytes. Temporaries of crashed saves
+ * of this file (their writer's pid gone) are removed. */
 MCON_API mcon_status mcon_library_save(mcon_library library, const char* path);
 /* The file's bytes into a caller buffer; *out_size receives the size needed. With out_data NULL
  * only the size is reported; otherwise capacity (bytes) must be >= that size. */

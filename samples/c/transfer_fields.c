@@ -136,7 +136,7 @@ int main(int argc, char** argv) {
   printf("region: vertex %lu, radius %g: %zu vertices, %zu triangles\n", center_vertex, radius,
          region_info.vertex_count, region_info.triangle_count);
 
-  /* 3. Open the library (memory-mapped and validated: a corrupt or foreign file is
+  /* 3. Open the library (read into memory and validated: a corrupt or foreign file is
    *    MCON_ERROR_INVALID_LIBRARY, a newer format MCON_ERROR_UNSUPPORTED, never a crash) and ask
    *    for the TOP_N nearest entries. A plugin lists these as suggestions. */
   CHECK(mcon_library_open(ctx, library_path, &library));

@@ -29,22 +29,36 @@ LastError& thread_last_error();
 // not NULL: callers pass a context only once its handle has been validated). Never throws.
 mcon_status set_error(mcon_status status, const std::string& message, mcon_context context = nullptr) noexcept;
 
-// Runs `body`; maps mcon::Error, std::bad_alloc and any other exception to a status code.
-// `log_context` is read only after `body` failed, so a body may set it once it has validated
-// the handle that leads to the context (errors are then also sent to that context's log callback).
+// set_error with the message "<function>: <prefix><detail>". Building the message allocates: when
+// memory has run out that can fail too, and the status is then recorded with an empty message,
+// because nothing may throw out of a noexcept entry point (it would terminate the host).
+inline mcon_status report_error(mcon_status status, const char* function, const char* prefix, const char* detail,
+                                mcon_context context) noexcept {
+  try {
+    return set_error(status, std::string(function) + ": " + prefix + detail, context);
+  } catch (...) {
+    static const std::string no_message;
+    return set_error(status, no_message, context);
+  }
+}
+
+// Runs `body`; maps mcon::Error, std::bad_alloc (MCON_ERROR_OUT_OF_MEMORY) and any other
+// exception to a status code, and never throws itself. `log_context` is read only after `body`
+// failed, so a body may set it once it has validated the handle that leads to the context
+// (errors are then also sent to that context's log callback).
 template <typename F>
 mcon_status guard(const char* function, F&& body, const mcon_context& log_context = nullptr) noexcept {
   try {
     body();
     return MCON_OK;
   } catch (const Error& e) {
-    return set_error(e.status(), std::string(function) + ": " + e.what(), log_context);
+    return report_error(e.status(), function, "", e.what(), log_context);
   } catch (const std::bad_alloc&) {
-    return set_error(MCON_ERROR_OUT_OF_MEMORY, std::string(function) + ": out of memory", log_context);
+    return report_error(MCON_ERROR_OUT_OF_MEMORY, function, "out of memory", "", log_context);
   } catch (const std::exception& e) {
-    return set_error(MCON_ERROR_UNKNOWN, std::string(function) + ": internal error: " + e.what(), log_context);
+    return report_error(MCON_ERROR_UNKNOWN, function, "internal error: ", e.what(), log_context);
   } catch (...) {
-    return set_error(MCON_ERROR_UNKNOWN, std::string(function) + ": internal error", log_context);
+    return report_error(MCON_ERROR_UNKNOWN, function, "internal error", "", log_context);
   }
 }
 

@@ -1,4 +1,4 @@
-// Constraint libraries: lifetime, files (memory-mapped hostile-input loader, atomic save), info,
+// Constraint libraries: lifetime, files (hostile-input loader, atomic save), info,
 // merge and building retrieval (thesis ch. 3). A call that fails leaves the library as it was.
 #include <cmath>
 #include <cstring>

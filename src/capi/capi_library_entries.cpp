@@ -4,6 +4,7 @@
 #include <cstring>
 #include <limits>
 
+#include "base/text.h"
 #include "capi/capi_library.h"
 
 using namespace mcon;
@@ -16,7 +17,15 @@ mcon_library_entry_desc default_entry_desc() {
   return d;
 }
 
-std::string text(const char* s) { return s == nullptr ? std::string() : std::string(s); }
+// A caller's string (NULL = ""): stored strings are UTF-8 (base/text.h), and a C string cannot
+// hold a NUL, so only the encoding needs checking here.
+std::string text(const char* s, const std::string& what) {
+  if (s == nullptr) return std::string();
+  std::string out(s);
+  const std::string problem = text_problem(out);
+  require(problem.empty(), MCON_ERROR_INVALID_ARGUMENT, what + " " + problem);
+  return out;
+}
 
 // A caller's surface point: the face must be a patch triangle, the weights finite, >= 0, sum 1.
 SurfacePoint read_point(const mcon_surface_point& p, std::size_t triangle_count, const std::string& what) {
@@ -43,8 +52,8 @@ SurfacePoint read_point(const mcon_surface_point& p, std::size_t triangle_count,
 VertexField read_field(const mcon_vertex_field& f, std::size_t n, const std::string& what) {
   VertexField out;
   require(f.name != nullptr && f.name[0] != '\0', MCON_ERROR_INVALID_ARGUMENT, what + ": name is NULL or empty");
-  out.name = f.name;
-  const std::string where = what + " '" + out.name + "'";
+  out.name = text(f.name, what + ".name");
+  const std::string where = what + " '" + printable_text(out.name) + "'";
   require(f.kind >= MCON_FIELD_SCALAR && f.kind <= MCON_FIELD_UV, MCON_ERROR_INVALID_ARGUMENT,
           where + ": kind " + std::to_string(f.kind) + " is not an mcon_field_kind");
   out.kind = static_cast<FieldKind>(f.kind);
@@ -84,12 +93,13 @@ MacroConstraint read_content(const mcon_library_entry_desc& d, const Patch& patc
   const std::size_t n = patch.mesh.positions.size(), m = patch.mesh.triangles.size();
   MacroConstraint e;
   e.id = d.id;
-  e.name = text(d.name);
-  e.class_label = text(d.class_label);
-  e.author = text(d.author);
-  e.licence = text(d.licence);
+  e.name = text(d.name, "desc.name");
+  e.class_label = text(d.class_label, "desc.class_label");
+  e.author = text(d.author, "desc.author");
+  e.licence = text(d.licence, "desc.licence");
   require(d.tags != nullptr || d.tag_count == 0, MCON_ERROR_NULL_POINTER, "tags is NULL but tag_count > 0");
-  for (std::size_t i = 0; i < d.tag_count; ++i) e.tags.push_back(text(d.tags[i]));
+  for (std::size_t i = 0; i < d.tag_count; ++i)
+    e.tags.push_back(text(d.tags[i], "desc.tags[" + std::to_string(i) + "]"));
 
   require(d.polylines != nullptr || d.polyline_count == 0, MCON_ERROR_NULL_POINTER,
           "polylines is NULL but polyline_count > 0");

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -14,6 +15,16 @@
 
 namespace mcon::io {
 
+// Largest input the readers accept, in bytes after decompression: a `.gz` file can inflate a
+// thousandfold, so without a limit a small hostile file exhausts memory. 1 GiB of OBJ text is
+// some 20 million vertices.
+inline constexpr std::size_t kDefaultMaxInputBytes = std::size_t{1} << 30;
+
+// The limit to apply: `requested` if not 0, else the environment variable
+// MACROCON_MAX_INPUT_BYTES (a plain byte count; the CLI and tools read no option for it), else
+// kDefaultMaxInputBytes. A malformed variable throws MCON_ERROR_INVALID_ARGUMENT.
+std::size_t max_input_bytes(std::size_t requested = 0);
+
 struct MeshFileOptions {
   // Keep only faces [face_begin, face_end) in file order (polygons counted before
   // triangulation); face_end < 0 means all.
@@ -21,6 +32,8 @@ struct MeshFileOptions {
   long face_end = -1;
   // OBJ only: keep only faces in this group (`g` name); empty = all.
   std::string obj_group;
+  // Refuse files larger than this after decompression (MCON_ERROR_IO); 0 = max_input_bytes().
+  std::size_t max_bytes = 0;
 };
 
 struct LoadedMesh {
@@ -35,7 +48,9 @@ struct LoadedMesh {
 LoadedMesh read_mesh(const std::string& path, const MeshFileOptions& options = {});
 
 // Reads a whole file, transparently gunzipping `.gz` (any case); a truncated archive is an error.
-std::string read_file_maybe_gz(const std::string& path);
+// A file larger than max_input_bytes(max_bytes) (after decompression) is refused with
+// MCON_ERROR_IO before more than that is held in memory.
+std::string read_file_maybe_gz(const std::string& path, std::size_t max_bytes = 0);
 // Writes a whole file, gzip-compressing when the path ends in `.gz` (any case).
 void write_file_maybe_gz(const std::string& path, std::string_view bytes);
 

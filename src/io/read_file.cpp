@@ -1,6 +1,11 @@
+#include <sys/stat.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
 #include <fstream>
-#include <iterator>
+#include <limits>
 
 #include <zlib.h>
 
@@ -9,39 +14,90 @@
 #include "io/mesh_io.h"
 
 namespace mcon::io {
+namespace {
 
-std::string read_file_maybe_gz(const std::string& path) {
+constexpr const char* kLimitVariable = "MACROCON_MAX_INPUT_BYTES";
+
+std::string raise_hint(std::size_t limit) {
+  return " (the input limit is " + std::to_string(limit) + " bytes; set the environment variable " + kLimitVariable +
+         "=<bytes> to raise it)";
+}
+
+struct GzFile {
+  gzFile f;
+  ~GzFile() {
+    if (f != nullptr) gzclose(f);
+  }
+};
+
+}  // namespace
+
+std::size_t max_input_bytes(std::size_t requested) {
+  if (requested != 0) return requested;
+  const char* text = std::getenv(kLimitVariable);
+  if (text == nullptr || *text == '\0') return kDefaultMaxInputBytes;
+  char* end = nullptr;
+  errno = 0;
+  const unsigned long long value = std::strtoull(text, &end, 10);
+  require(*text >= '0' && *text <= '9' && *end == '\0' && errno == 0 && value > 0 &&
+              value <= std::numeric_limits<std::size_t>::max(),
+          MCON_ERROR_INVALID_ARGUMENT,
+          std::string(kLimitVariable) + " is '" + text + "', expected a positive number of bytes (e.g. 4294967296)");
+  return static_cast<std::size_t>(value);
+}
+
+std::string read_file_maybe_gz(const std::string& path, std::size_t max_bytes) {
+  const std::size_t limit = max_input_bytes(max_bytes);
   if (!is_gzip_path(path)) {
     std::ifstream in(path, std::ios::binary);
     require(static_cast<bool>(in), MCON_ERROR_IO, "cannot open '" + path + "'");
-    std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    struct stat st {};
+    require(::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode) || static_cast<std::uintmax_t>(st.st_size) <= limit,
+            MCON_ERROR_IO, "'" + path + "' has more than " + std::to_string(limit) + " bytes" + raise_hint(limit));
+    std::string data;
+    std::size_t size = 0;
+    // In chunks, checked as they come: the size above says nothing for pipes or growing files.
+    while (in) {
+      require(size <= limit, MCON_ERROR_IO,
+              "'" + path + "' has more than " + std::to_string(limit) + " bytes" + raise_hint(limit));
+      data.resize(size + (1u << 20));
+      in.read(&data[size], 1u << 20);
+      size += static_cast<std::size_t>(in.gcount());
+    }
     require(!in.bad(), MCON_ERROR_IO, "error reading '" + path + "'");
+    require(size <= limit, MCON_ERROR_IO,
+            "'" + path + "' has more than " + std::to_string(limit) + " bytes" + raise_hint(limit));
+    data.resize(size);
     return data;
   }
-  gzFile f = gzopen(path.c_str(), "rb");
-  require(f != nullptr, MCON_ERROR_IO, "cannot open '" + path + "'");
+  const GzFile file{gzopen(path.c_str(), "rb")};
+  require(file.f != nullptr, MCON_ERROR_IO, "cannot open '" + path + "'");
+  // One byte past the limit is room enough to notice a file that exceeds it.
+  const std::size_t room = limit == std::numeric_limits<std::size_t>::max() ? limit : limit + 1;
   std::string data;
   std::size_t size = 0;
   for (;;) {
-    // Decompress straight into the string, growing it geometrically.
-    if (data.size() - size < (1u << 16)) data.resize(std::max<std::size_t>(2 * data.size(), 1u << 20));
+    // Decompress straight into the string, growing it geometrically up to the limit.
+    if (data.size() - size < (1u << 16) && data.size() < room)
+      data.resize(std::min(std::max<std::size_t>(2 * data.size(), 1u << 20), room));
+    if (size == data.size())  // `room` bytes and not at the end: over the limit
+      fail(MCON_ERROR_IO, "'" + path + "' decompresses to more than " + std::to_string(limit) + " bytes" +
+                              raise_hint(limit));
     const unsigned chunk = static_cast<unsigned>(std::min<std::size_t>(data.size() - size, 1u << 30));
-    const int n = gzread(f, &data[size], chunk);
+    const int n = gzread(file.f, &data[size], chunk);
     // gzread returns the data before a premature end without failing; gzerror then reports
     // Z_BUF_ERROR, so a truncated archive is an error rather than a silently shorter file.
     int errnum = Z_OK;
-    const char* message = gzerror(f, &errnum);
-    if (n < 0 || (n == 0 && errnum != Z_OK)) {
-      const std::string msg = message ? message : "unknown zlib error";
-      gzclose(f);
-      fail(MCON_ERROR_IO, "error decompressing '" + path + "': " + msg);
-    }
+    const char* message = gzerror(file.f, &errnum);
+    if (n < 0 || (n == 0 && errnum != Z_OK))
+      fail(MCON_ERROR_IO, "error decompressing '" + path + "': " + (message ? message : "unknown zlib error"));
     if (n == 0) break;
     size += static_cast<std::size_t>(n);
   }
+  require(size <= limit, MCON_ERROR_IO,
+          "'" + path + "' decompresses to more than " + std::to_string(limit) + " bytes" + raise_hint(limit));
   data.resize(size);
   data.shrink_to_fit();
-  gzclose(f);
   return data;
 }
 

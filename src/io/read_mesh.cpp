@@ -48,7 +48,7 @@ LoadedMesh read_mesh(const std::string& path, const MeshFileOptions& options) {
   const MeshFormat format = format_of(path);
   require(options.obj_group.empty() || format == MeshFormat::Obj, MCON_ERROR_INVALID_ARGUMENT,
           "'" + path + "': obj_group applies to OBJ files only");
-  const std::string data = read_file_maybe_gz(path);
+  const std::string data = read_file_maybe_gz(path, options.max_bytes);
   const PolygonSoup soup = parse(format, data, path);
 
   const long num_faces = soup.num_faces();

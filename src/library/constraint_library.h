@@ -86,6 +86,10 @@ void validate_retrieval_config(const RetrievalConfig& config, mcon_status status
 void validate_library_entry(const MacroConstraint& entry, std::size_t index, const RetrievalConfig& config,
                             mcon_status status);
 
+// Library-wide strings (name, description) follow the entries' rule: UTF-8 without NUL bytes.
+// Throws mcon::Error(status, "<what> is not valid UTF-8 (...)").
+void validate_library_text(const std::string& text, const std::string& what, mcon_status status);
+
 // "entry 3 'nose_07'" for messages (the name shortened and made printable: it comes from files).
 std::string entry_label(std::size_t index, const std::string& name);
 

@@ -2,6 +2,7 @@
 // proven the buffer is structurally safe to read; add_entry runs the same checks, so whatever a
 // library holds is exactly what a loader accepts. Indices, lengths and values all come from
 // third-party files: each check names the entry and the element that failed.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -9,6 +10,7 @@
 
 #include "library/constraint_library.h"
 #include "base/error.h"
+#include "base/text.h"
 #include "mesh/mesh_topology.h"
 
 namespace mcon {
@@ -29,6 +31,12 @@ class Checker {
 
   void operator()(bool ok, const std::string& what) const {
     if (!ok) fail_with(what);
+  }
+
+  // Stored strings are UTF-8 without NUL bytes (base/text.h says why).
+  void text(const std::string& s, const std::string& what) const {
+    const std::string problem = text_problem(s);
+    if (!problem.empty()) fail_with(what + " " + problem);
   }
 
   template <typename T>
@@ -68,14 +76,11 @@ class Checker {
   std::string where_;
 };
 
-// Names come from files: keep messages short and printable.
+// Names come from files: keep messages short and printable (cut at a character boundary).
 std::string quoted(const std::string& name) {
-  std::string out = "'";
-  for (std::size_t i = 0; i < name.size() && i < 64; ++i) {
-    const unsigned char c = static_cast<unsigned char>(name[i]);
-    out += (c >= 0x20 && c != 0x7f) ? static_cast<char>(c) : '?';
-  }
-  return out + (name.size() > 64 ? "...'" : "'");
+  std::size_t length = std::min<std::size_t>(name.size(), 64);
+  while (length < name.size() && length > 0 && (static_cast<unsigned char>(name[length]) & 0xc0) == 0x80) --length;
+  return "'" + printable_text(std::string_view(name).substr(0, length)) + (length < name.size() ? "...'" : "'");
 }
 
 void check_polyline(const Checker& check, const ConstraintPolyline& line, std::size_t triangle_count,
@@ -171,6 +176,14 @@ void validate_retrieval_config(const RetrievalConfig& c, mcon_status status) {
   const Checker check(status, "retrieval config");
   const std::size_t d = c.dimension, k = c.vocabulary_size;
   check(!c.descriptor.empty(), "descriptor name is empty");
+  check.text(c.descriptor, "descriptor " + quoted(c.descriptor));
+  const std::uint32_t builtin = builtin_descriptor_values(c.descriptor);
+  check(builtin > 0 || is_custom_descriptor(c.descriptor),
+        "unknown descriptor " + quoted(c.descriptor) + " (this build knows curv9, hks, wks and custom:<name>)");
+  // 0: no descriptors computed yet (an empty library); otherwise the descriptor's own dimension.
+  check(builtin == 0 || d == 0 || d == builtin,
+        "descriptor " + quoted(c.descriptor) + " has " + std::to_string(builtin) +
+            " values per vertex, the library declares dimension " + std::to_string(d));
   check(c.rings >= 1 && c.rings <= kMaxRings,
         "rings is " + std::to_string(c.rings) + ", expected 1.." + std::to_string(kMaxRings));
   check.length(c.normalization_mean.size(), d, 1, "normalization_mean", "dimension " + std::to_string(d));
@@ -188,9 +201,21 @@ void validate_retrieval_config(const RetrievalConfig& c, mcon_status status) {
         "sigma_bof is " + std::to_string(c.sigma_bof) + ", expected a finite value > 0 (>= 0 without vocabulary)");
 }
 
+void validate_library_text(const std::string& text, const std::string& what, mcon_status status) {
+  const std::string problem = text_problem(text);
+  if (!problem.empty()) fail(status, what + " " + problem);
+}
+
 void validate_library_entry(const MacroConstraint& e, std::size_t index, const RetrievalConfig& config,
                             mcon_status status) {
   const Checker check(status, entry_label(index, e.name));
+  check.text(e.name, "name");
+  check.text(e.class_label, "class_label");
+  for (std::size_t i = 0; i < e.tags.size(); ++i) check.text(e.tags[i], "tag " + std::to_string(i));
+  check.text(e.author, "author");
+  check.text(e.licence, "licence");
+  for (std::size_t i = 0; i < e.fields.size(); ++i)
+    check.text(e.fields[i].name, "field " + std::to_string(i) + " " + quoted(e.fields[i].name) + " name");
   check(e.id != 0, "id 0 is reserved (it means 'assign one')");
   check_mesh(check, e);
   const std::size_t n = e.vertex_count(), m = e.triangle_count();

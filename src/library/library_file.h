@@ -5,7 +5,7 @@
 //   MCON_ERROR_INVALID_LIBRARY  corrupt, truncated, forged or inconsistent contents (the message
 //                               says what and where: "entry 3 'nose_07': triangle 12 uses ...")
 //   MCON_ERROR_UNSUPPORTED      a format_version newer than this build reads
-//   MCON_ERROR_IO               the file cannot be opened, mapped, written or renamed
+//   MCON_ERROR_IO               the file cannot be opened, read, written or renamed
 #pragma once
 
 #include <cstddef>
@@ -33,11 +33,12 @@ std::vector<std::uint8_t> serialize_library(const ConstraintLibrary& library);
 // aligned to 8 bytes is copied first.
 ConstraintLibrary load_library_from_buffer(const void* data, std::size_t size);
 
-// Memory-maps the file read-only and loads it. (A file truncated by another process while it is
-// mapped can still raise SIGBUS: the mapping lives only for the duration of this call.)
+// Reads the whole file into memory (after checking its size) and loads that copy, so another
+// process rewriting the file meanwhile can only make the load fail (MCON_ERROR_IO if it shrank
+// while being read, else INVALID_LIBRARY), never crash it.
 ConstraintLibrary load_library_from_file(const std::string& path);
 
-// serialize_library, then write_file_atomic (src/atomic_file.h): on failure the previous file is
+// serialize_library, then write_file_atomic (base/atomic_file.h): on failure the previous file is
 // untouched and no temporary file is left; MCON_ERROR_IO.
 void save_library_atomic(const ConstraintLibrary& library, const std::string& path);
 

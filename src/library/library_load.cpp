@@ -9,8 +9,9 @@
 //      buffer never reuses an object, so a forged one that points many offsets at one big object
 //      is stopped before we copy more than the file holds;
 //   6. meaning, entry by entry as it is read (so a forged file cannot pile up invalid entries in
-//      memory): validate_retrieval_config / validate_library_entry / unique ids, the same checks
-//      add_entry runs, all reported as MCON_ERROR_INVALID_LIBRARY.
+//      memory): validate_retrieval_config (a known descriptor of its own dimension) /
+//      validate_library_entry / unique ids, the same checks add_entry runs, and every string
+//      UTF-8 without NUL bytes, all reported as MCON_ERROR_INVALID_LIBRARY.
 // Memory use stays within a small multiple of the buffer size even for forged buffers.
 #include <algorithm>
 #include <array>
@@ -19,9 +20,9 @@
 #include <string>
 
 #include "base/error.h"
+#include "base/whole_file.h"
 #include "library/library_file.h"
 #include "macrocon_library_generated.h"
-#include "base/mapped_file.h"
 
 namespace mcon {
 namespace {
@@ -268,8 +269,11 @@ ConstraintLibrary load_library_from_buffer(const void* data, std::size_t size) {
   Reader r(size);
   r.table();
   ConstraintLibrary library(read_config(r, root->retrieval()), {}, MCON_ERROR_INVALID_LIBRARY);
-  library.set_name(r.string(root->name()));
-  library.set_description(r.string(root->description()));
+  std::string name = r.string(root->name()), description = r.string(root->description());
+  validate_library_text(name, "library name", MCON_ERROR_INVALID_LIBRARY);
+  validate_library_text(description, "library description", MCON_ERROR_INVALID_LIBRARY);
+  library.set_name(std::move(name));
+  library.set_description(std::move(description));
   const auto* entries = root->entries();
   for (flatbuffers::uoffset_t i = 0, n = r.offsets(entries); i < n; ++i)
     library.append_entry(read_entry(r, entries->Get(i), i), MCON_ERROR_INVALID_LIBRARY);
@@ -277,9 +281,12 @@ ConstraintLibrary load_library_from_buffer(const void* data, std::size_t size) {
 }
 
 ConstraintLibrary load_library_from_file(const std::string& path) {
-  const MappedFile file(path, kLibraryMinBytes, kLibraryMaxBytes, MCON_ERROR_INVALID_LIBRARY);
+  // Read, not mapped: verification and copying must see the same bytes, whatever another process
+  // does to the file meanwhile (a mapped file truncated under its reader raises SIGBUS).
+  const std::vector<std::uint8_t> bytes =
+      read_whole_file(path, kLibraryMinBytes, kLibraryMaxBytes, MCON_ERROR_INVALID_LIBRARY);
   try {
-    return load_library_from_buffer(file.data(), file.size());
+    return load_library_from_buffer(bytes.data(), bytes.size());
   } catch (const Error& e) {
     throw Error(e.status(), "'" + path + "': " + e.what());
   }

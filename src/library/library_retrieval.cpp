@@ -81,10 +81,6 @@ ConstraintLibrary with_config(const ConstraintLibrary& like, RetrievalConfig con
 
 }  // namespace
 
-bool is_custom_descriptor(const std::string& name) {
-  return name.rfind(kCustomDescriptorPrefix, 0) == 0 && name.size() > std::string(kCustomDescriptorPrefix).size();
-}
-
 MacroConstraint make_library_entry(const Patch& patch, MacroConstraint content, const RetrievalConfig& config,
                                    const Eigen::MatrixXd* custom_descriptors) {
   require(patch.center.triangle >= 0 && patch.center.triangle < patch.mesh.num_triangles(),

@@ -38,12 +38,9 @@ namespace mcon {
 // Vocabulary size k of the default (thesis §3.2: 128 words).
 inline constexpr std::uint32_t kDefaultVocabularySize = 128;
 
-// "custom:<name>": per-vertex descriptors supplied by the caller (a host's own descriptor).
-inline constexpr const char* kCustomDescriptorPrefix = "custom:";
-// The name the C API gives caller-supplied descriptors.
+// The name the C API gives caller-supplied descriptors ("custom:<name>", is_custom_descriptor in
+// retrieval/retrieval_config.h: per-vertex descriptors of a host's own).
 inline constexpr const char* kCustomDescriptorApi = "custom:host";
-
-bool is_custom_descriptor(const std::string& name);
 
 // `content` carries id, metadata, constraints and fields; its geometry (mesh, center, source
 // scale and origin) is taken from the patch. Descriptors: `custom_descriptors` (n x d, for a

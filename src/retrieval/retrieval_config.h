@@ -14,8 +14,30 @@ namespace mcon {
 // mcon_retrieval_options_init and the CLI read it from here.
 inline constexpr std::uint32_t kDefaultRetrievalRings = 1;
 
+// Descriptor names as stored in RetrievalConfig::descriptor: the built-in ones (computed by
+// retrieval/retrieval_descriptors.h) and caller-supplied ones, "custom:<name>". The library
+// validator reads these names from files, so they live here, with no dependency on the code
+// that computes them.
+inline constexpr const char* kDescriptorCurv9 = "curv9";
+inline constexpr const char* kDescriptorHks = "hks";
+inline constexpr const char* kDescriptorWks = "wks";
+inline constexpr const char* kCustomDescriptorPrefix = "custom:";
+
+// Values per vertex of a built-in descriptor (curv9 9; hks and wks 100 samples), 0 for any other name.
+inline std::uint32_t builtin_descriptor_values(const std::string& name) {
+  if (name == kDescriptorCurv9) return 9;
+  if (name == kDescriptorHks || name == kDescriptorWks) return 100;
+  return 0;
+}
+
+// "custom:<name>" with a non-empty <name>: descriptors supplied by the caller, of any dimension.
+inline bool is_custom_descriptor(const std::string& name) {
+  const std::string prefix = kCustomDescriptorPrefix;
+  return name.size() > prefix.size() && name.compare(0, prefix.size(), prefix) == 0;
+}
+
 struct RetrievalConfig {
-  std::string descriptor = "curv9";        // "curv9", "hks", "wks", "custom:<name>"
+  std::string descriptor = kDescriptorCurv9;  // "curv9", "hks", "wks", "custom:<name>"
   std::uint32_t dimension = 0;             // descriptor values per vertex (d)
   std::vector<double> normalization_mean;  // d values: subtracted first
   std::vector<double> normalization_scale; // d values: then divided (std over the library, thesis §3.2)

@@ -7,13 +7,10 @@
 
 namespace mcon {
 
-bool is_builtin_descriptor(const std::string& name) {
-  return name == kDescriptorCurv9 || name == kDescriptorHks || name == kDescriptorWks;
-}
+bool is_builtin_descriptor(const std::string& name) { return builtin_descriptor_values(name) > 0; }
 
 int builtin_descriptor_dimension(const std::string& name) {
-  if (name == kDescriptorCurv9) return 9;
-  if (name == kDescriptorHks || name == kDescriptorWks) return 100;
+  if (const std::uint32_t d = builtin_descriptor_values(name)) return static_cast<int>(d);
   fail(MCON_ERROR_INVALID_ARGUMENT, "unknown retrieval descriptor '" + name + "' (curv9, hks or wks)");
 }
 

@@ -13,12 +13,8 @@
 
 namespace mcon {
 
-// Built-in retrieval descriptor names as stored in RetrievalConfig::descriptor.
-constexpr const char* kDescriptorCurv9 = "curv9";
-constexpr const char* kDescriptorHks = "hks";
-constexpr const char* kDescriptorWks = "wks";
-
-// True for "curv9", "hks", "wks".
+// Built-in descriptor names: kDescriptorCurv9 / kDescriptorHks / kDescriptorWks
+// (retrieval/retrieval_config.h). True for "curv9", "hks", "wks".
 bool is_builtin_descriptor(const std::string& name);
 // Values per vertex of a built-in descriptor (9, 100, 100); throws INVALID_ARGUMENT otherwise.
 int builtin_descriptor_dimension(const std::string& name);

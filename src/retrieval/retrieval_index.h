@@ -19,7 +19,7 @@ struct RetrievalHit {
 float l1_distance(const float* a, const float* b, std::size_t length);
 
 // The min(n, count) entries nearest to `query`, sorted by (distance, entry index). `entries` holds
-// count * length floats, entry-major; it can be any contiguous array (e.g. a mapped library file).
+// count * length floats, entry-major; it can be any contiguous array (e.g. a library's histograms).
 // A NaN distance (from NaN in an entry) ranks as +infinity. Throws mcon::Error: NULL_POINTER,
 // INVALID_ARGUMENT (length 0), NON_FINITE (a query value).
 std::vector<RetrievalHit> top_n_l1(const float* entries, std::size_t count, std::size_t length, const float* query,

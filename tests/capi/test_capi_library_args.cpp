@@ -4,13 +4,18 @@
 // was (checked by comparing its saved bytes).
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <limits>
+#include <thread>
 
 #include "capi/test_capi_library_util.h"
 
@@ -337,6 +342,34 @@ TEST_F(LibraryArgs, BadConstraintsAndFieldsAreRefusedWithoutChange) {
   EXPECT_EQ(library_count(lib_.get()), 3u);
 }
 
+TEST_F(LibraryArgs, StringsThatAreNotUtf8AreRefused) {
+  auto add = [&](auto change) {
+    EntryContent c;
+    fill_entry(c, patch_.get(), "ok", "ok");
+    change(c);
+    return mcon_library_add_entry(lib_.get(), &c.desc, nullptr);
+  };
+  const char* bad = "caf\xc3";  // a lead byte without its continuation
+  const std::vector<std::pair<std::function<void(EntryContent&)>, std::string>> cases = {
+      {[&](EntryContent& c) { c.desc.name = bad; }, "desc.name is not valid UTF-8 (byte 0xc3 at offset 3)"},
+      {[&](EntryContent& c) { c.desc.class_label = bad; }, "desc.class_label is not valid UTF-8"},
+      {[&](EntryContent& c) { c.desc.author = bad; }, "desc.author is not valid UTF-8"},
+      {[&](EntryContent& c) { c.desc.licence = bad; }, "desc.licence is not valid UTF-8"},
+      {[&](EntryContent& c) { c.tags[1] = bad; }, "desc.tags[1] is not valid UTF-8"},
+      {[&](EntryContent& c) { c.fields[3].name = "\xff" "uv"; }, "fields[3].name is not valid UTF-8 (byte 0xff at offset 0)"},
+  };
+  for (const auto& [change, message] : cases) {
+    EXPECT_STATUS(add(change), MCON_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(last_message().find(message), std::string::npos) << last_message();
+  }
+  expect_unchanged();
+  // Non-ASCII UTF-8 is fine, and reads back byte for byte.
+  EXPECT_STATUS(add([](EntryContent& c) { c.desc.name = "Gr\xc3\xb6\xc3\x9f" "e \xe2\x82\xac"; }), MCON_OK);
+  char name[64] = {};
+  ASSERT_EQ(mcon_library_get_entry_string(lib_.get(), 2, MCON_ENTRY_NAME, 0, name, sizeof name, nullptr), MCON_OK);
+  EXPECT_STREQ(name, "Gr\xc3\xb6\xc3\x9f" "e \xe2\x82\xac");
+}
+
 TEST_F(LibraryArgs, BadCustomDescriptors) {
   LibraryPtr lib = make_library(ctx_.get());
   const size_t n = entry_.vertex_count;
@@ -400,6 +433,54 @@ TEST_F(LibraryArgs, ForgedAndTruncatedFilesAreInvalidLibraries) {
   EXPECT_STATUS(mcon_library_open(ctx_.get(), temp_path("does-not-exist.mclb").c_str(), &out), MCON_ERROR_IO);
 }
 
+TEST_F(LibraryArgs, OpeningAFileRewrittenInPlaceNeverCrashes) {
+  // A writer truncating and refilling the file while mcon_library_open reads it: every open
+  // returns a handle or a status, never dies of a signal (in a child, so a crash fails this test).
+  const std::string path = temp_path("rewritten.mclb");
+  write_bytes(path, bytes_);
+  std::fflush(nullptr);
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    std::atomic<bool> stop{false};
+    std::thread writer([&] {
+      const int fd = ::open(path.c_str(), O_WRONLY);
+      std::uint32_t x = 7;
+      while (fd >= 0 && !stop.load()) {
+        x = x * 1664525u + 1013904223u;
+        const std::size_t cut = x % bytes_.size();
+        if (::ftruncate(fd, static_cast<off_t>(cut)) != 0 ||
+            ::pwrite(fd, bytes_.data() + cut, bytes_.size() - cut, static_cast<off_t>(cut)) < 0 ||
+            ::ftruncate(fd, 0) != 0 || ::pwrite(fd, bytes_.data(), bytes_.size(), 0) < 0)
+          break;
+      }
+      if (fd >= 0) ::close(fd);
+    });
+    int code = 0, refused = 0;
+    const auto start = std::chrono::steady_clock::now();
+    for (int i = 0; i < 3000 && std::chrono::steady_clock::now() - start < std::chrono::milliseconds(1500); ++i) {
+      mcon_library l = nullptr;
+      const mcon_status s = mcon_library_open(ctx_.get(), path.c_str(), &l);
+      if (s == MCON_OK) {
+        mcon_library_release(l);
+      } else if (s == MCON_ERROR_INVALID_LIBRARY || s == MCON_ERROR_IO) {
+        ++refused;
+      } else {
+        code = 20;
+      }
+    }
+    stop.store(true);
+    writer.join();
+    ::_exit(code != 0 ? code : refused > 0 ? 0 : 21);  // 21: no open saw a torn file
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0)
+      << (WIFSIGNALED(status) ? "killed by signal " + std::to_string(WTERMSIG(status))
+                              : "exit status " + std::to_string(WEXITSTATUS(status)));
+  std::remove(path.c_str());
+}
+
 TEST_F(LibraryArgs, SavingWhereItCannotFailsWithIoAndKeepsTheOldFile) {
   const std::string dir = temp_path("save_dir");
   ::mkdir(dir.c_str(), 0755);
@@ -429,6 +510,33 @@ TEST_F(LibraryArgs, SavingWhereItCannotFailsWithIoAndKeepsTheOldFile) {
   EXPECT_EQ(read_bytes(path), bytes_);
   std::remove(path.c_str());
   ::rmdir(dir.c_str());
+}
+
+TEST_F(LibraryArgs, SavingIntoAnUnreadableDirectoryFailsBeforeReplacingTheFile) {
+  // Writable but not readable (0333): the directory cannot be opened for its fsync. That must be
+  // found before the rename, so MCON_ERROR_IO leaves the old file as it was.
+  const std::string dir = temp_path("unreadable_dir");
+  ::mkdir(dir.c_str(), 0755);
+  const std::string path = dir + "/lib.mclb";
+  LibraryPtr old = make_library(ctx_.get());
+  ASSERT_EQ(mcon_library_save(old.get(), path.c_str()), MCON_OK) << last_message();
+  const std::vector<uint8_t> before = read_bytes(path);
+  ASSERT_EQ(::chmod(dir.c_str(), 0333), 0);
+  std::fflush(nullptr);
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {  // root ignores permission bits: drop to 'nobody'
+    if (::geteuid() == 0 && (::setgid(65534) != 0 || ::setuid(65534) != 0)) ::_exit(10);
+    if (mcon_library_save(lib_.get(), path.c_str()) != MCON_ERROR_IO) ::_exit(11);
+    ::_exit(last_message().find("nothing was replaced") != std::string::npos ? 0 : 12);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
+  ASSERT_EQ(::chmod(dir.c_str(), 0755), 0);
+  EXPECT_EQ(read_bytes(path), before);
+  std::remove(path.c_str());
+  EXPECT_EQ(::rmdir(dir.c_str()), 0);  // empty: the temporary file was removed too
 }
 
 }  // namespace

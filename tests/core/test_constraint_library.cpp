@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
 #include <csignal>
 #include <cstring>
@@ -17,7 +18,9 @@
 #include <iterator>
 #include <limits>
 #include <set>
+#include <thread>
 
+#include "base/atomic_file.h"
 #include "base/error.h"
 #include "library/library_file.h"
 #include "library_samples.h"
@@ -418,6 +421,107 @@ TEST(ConstraintLibraryHostile, InconsistentLengths) {
                   MCON_ERROR_INVALID_LIBRARY, "source_origin has 0 values, expected 3");
 }
 
+namespace {
+
+// The library's descriptor dimension changed to `d` everywhere it shows (normalization,
+// vocabulary, every entry's descriptors), so only the descriptor's own dimension can disagree.
+void set_dimension(fb::LibraryT& l, std::uint32_t d) {
+  fb::RetrievalConfigT& c = *l.retrieval;
+  c.dimension = d;
+  c.normalization_mean.assign(d, 0.5);
+  c.normalization_scale.assign(d, 2.0);
+  c.vocabulary.assign(static_cast<std::size_t>(c.vocabulary_size) * d, 0.25);
+  for (auto& e : l.entries) e->descriptors.assign(e->positions.size() / 3 * d, 0.125f);
+}
+
+}  // namespace
+
+TEST(ConstraintLibraryHostile, UnknownDescriptorNamesAndWrongDimensions) {
+  expect_rejected(load_forged([](fb::LibraryT& l) { l.retrieval->descriptor = "bogus"; }), MCON_ERROR_INVALID_LIBRARY,
+                  "retrieval config: unknown descriptor 'bogus' (this build knows curv9, hks, wks and custom:<name>)");
+  expect_rejected(load_forged([](fb::LibraryT& l) { l.retrieval->descriptor = "custom:"; }),
+                  MCON_ERROR_INVALID_LIBRARY, "unknown descriptor 'custom:'");
+  expect_rejected(load_forged([](fb::LibraryT& l) { l.retrieval->descriptor = "CURV9"; }), MCON_ERROR_INVALID_LIBRARY,
+                  "unknown descriptor 'CURV9'");
+  expect_rejected(load_forged([](fb::LibraryT& l) { l.retrieval->descriptor = std::string("curv9\0x", 7); }),
+                  MCON_ERROR_INVALID_LIBRARY, "descriptor 'curv9\\x00x' contains a NUL byte at offset 5");
+  // A built-in descriptor fixes the dimension: curv9 is 9 values per vertex, hks and wks 100.
+  expect_rejected(load_forged([](fb::LibraryT& l) {
+                    l.retrieval->descriptor = "curv9";
+                    set_dimension(l, 5);
+                  }),
+                  MCON_ERROR_INVALID_LIBRARY,
+                  "retrieval config: descriptor 'curv9' has 9 values per vertex, the library declares dimension 5");
+  expect_rejected(load_forged([](fb::LibraryT& l) {
+                    l.retrieval->descriptor = "hks";
+                    set_dimension(l, 9);
+                  }),
+                  MCON_ERROR_INVALID_LIBRARY, "descriptor 'hks' has 100 values per vertex, the library declares dimension 9");
+  expect_rejected(load_forged([](fb::LibraryT& l) {
+                    l.retrieval->descriptor = "wks";
+                    set_dimension(l, 9);
+                  }),
+                  MCON_ERROR_INVALID_LIBRARY, "descriptor 'wks' has 100 values per vertex");
+  // The same forgeries with the right dimension load; custom descriptors have any dimension.
+  EXPECT_EQ(load_forged([](fb::LibraryT& l) {
+              l.retrieval->descriptor = "curv9";
+              set_dimension(l, 9);
+            }).status,
+            MCON_OK);
+  EXPECT_EQ(load_forged([](fb::LibraryT& l) {
+              l.retrieval->descriptor = "custom:my descriptor";
+              set_dimension(l, 5);
+            }).status,
+            MCON_OK);
+  // Callers building a library in memory get the same checks.
+  RetrievalConfig c = sample_config();
+  c.descriptor = "hks";
+  expect_rejected(outcome_of([&] { ConstraintLibrary lib(c); }), MCON_ERROR_INVALID_ARGUMENT,
+                  "descriptor 'hks' has 100 values per vertex, the library declares dimension 2");
+  c.descriptor = "bogus";
+  expect_rejected(outcome_of([&] { ConstraintLibrary lib(c); }), MCON_ERROR_INVALID_ARGUMENT,
+                  "unknown descriptor 'bogus'");
+}
+
+TEST(ConstraintLibraryHostile, EveryStringIsUtf8WithoutNul) {
+  const std::string bad_utf8 = "ab\xc3(";  // a lead byte without its continuation
+  const std::string nul("ab\0cd", 5);
+  using Edit = std::function<void(fb::LibraryT&, const std::string&)>;
+  const std::vector<std::pair<Edit, std::string>> places = {
+      {[](fb::LibraryT& l, const std::string& s) { l.name = s; }, "library name"},
+      {[](fb::LibraryT& l, const std::string& s) { l.description = s; }, "library description"},
+      {[](fb::LibraryT& l, const std::string& s) { l.retrieval->descriptor = "custom:" + s; }, "retrieval config: descriptor"},
+      {[](fb::LibraryT& l, const std::string& s) { l.entries[1]->name = s; }, "entry 1 'ab"},
+      {[](fb::LibraryT& l, const std::string& s) { l.entries[0]->class_label = s; }, "entry 0 'nose_07': class_label"},
+      {[](fb::LibraryT& l, const std::string& s) { l.entries[0]->tags[1]->text = s; }, "entry 0 'nose_07': tag 1"},
+      {[](fb::LibraryT& l, const std::string& s) { l.entries[0]->author = s; }, "entry 0 'nose_07': author"},
+      {[](fb::LibraryT& l, const std::string& s) { l.entries[0]->licence = s; }, "entry 0 'nose_07': licence"},
+      {[](fb::LibraryT& l, const std::string& s) { l.entries[0]->fields[2]->name = s; }, "entry 0 'nose_07': field 2 'ab"},
+  };
+  for (const auto& [edit, where] : places) {
+    SCOPED_TRACE(where);
+    expect_rejected(load_forged([&](fb::LibraryT& l) { edit(l, bad_utf8); }), MCON_ERROR_INVALID_LIBRARY, where);
+    expect_rejected(load_forged([&](fb::LibraryT& l) { edit(l, bad_utf8); }), MCON_ERROR_INVALID_LIBRARY,
+                    "is not valid UTF-8 (byte 0xc3 at offset");
+    expect_rejected(load_forged([&](fb::LibraryT& l) { edit(l, nul); }), MCON_ERROR_INVALID_LIBRARY,
+                    "contains a NUL byte at offset");
+    EXPECT_EQ(load_forged([&](fb::LibraryT& l) { edit(l, "Gr\xc3\xb6\xc3\x9f" "e \xe2\x82\xac"); }).status, MCON_OK);
+  }
+  // Field names that differ only after a NUL would be the same name to every C caller.
+  expect_rejected(load_forged([](fb::LibraryT& l) { l.entries[0]->fields[1]->name = std::string("sizing\0x", 8); }),
+                  MCON_ERROR_INVALID_LIBRARY, "field 1 'sizing\\x00x' name contains a NUL byte at offset 6");
+  // Messages show such names escaped, never raw.
+  expect_rejected(load_forged([](fb::LibraryT& l) { l.entries[1]->name = "eye\x1b[2J\xff"; }),
+                  MCON_ERROR_INVALID_LIBRARY, "entry 1 'eye\\x1b[2J\\xff': name is not valid UTF-8");
+  // add_entry runs the same checks for callers.
+  ConstraintLibrary lib(sample_config());
+  MacroConstraint e = sample_entry(lib.retrieval(), 0, 1, true);
+  e.author = "\xff";
+  expect_rejected(outcome_of([&] { lib.add_entry(e); }), MCON_ERROR_INVALID_ARGUMENT,
+                  "author is not valid UTF-8 (byte 0xff at offset 0)");
+  EXPECT_EQ(lib.size(), 0u);
+}
+
 TEST(ConstraintLibraryHostile, BadBarycentrics) {
   expect_rejected(load_forged([](fb::LibraryT& l) { l.entries[0]->center_barycentric = {0.5, 0.5, 0.5}; }),
                   MCON_ERROR_INVALID_LIBRARY, "center has barycentric weights summing to 1.5");
@@ -557,6 +661,62 @@ TEST(ConstraintLibraryFile, MissingDirectoryEmptyAndHugeFiles) {
                   "bad.mcl");
 }
 
+TEST(ConstraintLibraryFile, RewritingTheFileWhileItLoadsNeverCrashes) {
+  // A writer truncating, refilling and flipping bytes of the file in place while it is loaded
+  // over and over: each load must succeed or fail with a status, never die of a signal (a
+  // memory-mapped file that shrinks under its reader raises SIGBUS). In a child, so a crash is
+  // one failed test rather than the end of the run.
+  TempDir dir;
+  const std::string path = dir.file("busy.mcl");
+  ConstraintLibrary lib(sample_config());
+  for (int i = 0; i < 24; ++i) lib.add_entry(sample_entry(lib.retrieval(), 0, 6, true, "e" + std::to_string(i)));
+  const Bytes good = serialize_library(lib);
+  ASSERT_GT(good.size(), 16u * 4096);  // many pages: truncations cut whole pages off
+  write_bytes(path, good);
+  const int code = run_in_child([&] {
+    std::atomic<bool> stop{false};
+    std::atomic<long> cycles{0};
+    std::thread writer([&] {
+      const int fd = ::open(path.c_str(), O_WRONLY);
+      if (fd < 0) return;
+      std::uint32_t x = 12345;
+      while (!stop.load()) {
+        x = x * 1664525u + 1013904223u;
+        const std::size_t cut = x % good.size(), pos = (x >> 7) % good.size();
+        const std::uint8_t flipped = static_cast<std::uint8_t>(good[pos] ^ 0xff);
+        bool ok = ::ftruncate(fd, static_cast<off_t>(cut)) == 0;
+        ok = ok && ::pwrite(fd, good.data() + cut, good.size() - cut, static_cast<off_t>(cut)) >= 0;
+        ok = ok && ::pwrite(fd, &flipped, 1, static_cast<off_t>(pos)) == 1;
+        ok = ok && ::pwrite(fd, &good[pos], 1, static_cast<off_t>(pos)) == 1;
+        ok = ok && ::ftruncate(fd, 0) == 0 && ::pwrite(fd, good.data(), good.size(), 0) >= 0;
+        if (!ok) break;
+        ++cycles;
+        std::this_thread::sleep_for(std::chrono::microseconds(200));  // intact for a while: some loads succeed
+      }
+      ::close(fd);
+    });
+    long loaded = 0, refused = 0, other = 0;
+    const auto start = std::chrono::steady_clock::now();
+    while (loaded + refused + other < 4000 && std::chrono::steady_clock::now() - start < std::chrono::seconds(3)) {
+      try {
+        load_library_from_file(path);
+        ++loaded;
+      } catch (const Error& e) {
+        const mcon_status s = e.status();
+        (s == MCON_ERROR_INVALID_LIBRARY || s == MCON_ERROR_IO || s == MCON_ERROR_UNSUPPORTED ? refused : other)++;
+      }
+    }
+    stop.store(true);
+    writer.join();
+    std::fprintf(stderr, "%ld loads succeeded, %ld refused, %ld other errors; %ld writer cycles\n", loaded, refused,
+                 other, cycles.load());
+    if (other != 0) return 20;
+    if (cycles.load() == 0) return 21;  // the writer never ran: nothing was tested
+    return refused > 0 ? 0 : 22;        // no load saw a torn file: nothing was tested
+  });
+  EXPECT_EQ(code, 0) << "exit code 128 + N: a load died of signal N";
+}
+
 // --- Atomic save -------------------------------------------------------------------------------
 
 TEST(ConstraintLibrarySave, OverwriteKeepsPermissionsAndLeavesNoTemporaryFile) {
@@ -600,6 +760,60 @@ TEST(ConstraintLibrarySave, ReadOnlyDirectoryFailsWithIoAndKeepsTheOldFile) {
   ASSERT_EQ(::chmod(dir.path().c_str(), 0700), 0);
   EXPECT_EQ(read_bytes(path), before);
   EXPECT_EQ(dir.list(), std::set<std::string>{"lib.mcl"});
+}
+
+TEST(ConstraintLibrarySave, UnreadableDirectoryFailsBeforeTheFileIsReplaced) {
+  // A directory its writer may write but not read (0333): syncing the rename needs the directory
+  // open for reading, and that must fail before the rename, so the old file stays.
+  TempDir dir;
+  const std::string path = dir.file("lib.mcl");
+  save_library_atomic(tiny_library(), path);
+  const Bytes before = read_bytes(path);
+  ASSERT_EQ(::chmod(dir.path().c_str(), 0333), 0);
+  // In a child: root ignores permission bits, so a root test run drops to 'nobody' first.
+  const int code = run_in_child([&] {
+    if (::geteuid() == 0 && (::setgid(65534) != 0 || ::setuid(65534) != 0)) return 10;
+    const Outcome o = outcome_of([&] { save_library_atomic(sample_library(), path); });
+    std::fprintf(stderr, "%s\n", o.message.c_str());
+    if (o.status != MCON_ERROR_IO) return 11;
+    return o.message.find("nothing was replaced") != std::string::npos ? 0 : 12;
+  });
+  EXPECT_EQ(code, 0);
+  ASSERT_EQ(::chmod(dir.path().c_str(), 0700), 0);
+  EXPECT_EQ(read_bytes(path), before);
+  EXPECT_EQ(dir.list(), std::set<std::string>{"lib.mcl"});  // the temporary file was removed
+}
+
+TEST(ConstraintLibrarySave, RemovesTemporariesOfDeadWritersOnly) {
+  TempDir dir;
+  const std::string path = dir.file("lib.mcl");
+  save_library_atomic(tiny_library(), path);
+  // A writer that died during a save (its pid reaped) and one still running (a sleeping child).
+  const pid_t dead = ::fork();
+  if (dead == 0) ::_exit(0);
+  ASSERT_GT(dead, 0);
+  ASSERT_EQ(::waitpid(dead, nullptr, 0), dead);
+  const pid_t alive = ::fork();
+  if (alive == 0) {
+    ::pause();
+    ::_exit(0);
+  }
+  ASSERT_GT(alive, 0);
+  const std::string stale = temporary_file_stem(path, dead) + "0";
+  const std::string live = temporary_file_stem(path, alive) + "3";
+  // The same pid written on another host (a directory shared over NFS): not ours to judge.
+  std::string foreign = temporary_file_stem(path, dead) + "1";
+  const std::size_t tag = foreign.rfind(".tmp.") + 5;
+  foreign[tag] = foreign[tag] == '0' ? '1' : '0';
+  const std::string other_file = temporary_file_stem(dir.file("other.mcl"), dead) + "0";
+  const std::string unrelated = dir.file(".lib.mcl.tmp.notes");
+  for (const std::string& p : {stale, live, foreign, other_file, unrelated}) write_bytes(p, {1, 2, 3});
+  save_library_atomic(sample_library(), path);
+  ::kill(alive, SIGKILL);
+  ::waitpid(alive, nullptr, 0);
+  auto name = [](const std::string& p) { return p.substr(p.find_last_of('/') + 1); };
+  EXPECT_EQ(dir.list(), (std::set<std::string>{"lib.mcl", name(live), name(foreign), name(other_file), name(unrelated)}));
+  expect_identical(sample_library(), load_library_from_file(path));
 }
 
 TEST(ConstraintLibrarySave, FailedWriteMidwayKeepsTheOldFileAndRemovesTheTemporary) {

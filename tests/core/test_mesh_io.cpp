@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdlib>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -485,6 +486,42 @@ TEST_F(MeshIo, GzipAndCaseInsensitiveExtensions) {
   std::string corrupt = whole;
   corrupt[corrupt.size() - 6] ^= 0x5a;  // CRC mismatch
   EXPECT_EQ(read_status(write_text("crc.obj.gz", corrupt)), MCON_ERROR_IO);
+}
+
+TEST_F(MeshIo, DecompressionStopsAtTheSizeLimit) {
+  // A gzip bomb: 64 MiB of '#' comment in about 64 KB, written with plain zlib in 1 MiB pieces.
+  const std::string bomb = path("bomb.obj.gz");
+  {
+    gzFile f = gzopen(bomb.c_str(), "wb9");
+    ASSERT_NE(f, nullptr);
+    ASSERT_EQ(gzwrite(f, cube_obj().data(), static_cast<unsigned>(cube_obj().size())), static_cast<int>(cube_obj().size()));
+    const std::string block(std::size_t{1} << 20, '#');
+    for (int i = 0; i < 64; ++i) ASSERT_EQ(gzwrite(f, block.data(), static_cast<unsigned>(block.size())), int{1 << 20});
+    ASSERT_EQ(gzclose(f), Z_OK);
+  }
+  ASSERT_LT(fs::file_size(bomb), std::uintmax_t{1} << 20);
+  MeshFileOptions capped;
+  capped.max_bytes = std::size_t{4} << 20;
+  std::string message;
+  EXPECT_EQ(read_status(bomb, capped, &message), MCON_ERROR_IO);
+  EXPECT_NE(message.find("'" + bomb + "' decompresses to more than 4194304 bytes"), std::string::npos) << message;
+  EXPECT_NE(message.find("MACROCON_MAX_INPUT_BYTES"), std::string::npos) << message;  // how to raise it
+  // The same limit for plain files (checked from the size, before reading).
+  const std::string big = write_text("big.obj", cube_obj() + std::string(std::size_t{5} << 20, '#'));
+  EXPECT_EQ(read_status(big, capped, &message), MCON_ERROR_IO);
+  EXPECT_NE(message.find("'" + big + "' has more than 4194304 bytes"), std::string::npos) << message;
+  // Under the default limit (1 GiB) the bomb is just a cube with a long comment.
+  expect_cube(read_mesh(bomb));
+  // The environment variable lowers or raises the default; a bad value is an error of its own.
+  ASSERT_EQ(::setenv("MACROCON_MAX_INPUT_BYTES", "1000000", 1), 0);
+  EXPECT_EQ(read_status(bomb, {}, &message), MCON_ERROR_IO);
+  EXPECT_NE(message.find("more than 1000000 bytes"), std::string::npos) << message;
+  ASSERT_EQ(::setenv("MACROCON_MAX_INPUT_BYTES", "100MB", 1), 0);
+  EXPECT_EQ(read_status(bomb, {}, &message), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(message.find("MACROCON_MAX_INPUT_BYTES is '100MB'"), std::string::npos) << message;
+  ASSERT_EQ(::unsetenv("MACROCON_MAX_INPUT_BYTES"), 0);
+  EXPECT_EQ(max_input_bytes(), kDefaultMaxInputBytes);
+  EXPECT_EQ(max_input_bytes(12345), 12345u);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -1,13 +1,70 @@
 // libFuzzer target for the constraint library loader (hostile files, docs/design.md §6). Any input
 // must either load or throw mcon::Error with INVALID_LIBRARY or UNSUPPORTED; a crash, a sanitizer
-// report, another exception or status, or an accepted library that does not survive its own
-// save/load round trip unchanged is a finding.
+// report, another exception or status is a finding. So is an accepted library that does not
+// survive its own save/load round trip unchanged, or that cannot be queried: what the loader
+// accepts, retrieval must handle.
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 
 #include "base/error.h"
 #include "library/library_file.h"
+#include "operators/cotan_laplacian.h"
+#include "retrieval/bag_of_features.h"
+#include "retrieval/retrieval_index.h"
+
+namespace {
+
+[[noreturn]] void finding(const char* what, const char* detail = "") {
+  std::fprintf(stderr, "%s%s\n", what, detail);
+  std::abort();
+}
+
+// The query side on entries the library holds: each entry's stored descriptors and vertex areas
+// through bag_of_features (the ring distances from the center are Euclidean here, not geodesic:
+// the fuzzer has no heat solver, and bag_of_features only bins them), then a top-n scan with an
+// entry's own stored histogram, which must come first at distance 0.
+void query(const mcon::ConstraintLibrary& library) {
+  const mcon::RetrievalConfig& c = library.retrieval();
+  if (c.vocabulary_size == 0 || library.size() == 0) return;
+  const std::size_t length = c.histogram_length(), d = c.dimension;
+  std::vector<float> flat;
+  for (const mcon::MacroConstraint& e : library.entries()) flat.insert(flat.end(), e.histogram.begin(), e.histogram.end());
+  const std::size_t queried = std::min<std::size_t>(library.size(), 4);
+  for (std::size_t i = 0; i < queried; ++i) {
+    const mcon::MacroConstraint& e = library.entries()[i];
+    const mcon::TriMesh mesh = mcon::entry_mesh(e);
+    mcon::PatchDescriptors pd;
+    pd.areas = mcon::vertex_areas(mesh);
+    const auto n = static_cast<Eigen::Index>(e.vertex_count());
+    pd.values.resize(n, static_cast<Eigen::Index>(d));
+    for (Eigen::Index v = 0; v < n; ++v)
+      for (std::size_t j = 0; j < d; ++j) pd.values(v, static_cast<Eigen::Index>(j)) = e.descriptors[v * d + j];
+    mcon::Vec3 center = mcon::Vec3::Zero();
+    for (int k = 0; k < 3; ++k)
+      center += e.center.barycentric[k] * mesh.positions[static_cast<std::size_t>(mesh.triangles[e.center.triangle][k])];
+    pd.center_distance.resize(n);
+    for (Eigen::Index v = 0; v < n; ++v) pd.center_distance[v] = (mesh.positions[v] - center).norm();
+    std::vector<float> histogram;
+    try {
+      histogram = mcon::bag_of_features(c, pd);
+    } catch (const mcon::Error& err) {
+      finding("an accepted library's entry cannot be described for a query: ", err.what());
+    }
+    if (histogram.size() != length) finding("query histogram of the wrong length");
+    for (float h : histogram)
+      if (!(std::isfinite(h) && h >= 0)) finding("query histogram value not finite and >= 0");
+    const auto hits = mcon::top_n_l1(flat.data(), library.size(), length, histogram.data(), 3);
+    if (hits.empty()) finding("query found nothing");
+    for (const auto& hit : hits)
+      if (std::isnan(hit.distance)) finding("query distance is NaN");
+    const auto self = mcon::top_n_l1(flat.data(), library.size(), length, e.histogram.data(), 1);
+    if (self.size() != 1 || self[0].distance != 0) finding("an entry's own histogram is not at distance 0");
+  }
+}
+
+}  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   mcon::ConstraintLibrary library;
@@ -20,13 +77,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
     return 0;
   }
-  // Accepted: serializing and loading again must give the same bytes (the validator and the
-  // writer agree on what a library is).
+  // Accepted: serializing (the bytes mcon_library_save_memory returns) and loading again must
+  // give the same bytes (the validator and the writer agree on what a library is).
   const std::vector<std::uint8_t> bytes = mcon::serialize_library(library);
   const mcon::ConstraintLibrary again = mcon::load_library_from_buffer(bytes.data(), bytes.size());
-  if (mcon::serialize_library(again) != bytes) {
-    std::fprintf(stderr, "accepted library does not round-trip\n");
-    std::abort();
-  }
+  if (mcon::serialize_library(again) != bytes) finding("accepted library does not round-trip");
+  query(library);
   return 0;
 }

@@ -95,7 +95,33 @@ if(NOT h1 STREQUAL h2)
   message(FATAL_ERROR "a spec file and the same command-line entries gave different libraries")
 endif()
 
-# 6. errors: non-zero exit and a message on stderr.
+# 6. names with control characters are printed escaped by info and query (never raw: an ESC
+# sequence in an entry name must not drive the terminal); --json gives them back exactly.
+string(ASCII 27 esc)
+set(evil "evil${esc}[2J\nname")
+file(COPY_FILE ${LIB} ${WORK}/evil.mclb)
+run_checked(OUTPUT_VARIABLE out COMMAND ${CLI} library add
+  --library ${WORK}/evil.mclb --mesh ${MESH} --face-range ${RANGE} --center-vertex 297 --radius 0.5
+  --class "nose\tclass" --name "${evil}")
+set(escaped "evil\\x1b[2J\\nname")
+run_checked(OUTPUT_VARIABLE info COMMAND ${CLI} library info --library ${WORK}/evil.mclb)
+run_checked(OUTPUT_VARIABLE hits COMMAND ${CLI} query
+  --library ${WORK}/evil.mclb --mesh ${MESH} --face-range ${RANGE} --center-vertex 297 --radius 0.5 --top 2)
+foreach(shown IN ITEMS info hits)
+  string(FIND "${${shown}}" "${esc}" raw)
+  string(FIND "${${shown}}" "${escaped}" found)
+  string(FIND "${${shown}}" "nose\\tclass" class_found)
+  if(NOT raw EQUAL -1 OR found EQUAL -1 OR class_found EQUAL -1)
+    message(FATAL_ERROR "${shown}: the entry name is not printed escaped as '${escaped}':\n${${shown}}")
+  endif()
+endforeach()
+run_checked(OUTPUT_VARIABLE out COMMAND ${CLI} library info --library ${WORK}/evil.mclb --json)
+string(JSON last GET "${out}" entry_list 6 name)
+if(NOT last STREQUAL evil)
+  message(FATAL_ERROR "info --json does not give the name back exactly: ${out}")
+endif()
+
+# 7. errors: non-zero exit and a message on stderr.
 run_checked(EXPECT_FAILURE "INVALID_LIBRARY" COMMAND ${CLI} library info --library ${MESH})
 run_checked(EXPECT_FAILURE "MCON_ERROR_IO" COMMAND ${CLI} query
   --library ${WORK}/missing.mclb --mesh ${MESH} --center-vertex 1 --radius 0.5)

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <string>
 
+#include "base/text.h"
 #include "library_cli.h"
 #include "library/library_file.h"
 #include "library/library_retrieval.h"
@@ -194,8 +195,8 @@ int run_build(const Args& args) {
   } else {
     const RetrievalConfig& c = lib.retrieval();
     std::printf("%s: %zu entries, descriptor %s, %u words x %u rings, sigma %.4g (patches %.2f s, retrieval %.2f s)\n",
-                out.c_str(), lib.size(), c.descriptor.c_str(), c.vocabulary_size, c.rings, c.sigma_bof, patch_seconds,
-                build_seconds);
+                printable_text(out).c_str(), lib.size(), printable_text(c.descriptor).c_str(), c.vocabulary_size,
+                c.rings, c.sigma_bof, patch_seconds, build_seconds);
   }
   return 0;
 }
@@ -223,7 +224,7 @@ int run_add(const Args& args) {
     j.set("has_histogram", !lib.entries().back().histogram.empty());
     std::printf("%s\n", tools::write_json(j, false).c_str());
   } else {
-    std::printf("%s: added entry id %llu (index %zu)%s\n", path.c_str(), static_cast<unsigned long long>(assigned),
+    std::printf("%s: added entry id %llu (index %zu)%s\n", printable_text(path).c_str(), static_cast<unsigned long long>(assigned),
                 lib.size() - 1,
                 lib.retrieval().vocabulary_size > 0 ? "" : "; no vocabulary yet: run library build to query");
   }
@@ -261,14 +262,16 @@ int run_info(const Args& args) {
     return 0;
   }
   const RetrievalConfig& c = lib.retrieval();
-  std::printf("%s: %zu entries; descriptor %s (d = %u), %u words x %u rings, sigma %.4g, seed %llu\n", path.c_str(),
-              lib.size(), c.descriptor.c_str(), c.dimension, c.vocabulary_size, c.rings, c.sigma_bof,
-              static_cast<unsigned long long>(c.seed));
+  // Human-readable output escapes what comes from the file: an entry name must not be able to
+  // move the cursor or clear the screen (the JSON output escapes it its own way).
+  std::printf("%s: %zu entries; descriptor %s (d = %u), %u words x %u rings, sigma %.4g, seed %llu\n",
+              printable_text(path).c_str(), lib.size(), printable_text(c.descriptor).c_str(), c.dimension,
+              c.vocabulary_size, c.rings, c.sigma_bof, static_cast<unsigned long long>(c.seed));
   std::printf("%8s  %-24s %-16s %8s %6s %6s %6s\n", "id", "name", "class", "vertices", "lines", "sing", "fields");
   for (const MacroConstraint& e : lib.entries())
-    std::printf("%8llu  %-24s %-16s %8zu %6zu %6zu %6zu\n", static_cast<unsigned long long>(e.id), e.name.c_str(),
-                e.class_label.c_str(), e.vertex_count(), e.guides.size() + e.features.size(), e.singularities.size(),
-                e.fields.size());
+    std::printf("%8llu  %-24s %-16s %8zu %6zu %6zu %6zu\n", static_cast<unsigned long long>(e.id),
+                printable_text(e.name).c_str(), printable_text(e.class_label).c_str(), e.vertex_count(),
+                e.guides.size() + e.features.size(), e.singularities.size(), e.fields.size());
   return 0;
 }
 

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <string>
 
+#include "base/text.h"
 #include "command/args.h"
 #include "library_cli.h"
 #include "library/library_file.h"
@@ -68,8 +69,10 @@ int run_query(const Args& args) {
     std::printf("%4s %8s  %-24s %-16s %10s\n", "rank", "id", "name", "class", "distance");
     for (std::size_t r = 0; r < hits.size(); ++r) {
       const MacroConstraint& e = lib.entries()[hits[r].entry];
-      std::printf("%4zu %8llu  %-24s %-16s %10.6f\n", r + 1, static_cast<unsigned long long>(e.id), e.name.c_str(),
-                  e.class_label.c_str(), static_cast<double>(hits[r].distance));
+      // Names come from the library file: escaped, so they cannot drive the terminal.
+      std::printf("%4zu %8llu  %-24s %-16s %10.6f\n", r + 1, static_cast<unsigned long long>(e.id),
+                  printable_text(e.name).c_str(), printable_text(e.class_label).c_str(),
+                  static_cast<double>(hits[r].distance));
     }
   }
   return 0;

@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <exception>
+#include <new>
 #include <string>
 
 #include "base/error.h"
@@ -43,6 +44,9 @@ int run_commands(const char* program, int argc, char** argv) {
     } catch (const Error& e) {
       const char* status = status_name(e.status());
       std::fprintf(stderr, "%s %s: error (%s): %s\n", program, name.c_str(), status ? status : "?", e.what());
+      return 1;
+    } catch (const std::bad_alloc&) {
+      std::fprintf(stderr, "%s %s: error (MCON_ERROR_OUT_OF_MEMORY): out of memory\n", program, name.c_str());
       return 1;
     } catch (const std::exception& e) {
       std::fprintf(stderr, "%s %s: error: %s\n", program, name.c_str(), e.what());
