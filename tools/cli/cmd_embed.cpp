@@ -234,49 +234,68 @@ void write_polylines_obj(const std::string& path, const std::vector<std::vector<
   io::write_file_maybe_gz(path, s.str());
 }
 
-int run_embed(const Args& args) {
-  if (!args.empty() && (args[0] == "--help" || args[0] == "-h")) {
-    std::fputs(kUsage, stdout);
-    return 0;
-  }
-  const ArgParser p(args,
-                    {"source", "target", "center-vertex", "radius", "source-center-vertex", "source-radius",
-                     "face-range", "source-face-range", "seed", "samples", "iterations", "orientation", "landmarks",
-                     "out"},
-                    {"json"});
-  const auto t_start = std::chrono::steady_clock::now();
+// The checked options of embed that the stages read.
+struct EmbedOptions {
+  std::string out_dir;
+  long samples = 0, iterations = 0, seed = 0;
+  std::string orientation;
+};
+
+EmbedOptions embed_options(const ArgParser& p) {
   require(p.has("center-vertex"), MCON_ERROR_INVALID_ARGUMENT, "missing required option --center-vertex");
   require(p.has("radius"), MCON_ERROR_INVALID_ARGUMENT, "missing required option --radius");
-  const std::string out_dir = p.get("out", "embed-out");
-  const long samples = p.integer("samples", 10000), iterations = p.integer("iterations", 100);
-  require(samples >= 1, MCON_ERROR_INVALID_ARGUMENT, "--samples must be >= 1");
-  require(iterations >= 1, MCON_ERROR_INVALID_ARGUMENT, "--iterations must be >= 1");
-  const long seed = p.integer("seed", 0);
-  require(seed >= 0, MCON_ERROR_INVALID_ARGUMENT, "--seed must be >= 0");
-  const std::string orientation = p.get("orientation", "auto");
-  require(orientation == "auto" || orientation == "preserve" || orientation == "reverse", MCON_ERROR_INVALID_ARGUMENT,
-          "--orientation must be auto, preserve or reverse, got '" + orientation + "'");
+  EmbedOptions o;
+  o.out_dir = p.get("out", "embed-out");
+  o.samples = p.integer("samples", 10000);
+  o.iterations = p.integer("iterations", 100);
+  require(o.samples >= 1, MCON_ERROR_INVALID_ARGUMENT, "--samples must be >= 1");
+  require(o.iterations >= 1, MCON_ERROR_INVALID_ARGUMENT, "--iterations must be >= 1");
+  o.seed = p.integer("seed", 0);
+  require(o.seed >= 0, MCON_ERROR_INVALID_ARGUMENT, "--seed must be >= 0");
+  o.orientation = p.get("orientation", "auto");
+  require(o.orientation == "auto" || o.orientation == "preserve" || o.orientation == "reverse",
+          MCON_ERROR_INVALID_ARGUMENT, "--orientation must be auto, preserve or reverse, got '" + o.orientation + "'");
+  return o;
+}
 
-  // 1. Patches.
-  const io::LoadedMesh target_mesh = load(p, "target", "face-range");
-  const Patch target = cut(target_mesh, p.integer("center-vertex", -1), p.number("radius", 0), "--center-vertex");
-  const io::LoadedMesh source_mesh = load(p, "source", "source-face-range");
+// 1. Patches.
+struct EmbedPatches {
+  io::LoadedMesh target_mesh, source_mesh;
+  Patch target, source;
+};
+
+EmbedPatches cut_embed_patches(const ArgParser& p) {
+  EmbedPatches e;
+  e.target_mesh = load(p, "target", "face-range");
+  e.target = cut(e.target_mesh, p.integer("center-vertex", -1), p.number("radius", 0), "--center-vertex");
+  e.source_mesh = load(p, "source", "source-face-range");
   const bool cut_source = p.has("source-center-vertex");
   require(cut_source || !p.has("source-radius"), MCON_ERROR_INVALID_ARGUMENT,
           "--source-radius needs --source-center-vertex");
-  const Patch source = cut_source ? cut(source_mesh, p.integer("source-center-vertex", -1),
-                                        p.number("source-radius", p.number("radius", 0)), "--source-center-vertex")
-                                  : as_entry(source_mesh.mesh);
-  const double patch_seconds = seconds_since(t_start);
+  e.source = cut_source ? cut(e.source_mesh, p.integer("source-center-vertex", -1),
+                              p.number("source-radius", p.number("radius", 0)), "--source-center-vertex")
+                        : as_entry(e.source_mesh.mesh);
+  return e;
+}
 
-  // 2. The map.
+// 2. The map.
+struct EmbedMap {
+  std::size_t landmarks = 0;
+  SurfaceMap map;
+  double map_seconds = 0;
+  int flips = 0;
+};
+
+EmbedMap map_embed_patches(const ArgParser& p, const EmbedOptions& o, const EmbedPatches& e) {
+  const Patch& source = e.source;
+  const Patch& target = e.target;
   PatchMapOptions options;
-  options.map.alignment.samples = static_cast<int>(samples);
-  options.map.alignment.seed = static_cast<std::uint64_t>(seed);
-  options.map.newton.max_iterations = static_cast<int>(iterations);
-  options.map.orientation = orientation == "preserve"  ? MapOrientation::preserve
-                            : orientation == "reverse" ? MapOrientation::reverse
-                                                       : MapOrientation::automatic;
+  options.map.alignment.samples = static_cast<int>(o.samples);
+  options.map.alignment.seed = static_cast<std::uint64_t>(o.seed);
+  options.map.newton.max_iterations = static_cast<int>(o.iterations);
+  options.map.orientation = o.orientation == "preserve"  ? MapOrientation::preserve
+                            : o.orientation == "reverse" ? MapOrientation::reverse
+                                                         : MapOrientation::automatic;
   // Landmarks: one guidance column per pair, the geodesic distance from it on each patch.
   const std::vector<std::pair<long, long>> landmarks =
       p.has("landmarks") ? parse_landmarks(p.get("landmarks")) : std::vector<std::pair<long, long>>{};
@@ -286,19 +305,37 @@ int run_embed(const Args& args) {
     const HeatGeodesics source_heat(source.mesh), target_heat(target.mesh);
     for (std::size_t k = 0; k < landmarks.size(); ++k) {
       source_guidance.col(static_cast<Eigen::Index>(k)) =
-          source_heat.from_vertices({landmark_vertex(source_mesh, source, landmarks[k].first, "source")});
+          source_heat.from_vertices({landmark_vertex(e.source_mesh, source, landmarks[k].first, "source")});
       target_guidance.col(static_cast<Eigen::Index>(k)) =
-          target_heat.from_vertices({landmark_vertex(target_mesh, target, landmarks[k].second, "target")});
+          target_heat.from_vertices({landmark_vertex(e.target_mesh, target, landmarks[k].second, "target")});
     }
     options.source_guidance = &source_guidance;
     options.target_guidance = &target_guidance;
   }
+  EmbedMap m;
+  m.landmarks = landmarks.size();
   const auto t_map = std::chrono::steady_clock::now();
-  const SurfaceMap map = map_patches(source, target, options);
-  const double map_seconds = seconds_since(t_map);
-  const int flips = count_phi_flips(source.mesh, map.phi, map.reflected);
-  const MapView view{source.mesh, source.uv, target.mesh, target.uv, map.phi, map.source_to_target, map.target_to_source};
+  m.map = map_patches(source, target, options);
+  m.map_seconds = seconds_since(t_map);
+  m.flips = count_phi_flips(source.mesh, m.map.phi, m.map.reflected);
+  return m;
+}
 
+// 3. and 4.: the source constraints, transferred, and the target's cross field.
+struct EmbedTransfer {
+  std::vector<PolylineInput> guides;
+  Eigen::MatrixXd fields;
+  std::vector<std::int32_t> ring_labels;
+  std::vector<std::uint8_t> outside;
+  std::vector<TracedPolyline> traced;
+  SurfacePoint center_on_target;
+  CrossField field;
+  double source_field_seconds = 0, field_seconds = 0, polyline_seconds = 0, cross_field_seconds = 0,
+         transfer_seconds = 0;
+};
+
+EmbedTransfer transfer_constraints(const MapView& view, const Patch& source, const Patch& target) {
+  EmbedTransfer x;
   // 3. Source constraints: fields and guide loops around the center.
   const auto t_transfer = std::chrono::steady_clock::now();
   const Eigen::VectorXd distance =
@@ -310,102 +347,126 @@ int run_embed(const Args& args) {
     interpolated.row(v) << source.uv[v].x(), source.uv[v].y(), mean[v], distance[v];
     rings[v] = static_cast<std::int32_t>(std::floor(std::max(0.0, distance[v]) / 0.25));
   }
-  std::vector<PolylineInput> guides;
   for (double r : {0.3, 0.6})
-    for (PolylineInput& l : iso_lines(source.mesh, distance, r)) guides.push_back(std::move(l));
+    for (PolylineInput& l : iso_lines(source.mesh, distance, r)) x.guides.push_back(std::move(l));
 
-  const double source_field_seconds = seconds_since(t_transfer);
+  x.source_field_seconds = seconds_since(t_transfer);
   const auto t_fields = std::chrono::steady_clock::now();
-  const Eigen::MatrixXd fields = transfer_interpolated(view, interpolated);
-  const std::vector<std::int32_t> ring_labels = transfer_labels(view, 1, rings, -1);
-  const std::vector<std::uint8_t> outside = outside_mask(view);
-  const double field_seconds = seconds_since(t_fields);
+  x.fields = transfer_interpolated(view, interpolated);
+  x.ring_labels = transfer_labels(view, 1, rings, -1);
+  x.outside = outside_mask(view);
+  x.field_seconds = seconds_since(t_fields);
   const auto t_polylines = std::chrono::steady_clock::now();
   const PolylineTransfer transfer(view);
-  const std::vector<TracedPolyline> traced = transfer.map_polylines(guides);
-  const SurfacePoint center_on_target = transfer.map_point({source.center.triangle, source.center.barycentric});
+  x.traced = transfer.map_polylines(x.guides);
+  x.center_on_target = transfer.map_point({source.center.triangle, source.center.barycentric});
 
-  const double polyline_seconds = seconds_since(t_polylines);
+  x.polyline_seconds = seconds_since(t_polylines);
   const auto t_field = std::chrono::steady_clock::now();
   // 4. Cross field of the target following the re-traced guides.
   std::vector<std::vector<SurfacePoint>> guide_points;
-  for (const TracedPolyline& t : traced) {
+  for (const TracedPolyline& t : x.traced) {
     std::vector<SurfacePoint> line;
     for (const SurfacePoint& q : t.points) line.push_back({q.triangle, q.barycentric});
     if (t.closed) line.push_back(line.front());
     guide_points.push_back(std::move(line));
   }
-  const CrossField field = compute_cross_field(target.mesh, constraints_from_polylines(target.mesh, guide_points));
-  const double cross_field_seconds = seconds_since(t_field);
-  const double transfer_seconds = seconds_since(t_transfer);
+  x.field = compute_cross_field(target.mesh, constraints_from_polylines(target.mesh, guide_points));
+  x.cross_field_seconds = seconds_since(t_field);
+  x.transfer_seconds = seconds_since(t_transfer);
+  return x;
+}
 
-  // 5. Files (target mesh units: host = center + radius * p).
-  std::filesystem::create_directories(out_dir);
-  auto host = [](const Patch& patch, const Vec3& x) { return Vec3(patch.center_position + patch.radius * x); };
+// 5. Files (target mesh units: host = center + radius * p).
+struct EmbedFiles {
+  std::string ply, obj, src_obj, rosy, summary_path;
+  std::size_t traced_points = 0;
+};
+
+Vec3 to_host(const Patch& patch, const Vec3& x) { return Vec3(patch.center_position + patch.radius * x); }
+
+// The target patch in host units with the transferred per-vertex fields.
+void write_target_ply(const std::string& ply, const EmbedPatches& e, const EmbedTransfer& x) {
+  const Patch& target = e.target;
   TriMesh target_host = target.mesh;
-  for (Vec3& x : target_host.positions) x = host(target, x);
+  for (Vec3& v : target_host.positions) v = to_host(target, v);
   io::VertexAttribute uv{"source_uv", 2, {}}, h{"source_mean_curvature", 1, {}}, g{"source_geodesic_distance", 1, {}},
       ring{"source_ring", 1, {}}, out_attr{"outside", 1, {}}, host_vertex{"host_vertex", 1, {}};
   for (int w = 0; w < target.mesh.num_vertices(); ++w) {
-    uv.values.insert(uv.values.end(), {fields(w, 0), fields(w, 1)});
-    h.values.push_back(fields(w, 2));
-    g.values.push_back(fields(w, 3));
-    ring.values.push_back(ring_labels[w]);
-    out_attr.values.push_back(outside[w]);
+    uv.values.insert(uv.values.end(), {x.fields(w, 0), x.fields(w, 1)});
+    h.values.push_back(x.fields(w, 2));
+    g.values.push_back(x.fields(w, 3));
+    ring.values.push_back(x.ring_labels[w]);
+    out_attr.values.push_back(x.outside[w]);
     const HostPoint& hp = target.host_vertex[w];
-    host_vertex.values.push_back(hp.v0 < 0 ? -1.0 : static_cast<double>(target_mesh.mesh_to_file[hp.t < 0.5 ? hp.v0 : hp.v1]));
+    host_vertex.values.push_back(hp.v0 < 0 ? -1.0 : static_cast<double>(e.target_mesh.mesh_to_file[hp.t < 0.5 ? hp.v0 : hp.v1]));
   }
-  const std::string ply = out_dir + "/target.ply", obj = out_dir + "/guides.obj", src_obj = out_dir + "/source_guides.obj",
-                    rosy = out_dir + "/target.rosy", summary_path = out_dir + "/summary.json";
   io::write_ply(ply, target_host, {uv, h, g, ring, out_attr, host_vertex});
+}
+
+EmbedFiles write_embed_files(const std::string& out_dir, const EmbedPatches& e, const EmbedTransfer& x) {
+  const Patch& target = e.target;
+  const Patch& source = e.source;
+  std::filesystem::create_directories(out_dir);
+  EmbedFiles f;
+  f.ply = out_dir + "/target.ply";
+  f.obj = out_dir + "/guides.obj";
+  f.src_obj = out_dir + "/source_guides.obj";
+  f.rosy = out_dir + "/target.rosy";
+  f.summary_path = out_dir + "/summary.json";
+  write_target_ply(f.ply, e, x);
   std::vector<std::vector<Vec3>> lines, source_lines;
   std::vector<bool> closed, source_closed;
-  std::size_t traced_points = 0;
-  for (const TracedPolyline& t : traced) {
+  for (const TracedPolyline& t : x.traced) {
     std::vector<Vec3> line;
-    for (const Vec3& x : t.positions) line.push_back(host(target, x));
+    for (const Vec3& v : t.positions) line.push_back(to_host(target, v));
     lines.push_back(std::move(line));
     closed.push_back(t.closed);
-    traced_points += t.points.size();
+    f.traced_points += t.points.size();
   }
-  for (const PolylineInput& in : guides) {
+  for (const PolylineInput& in : x.guides) {
     std::vector<Vec3> line;
-    for (const SurfacePoint& q : in.points) line.push_back(host(source, on_mesh(source.mesh, q)));
+    for (const SurfacePoint& q : in.points) line.push_back(to_host(source, on_mesh(source.mesh, q)));
     source_lines.push_back(std::move(line));
     source_closed.push_back(in.closed);
   }
-  write_polylines_obj(obj, lines, closed);
-  write_polylines_obj(src_obj, source_lines, source_closed);
-  io::write_rosy(rosy, target.mesh, field.directions);
+  write_polylines_obj(f.obj, lines, closed);
+  write_polylines_obj(f.src_obj, source_lines, source_closed);
+  io::write_rosy(f.rosy, target.mesh, x.field.directions);
+  return f;
+}
 
-  // 6. Summary.
+// 6. Summary.
+tools::Json embed_summary(const EmbedOptions& o, const EmbedPatches& e, const EmbedMap& m, const EmbedTransfer& x,
+                          const EmbedFiles& f, double patch_seconds, std::chrono::steady_clock::time_point t_start) {
   using tools::Json;
+  const SurfaceMap& map = m.map;
   std::size_t source_inside = 0, target_inside = 0;
   for (const SurfacePoint& q : map.source_to_target) source_inside += q.triangle >= 0;
-  for (std::uint8_t o : outside) target_inside += o == 0;
+  for (std::uint8_t out : x.outside) target_inside += out == 0;
   Json energies = Json::object();
   energies.set("total", map.energy.total);
   for (std::size_t i = 0; i < map_energy_terms().size(); ++i)
     energies.set(map_energy_terms()[i].name, map.energy.values[i]);
   Json timings = Json::object();
   timings.set("patches", patch_seconds);
-  timings.set("map", map_seconds);
+  timings.set("map", m.map_seconds);
   timings.set("alignment", map.alignment_seconds);
   timings.set("optimization", map.optimization_seconds);
-  timings.set("transfer", transfer_seconds);  // the next four together
-  timings.set("source_constraints", source_field_seconds);
-  timings.set("fields", field_seconds);
-  timings.set("polylines", polyline_seconds);
-  timings.set("cross_field", cross_field_seconds);
+  timings.set("transfer", x.transfer_seconds);  // the next four together
+  timings.set("source_constraints", x.source_field_seconds);
+  timings.set("fields", x.field_seconds);
+  timings.set("polylines", x.polyline_seconds);
+  timings.set("cross_field", x.cross_field_seconds);
   timings.set("total", seconds_since(t_start));
   Json files = Json::object();
-  files.set("target_ply", ply);
-  files.set("guides_obj", obj);
-  files.set("source_guides_obj", src_obj);
-  files.set("rosy", rosy);
+  files.set("target_ply", f.ply);
+  files.set("guides_obj", f.obj);
+  files.set("source_guides_obj", f.src_obj);
+  files.set("rosy", f.rosy);
   Json summary = Json::object();
-  summary.set("source_vertices", source.mesh.num_vertices());
-  summary.set("target_vertices", target.mesh.num_vertices());
+  summary.set("source_vertices", e.source.mesh.num_vertices());
+  summary.set("target_vertices", e.target.mesh.num_vertices());
   summary.set("source_vertices_inside", source_inside);
   summary.set("target_vertices_inside", target_inside);
   summary.set("overlap", map.overlap_ratio);
@@ -417,31 +478,55 @@ int run_embed(const Args& args) {
   summary.set("stop_reason", stop_reason_name(map.stop_reason));
   summary.set("reflected", map.reflected);
   // The evidence of the orientation call, for a host that offers a "flip" (--orientation).
-  summary.set("orientation", orientation);
-  summary.set("landmarks", static_cast<double>(landmarks.size()));
+  summary.set("orientation", o.orientation);
+  summary.set("landmarks", static_cast<double>(m.landmarks));
   summary.set("alignment_score_unreflected", map.alignment.score_unreflected);
   summary.set("alignment_score_reflected", map.alignment.score_reflected);
   summary.set("orientation_compared", map.orientation_compared);
   summary.set("level0_energy_unreflected", map.level0_energy_unreflected);
   summary.set("level0_energy_reflected", map.level0_energy_reflected);
-  summary.set("flips", flips);
-  summary.set("guides_in", guides.size());
-  summary.set("guides_out", traced.size());
-  summary.set("guide_points_out", traced_points);
-  summary.set("center_on_target", center_on_target.triangle >= 0);
+  summary.set("flips", m.flips);
+  summary.set("guides_in", x.guides.size());
+  summary.set("guides_out", x.traced.size());
+  summary.set("guide_points_out", f.traced_points);
+  summary.set("center_on_target", x.center_on_target.triangle >= 0);
   summary.set("timings", timings);
   summary.set("files", files);
-  tools::write_json_file(summary_path, summary);
+  return summary;
+}
+
+int run_embed(const Args& args) {
+  if (!args.empty() && (args[0] == "--help" || args[0] == "-h")) {
+    std::fputs(kUsage, stdout);
+    return 0;
+  }
+  const ArgParser p(args,
+                    {"source", "target", "center-vertex", "radius", "source-center-vertex", "source-radius",
+                     "face-range", "source-face-range", "seed", "samples", "iterations", "orientation", "landmarks",
+                     "out"},
+                    {"json"});
+  const auto t_start = std::chrono::steady_clock::now();
+  const EmbedOptions o = embed_options(p);
+  const EmbedPatches e = cut_embed_patches(p);
+  const double patch_seconds = seconds_since(t_start);
+  const EmbedMap m = map_embed_patches(p, o, e);
+  const SurfaceMap& map = m.map;
+  const MapView view{e.source.mesh, e.source.uv, e.target.mesh, e.target.uv, map.phi, map.source_to_target, map.target_to_source};
+  const EmbedTransfer x = transfer_constraints(view, e.source, e.target);
+  const EmbedFiles f = write_embed_files(o.out_dir, e, x);
+  const tools::Json summary = embed_summary(o, e, m, x, f, patch_seconds, t_start);
+  tools::write_json_file(f.summary_path, summary);
   if (p.flag("json")) {
     std::printf("%s\n", tools::write_json(summary, false).c_str());
   } else {
     std::printf("map: %d -> %d vertices, overlap %.3f, %d iterations (%s), %s, %d flips, %.2f s\n",
-                source.mesh.num_vertices(), target.mesh.num_vertices(), map.overlap_ratio, map.iterations,
-                stop_reason_name(map.stop_reason), map.reflected ? "reflected" : "not reflected", flips, map_seconds);
-    std::printf("guides: %zu in, %zu out (%zu points); files in %s\n", guides.size(), traced.size(), traced_points,
-                out_dir.c_str());
+                e.source.mesh.num_vertices(), e.target.mesh.num_vertices(), map.overlap_ratio, map.iterations,
+                stop_reason_name(map.stop_reason), map.reflected ? "reflected" : "not reflected", m.flips,
+                m.map_seconds);
+    std::printf("guides: %zu in, %zu out (%zu points); files in %s\n", x.guides.size(), x.traced.size(),
+                f.traced_points, o.out_dir.c_str());
   }
-  return flips == 0 ? 0 : 1;
+  return m.flips == 0 ? 0 : 1;
 }
 
 const Registration registration{"embed", "re-embed a source patch onto a target region and transfer its constraints",

@@ -189,7 +189,9 @@ std::vector<MappingSlot> mapping_slots(const std::string& shared_dir, const std:
   return slots;
 }
 
-std::vector<MappingPairResult> run_mapping_evaluation(const MappingEvalOptions& options) {
+namespace {
+
+void validate_mapping_options(const MappingEvalOptions& options) {
   require(options.pairs >= 0 && options.threads >= 1 && options.alignment_samples >= 1 &&
               options.thesis_iterations >= 0 && options.max_evaluated_vertices >= 1 && options.landmarks >= 1 &&
               options.landmarks <= 64,
@@ -197,257 +199,335 @@ std::vector<MappingPairResult> run_mapping_evaluation(const MappingEvalOptions& 
   for (const std::string& m : options.methods)
     require(m == "macrocon" || m == "rigid" || m == "thesis" || m == "oracle" || m == "landmarks", MCON_ERROR_INVALID_ARGUMENT,
             "eval-mapping: unknown method '" + m + "'");
+}
+
+bool wants(const MappingEvalOptions& options, const char* m) {
+  return std::find(options.methods.begin(), options.methods.end(), m) != options.methods.end();
+}
+
+// The model of `slot`, loaded (with its mirror involution if any slot of it is mirrored) on first use.
+const Model& model_for(std::map<std::string, Model>& models, const MappingEvalOptions& options,
+                       const std::vector<MappingSlot>& slots, const MappingSlot& slot) {
+  if (!models.count(slot.model)) {
+    Model m = load_model(options.shared_dir, slot.model);
+    bool any_mirror = false;
+    for (const MappingSlot& s : slots) any_mirror = any_mirror || (s.model == slot.model && s.mirrored);
+    if (any_mirror) m.mirror = mirror_map(m.base().mesh);
+    models.emplace(slot.model, std::move(m));
+  }
+  return models.at(slot.model);
+}
+
+struct PairPatches {
+  CutPatch src, dst;
+};
+
+PairPatches cut_pair_patches(const Model& model, const MappingEvalOptions& options, const MappingSlot& slot, int i,
+                             MappingPairResult& res) {
+  const BenchClass& src_cls = model.bench.spec.find(slot.source_class);
+  const BenchClass& dst_cls = model.bench.spec.find(slot.target_class);
+  // A scaled-radius ball can still stop being a disk on a rare person or decimation (the
+  // forearm wraps into a ring, bench/README.md); such a pair moves on to the next people
+  // (2i + 1000k, 2i + 1 + 1000k), deterministically.
+  PairPatches out;
+  for (int attempt = 0;; ++attempt) {
+    res.person_a = 2 * i + 1000 * attempt;
+    res.person_b = res.person_a + 1;
+    try {
+      const TriMesh a = model.instance(options.seed, res.person_a);
+      const TriMesh b = model.instance(options.seed, res.person_b);
+      DecimationOptions dec;
+      dec.keep = {dst_cls.center_vertex};
+      const Retessellation re =
+          decimate(b, options.seed * 1000003ull + static_cast<std::uint64_t>(i) + 7919ull * attempt, dec);
+      out.src = cut(model, src_cls, a, nullptr, nullptr);
+      out.dst = cut(model, dst_cls, b, &re.mesh, &re.to_original);
+      break;
+    } catch (const Error& e) {
+      if (e.status() != MCON_ERROR_NOT_A_DISK || attempt >= 4) throw;
+      if (options.log) options.log("pair " + std::to_string(i) + ": " + e.what() + "; next people");
+    }
+  }
+  res.source_vertices = out.src.patch.mesh.num_vertices();
+  res.target_vertices = out.dst.patch.mesh.num_vertices();
+  return out;
+}
+
+struct GroundTruth {
+  std::vector<int> sources, truths;  // evaluated source patch vertex -> its true target patch vertex
+};
+
+// Ground truth: source vertex -> target patch vertex of the same (mirrored) body vertex.
+GroundTruth ground_truth(const Model& model, const MappingSlot& slot, const PairPatches& pp,
+                         const MappingEvalOptions& options, MappingPairResult& res) {
+  const CutPatch& src = pp.src;
+  const CutPatch& dst = pp.dst;
+  std::map<int, int> target_of_host;
+  for (std::size_t w = 0; w < dst.host.size(); ++w)
+    if (dst.host[w] >= 0) target_of_host.emplace(dst.host[w], static_cast<int>(w));
+  std::vector<int> sources, truths;
+  for (std::size_t v = 0; v < src.host.size(); ++v) {
+    if (src.host[v] < 0) continue;
+    const int truth = slot.mirrored ? model.mirror[static_cast<std::size_t>(src.host[v])] : src.host[v];
+    const auto it = target_of_host.find(truth);
+    if (it == target_of_host.end()) continue;
+    sources.push_back(static_cast<int>(v));
+    truths.push_back(it->second);
+  }
+  res.ground_truth_vertices = static_cast<int>(sources.size());
+  if (static_cast<int>(sources.size()) > options.max_evaluated_vertices) {
+    const double stride = static_cast<double>(sources.size()) / options.max_evaluated_vertices;
+    std::vector<int> s2, t2;
+    for (int k = 0; k < options.max_evaluated_vertices; ++k) {
+      const std::size_t idx = static_cast<std::size_t>(std::floor(k * stride));
+      s2.push_back(sources[idx]);
+      t2.push_back(truths[idx]);
+    }
+    sources.swap(s2);
+    truths.swap(t2);
+  }
+  return {std::move(sources), std::move(truths)};
+}
+
+// Every method's map of the source patch vertices, and whether it reverses orientation.
+struct PairMaps {
+  std::map<std::string, std::vector<Vec2>> phi;
+  std::map<std::string, bool> reflected;
+  RigidAlignmentOptions alignment;  // the rigid search options, shared by the guided methods
+};
+
+// The maps: macrocon, rigid and thesis, all from one map_patches call's rigid start.
+PairMaps unguided_maps(const PairPatches& pp, const MappingEvalOptions& options, MappingPairResult& res) {
+  const CutPatch& src = pp.src;
+  const CutPatch& dst = pp.dst;
+  PairMaps maps;
+  PatchMapOptions mo;
+  mo.map.alignment.samples = options.alignment_samples;
+  mo.map.alignment.seed = options.seed;
+  if (!wants(options, "macrocon")) mo.map.newton.max_iterations = 0;  // the rigid start only
+  maps.alignment = mo.map.alignment;
+  const auto t0 = std::chrono::steady_clock::now();
+  const SurfaceMap map = map_patches(src.patch, dst.patch, mo);
+  const double map_seconds = seconds_since(t0);
+  const RigidTransform2D T = map.alignment.transform;
+  {
+    std::ostringstream o;
+    o << "rigid scores plain " << fmt(map.alignment.score_unreflected) << " mirrored "
+      << fmt(map.alignment.score_reflected);
+    if (map.orientation_compared)
+      o << ", level-0 energies plain " << fmt(map.level0_energy_unreflected) << " mirrored "
+        << fmt(map.level0_energy_reflected);
+    res.orientation_note = o.str();
+  }
+  if (wants(options, "macrocon")) {
+    maps.phi["macrocon"] = map.phi;
+    maps.reflected["macrocon"] = map.reflected;
+    res.methods["macrocon"].seconds = map_seconds;
+    res.methods["macrocon"].iterations = map.iterations;
+  }
+  std::vector<Vec2> rigid(src.patch.uv.size());
+  for (std::size_t v = 0; v < rigid.size(); ++v) rigid[v] = T.apply(src.patch.uv[v]);
+  if (wants(options, "rigid")) {
+    maps.phi["rigid"] = rigid;
+    maps.reflected["rigid"] = T.reflected;
+    res.methods["rigid"].seconds = map.alignment_seconds;
+  }
+  if (wants(options, "thesis")) {
+    ThesisDescentOptions to;
+    to.iterations = options.thesis_iterations;
+    const ThesisDescentResult th = thesis_gradient_descent(
+        src.patch.mesh, src.patch.uv, mean_curvature_descriptor(src.patch.mesh), dst.patch.mesh, dst.patch.uv,
+        mean_curvature_descriptor(dst.patch.mesh), rigid, T.reflected, to);
+    maps.phi["thesis"] = th.phi;
+    maps.reflected["thesis"] = T.reflected;
+    res.methods["thesis"].seconds = map.alignment_seconds + th.seconds;
+    res.methods["thesis"].iterations = th.iterations;
+  }
+  return maps;
+}
+
+// A guided method: the SDK's map with host guidance channels (PatchMapOptions).
+void run_guided(const char* name, const PairPatches& pp, const Eigen::MatrixXd& gs, const Eigen::MatrixXd& gt,
+                double weight, PairMaps& maps, MappingPairResult& res) {
+  PatchMapOptions oo;  // the full map (unguided_maps runs no Newton iterations when macrocon is not asked for)
+  oo.map.alignment = maps.alignment;
+  oo.source_guidance = &gs;
+  oo.target_guidance = &gt;
+  oo.guidance_weight = weight;
+  const auto to = std::chrono::steady_clock::now();
+  const SurfaceMap gm = map_patches(pp.src.patch, pp.dst.patch, oo);
+  maps.phi[name] = gm.phi;
+  maps.reflected[name] = gm.reflected;
+  res.methods[name].seconds = seconds_since(to);
+  res.methods[name].iterations = gm.iterations;
+}
+
+// The oracle's guidance = the base-mesh position of every vertex's true correspondent (the
+// source's mirrored for a mirrored pair): descriptors without ambiguity, so what is left of the
+// error is the optimizer's and the distortion prior's share.
+Eigen::MatrixXd oracle_guidance(const Model& model, const std::vector<int>& host, bool mirror) {
+  const TriMesh& base = model.base().mesh;
+  Eigen::MatrixXd g(static_cast<Eigen::Index>(host.size()), 3);
+  Vec3 mean = Vec3::Zero();
+  int known = 0;
+  for (std::size_t v = 0; v < host.size(); ++v) {
+    if (host[v] < 0) continue;
+    const int h = mirror ? model.mirror[static_cast<std::size_t>(host[v])] : host[v];
+    g.row(static_cast<Eigen::Index>(v)) = base.positions[static_cast<std::size_t>(h)].transpose();
+    mean += base.positions[static_cast<std::size_t>(h)];
+    ++known;
+  }
+  mean /= std::max(known, 1);
+  for (std::size_t v = 0; v < host.size(); ++v)
+    if (host[v] < 0) g.row(static_cast<Eigen::Index>(v)) = mean.transpose();
+  return g;
+}
+
+// What an artist can give: a few corresponding points clicked on both meshes (here true
+// pairs, spread by farthest-point sampling over the source), and as guidance the geodesic
+// distance from each, computed on each patch.
+void run_landmarks(const PairPatches& pp, const GroundTruth& gt_pairs, const MappingEvalOptions& options,
+                   PairMaps& maps, MappingPairResult& res) {
+  const CutPatch& src = pp.src;
+  const CutPatch& dst = pp.dst;
+  const std::vector<int>& sources = gt_pairs.sources;
+  const std::vector<int>& truths = gt_pairs.truths;
+  const HeatGeodesics src_heat(src.patch.mesh), dst_heat(dst.patch.mesh);
+  const int count = std::min(options.landmarks, static_cast<int>(sources.size()));
+  Eigen::MatrixXd gs(src.patch.mesh.num_vertices(), count), gt(dst.patch.mesh.num_vertices(), count);
+  Eigen::VectorXd nearest = src_heat.from_point(src.patch.center.triangle, src.patch.center.barycentric);
+  for (int k = 0; k < count; ++k) {
+    int best = 0;  // the evaluated source vertex farthest from the center and the picks so far
+    for (int c = 1; c < static_cast<int>(sources.size()); ++c)
+      if (nearest[sources[c]] > nearest[sources[best]]) best = c;
+    gs.col(k) = src_heat.from_vertices({sources[best]});
+    gt.col(k) = dst_heat.from_vertices({truths[best]});
+    nearest = nearest.cwiseMin(gs.col(k));
+  }
+  run_guided("landmarks", pp, gs, gt, kLandmarkGuidanceWeight, maps, res);
+}
+
+// Where each evaluated point lands, per method, then one heat solve per true vertex: each
+// method's eps per evaluated point (-1 if it lands outside the target).
+std::map<std::string, std::vector<double>> landing_eps(const PairPatches& pp, const GroundTruth& gt_pairs,
+                                                       const PairMaps& maps, const TriangleLocator2D& locator,
+                                                       MappingPairResult& res) {
+  const CutPatch& dst = pp.dst;
+  const std::vector<int>& sources = gt_pairs.sources;
+  const std::vector<int>& truths = gt_pairs.truths;
+  std::map<std::string, std::vector<PointLocation>> landed;
+  for (auto& [name, p] : maps.phi) {
+    std::vector<PointLocation>& l = landed[name];
+    l.resize(sources.size());
+    for_each_block(static_cast<int>(sources.size()), 64, [&](int begin, int end, int) {
+      for (int k = begin; k < end; ++k) l[k] = locator.locate(p[sources[k]]);
+    });
+  }
+  const HeatGeodesics heat(dst.patch.mesh);
+  const double scale = 1.0 / std::sqrt(patch_area(dst.patch.mesh));
+  res.target_edge_eps = scale * mean_edge_length(dst.patch.mesh);
+  std::map<std::string, std::vector<double>> eps;
+  for (auto& [name, l] : landed) eps[name].assign(sources.size(), -1.0);
+  for_each_block(static_cast<int>(sources.size()), 8, [&](int begin, int end, int) {
+    for (int k = begin; k < end; ++k) {
+      bool needed = false;
+      for (auto& [name, l] : landed) needed = needed || l[k].triangle >= 0;
+      if (!needed) continue;
+      const Eigen::VectorXd d = heat.from_vertices({truths[k]});
+      for (auto& [name, l] : landed) {
+        if (l[k].triangle < 0) continue;
+        const Tri& t = dst.patch.mesh.triangles[l[k].triangle];
+        eps[name][k] = scale * std::max(0.0, l[k].barycentric[0] * d[t[0]] + l[k].barycentric[1] * d[t[1]] +
+                                                 l[k].barycentric[2] * d[t[2]]);
+      }
+    }
+  });
+  return eps;
+}
+
+// Each method's scores: eps statistics, flips and overlap (source vertex area mapped inside the target).
+void score_methods(const PairPatches& pp, const PairMaps& maps, const TriangleLocator2D& locator,
+                   std::map<std::string, std::vector<double>>& eps, MappingPairResult& res) {
+  const CutPatch& src = pp.src;
+  const Eigen::VectorXd va = [&] {
+    Eigen::VectorXd areas = Eigen::VectorXd::Zero(src.patch.mesh.num_vertices());
+    for (int t = 0; t < src.patch.mesh.num_triangles(); ++t)
+      for (int k = 0; k < 3; ++k) areas[src.patch.mesh.triangles[t][k]] += triangle_area(src.patch.mesh, t) / 3;
+    return areas;
+  }();
+  for (auto& [name, p] : maps.phi) {
+    MethodPairResult& r = res.methods[name];
+    double sum = 0;
+    int within = 0, count = 0;
+    for (double e : eps[name]) {
+      if (e < 0) continue;
+      sum += e;
+      within += e <= 0.05;
+      ++count;
+    }
+    r.evaluated = count;
+    r.mean_eps = count ? sum / count : 0.0;
+    r.within_0_05 = count ? static_cast<double>(within) / count : 0.0;
+    r.reflected = maps.reflected.at(name);
+    r.flipped_triangles = flipped(src.patch.mesh, p, r.reflected);
+    double inside = 0;
+    for (std::size_t v = 0; v < p.size(); ++v)
+      if (locator.locate(p[v]).triangle >= 0) inside += va[static_cast<Eigen::Index>(v)];
+    r.overlap = inside / va.sum();
+  }
+}
+
+// One pair: cut both patches, find the ground truth, run every method and score it.
+void evaluate_pair(const Model& model, const MappingSlot& slot, int i, const MappingEvalOptions& options,
+                   MappingPairResult& res) {
+  const PairPatches pp = cut_pair_patches(model, options, slot, i, res);
+  const GroundTruth truth = ground_truth(model, slot, pp, options, res);
+  PairMaps maps = unguided_maps(pp, options, res);
+  if (wants(options, "oracle"))
+    run_guided("oracle", pp, oracle_guidance(model, pp.src.host, slot.mirrored), oracle_guidance(model, pp.dst.host, false),
+               kOracleGuidanceWeight, maps, res);
+  if (wants(options, "landmarks") && !truth.sources.empty()) run_landmarks(pp, truth, options, maps, res);
+  const TriangleLocator2D locator(pp.dst.patch.uv, pp.dst.patch.mesh.triangles);
+  std::map<std::string, std::vector<double>> eps = landing_eps(pp, truth, maps, locator, res);
+  score_methods(pp, maps, locator, eps, res);
+}
+
+void log_pair(const MappingEvalOptions& options, int i, const MappingSlot& slot, const MappingPairResult& res) {
+  std::ostringstream line;
+  line << "pair " << i << " " << slot.model << " " << slot.source_class << " -> " << slot.target_class
+       << " (" << res.source_vertices << " -> " << res.target_vertices << " vertices, "
+       << res.ground_truth_vertices << " with ground truth, target edge eps100 "
+       << fmt(100 * res.target_edge_eps) << "):";
+  for (const auto& [name, r] : res.methods)
+    line << " " << name << (r.reflected ? " (mirrored)" : "") << " eps100 " << fmt(100 * r.mean_eps) << " within " << fmt(r.within_0_05) << " flips "
+         << r.flipped_triangles << " overlap " << fmt(r.overlap) << " " << fmt(r.seconds) << "s it "
+         << r.iterations << ";";
+  if (!res.orientation_note.empty()) line << " (" << res.orientation_note << ")";
+  options.log(line.str());
+}
+
+}  // namespace
+
+std::vector<MappingPairResult> run_mapping_evaluation(const MappingEvalOptions& options) {
+  validate_mapping_options(options);
   const std::vector<MappingSlot> slots = mapping_slots(options.shared_dir, options.parts);
   require(!slots.empty(), MCON_ERROR_INVALID_ARGUMENT, "eval-mapping: no class selected");
   const int makehuman_slots = static_cast<int>(
       std::count_if(slots.begin(), slots.end(), [](const MappingSlot& s) { return s.model == "makehuman"; }));
   const int pairs = options.pairs > 0 ? options.pairs : (makehuman_slots > 0 ? makehuman_slots : static_cast<int>(slots.size()));
-  auto wants = [&](const char* m) {
-    return std::find(options.methods.begin(), options.methods.end(), m) != options.methods.end();
-  };
 
   tbb::task_arena arena(options.threads);
   std::map<std::string, Model> models;
   std::vector<MappingPairResult> results;
   for (int i = 0; i < pairs; ++i) {
     const MappingSlot& slot = slots[static_cast<std::size_t>(i) % slots.size()];
-    if (!models.count(slot.model)) {
-      Model m = load_model(options.shared_dir, slot.model);
-      bool any_mirror = false;
-      for (const MappingSlot& s : slots) any_mirror = any_mirror || (s.model == slot.model && s.mirrored);
-      if (any_mirror) m.mirror = mirror_map(m.base().mesh);
-      models.emplace(slot.model, std::move(m));
-    }
-    const Model& model = models.at(slot.model);
+    const Model& model = model_for(models, options, slots, slot);
     MappingPairResult res;
     res.slot = slot;
     res.person_a = 2 * i;
     res.person_b = 2 * i + 1;
-    arena.execute([&] {
-      const BenchClass& src_cls = model.bench.spec.find(slot.source_class);
-      const BenchClass& dst_cls = model.bench.spec.find(slot.target_class);
-      // A scaled-radius ball can still stop being a disk on a rare person or decimation (the
-      // forearm wraps into a ring, bench/README.md); such a pair moves on to the next people
-      // (2i + 1000k, 2i + 1 + 1000k), deterministically.
-      CutPatch src, dst;
-      for (int attempt = 0;; ++attempt) {
-        res.person_a = 2 * i + 1000 * attempt;
-        res.person_b = res.person_a + 1;
-        try {
-          const TriMesh a = model.instance(options.seed, res.person_a);
-          const TriMesh b = model.instance(options.seed, res.person_b);
-          DecimationOptions dec;
-          dec.keep = {dst_cls.center_vertex};
-          const Retessellation re =
-              decimate(b, options.seed * 1000003ull + static_cast<std::uint64_t>(i) + 7919ull * attempt, dec);
-          src = cut(model, src_cls, a, nullptr, nullptr);
-          dst = cut(model, dst_cls, b, &re.mesh, &re.to_original);
-          break;
-        } catch (const Error& e) {
-          if (e.status() != MCON_ERROR_NOT_A_DISK || attempt >= 4) throw;
-          if (options.log) options.log("pair " + std::to_string(i) + ": " + e.what() + "; next people");
-        }
-      }
-      res.source_vertices = src.patch.mesh.num_vertices();
-      res.target_vertices = dst.patch.mesh.num_vertices();
-
-      // Ground truth: source vertex -> target patch vertex of the same (mirrored) body vertex.
-      std::map<int, int> target_of_host;
-      for (std::size_t w = 0; w < dst.host.size(); ++w)
-        if (dst.host[w] >= 0) target_of_host.emplace(dst.host[w], static_cast<int>(w));
-      std::vector<int> sources, truths;
-      for (std::size_t v = 0; v < src.host.size(); ++v) {
-        if (src.host[v] < 0) continue;
-        const int truth = slot.mirrored ? model.mirror[static_cast<std::size_t>(src.host[v])] : src.host[v];
-        const auto it = target_of_host.find(truth);
-        if (it == target_of_host.end()) continue;
-        sources.push_back(static_cast<int>(v));
-        truths.push_back(it->second);
-      }
-      res.ground_truth_vertices = static_cast<int>(sources.size());
-      if (static_cast<int>(sources.size()) > options.max_evaluated_vertices) {
-        const double stride = static_cast<double>(sources.size()) / options.max_evaluated_vertices;
-        std::vector<int> s2, t2;
-        for (int k = 0; k < options.max_evaluated_vertices; ++k) {
-          const std::size_t idx = static_cast<std::size_t>(std::floor(k * stride));
-          s2.push_back(sources[idx]);
-          t2.push_back(truths[idx]);
-        }
-        sources.swap(s2);
-        truths.swap(t2);
-      }
-
-      // The maps.
-      std::map<std::string, std::vector<Vec2>> phi;
-      std::map<std::string, bool> reflected;
-      PatchMapOptions mo;
-      mo.map.alignment.samples = options.alignment_samples;
-      mo.map.alignment.seed = options.seed;
-      if (!wants("macrocon")) mo.map.newton.max_iterations = 0;  // the rigid start only
-      const auto t0 = std::chrono::steady_clock::now();
-      const SurfaceMap map = map_patches(src.patch, dst.patch, mo);
-      const double map_seconds = seconds_since(t0);
-      const RigidTransform2D T = map.alignment.transform;
-      {
-        std::ostringstream o;
-        o << "rigid scores plain " << fmt(map.alignment.score_unreflected) << " mirrored "
-          << fmt(map.alignment.score_reflected);
-        if (map.orientation_compared)
-          o << ", level-0 energies plain " << fmt(map.level0_energy_unreflected) << " mirrored "
-            << fmt(map.level0_energy_reflected);
-        res.orientation_note = o.str();
-      }
-      if (wants("macrocon")) {
-        phi["macrocon"] = map.phi;
-        reflected["macrocon"] = map.reflected;
-        res.methods["macrocon"].seconds = map_seconds;
-        res.methods["macrocon"].iterations = map.iterations;
-      }
-      std::vector<Vec2> rigid(src.patch.uv.size());
-      for (std::size_t v = 0; v < rigid.size(); ++v) rigid[v] = T.apply(src.patch.uv[v]);
-      if (wants("rigid")) {
-        phi["rigid"] = rigid;
-        reflected["rigid"] = T.reflected;
-        res.methods["rigid"].seconds = map.alignment_seconds;
-      }
-      if (wants("thesis")) {
-        ThesisDescentOptions to;
-        to.iterations = options.thesis_iterations;
-        const ThesisDescentResult th = thesis_gradient_descent(
-            src.patch.mesh, src.patch.uv, mean_curvature_descriptor(src.patch.mesh), dst.patch.mesh, dst.patch.uv,
-            mean_curvature_descriptor(dst.patch.mesh), rigid, T.reflected, to);
-        phi["thesis"] = th.phi;
-        reflected["thesis"] = T.reflected;
-        res.methods["thesis"].seconds = map.alignment_seconds + th.seconds;
-        res.methods["thesis"].iterations = th.iterations;
-      }
-
-      // A guided method: the SDK's map with host guidance channels (PatchMapOptions).
-      auto run_guided = [&](const char* name, const Eigen::MatrixXd& gs, const Eigen::MatrixXd& gt, double weight) {
-        PatchMapOptions oo;  // the full map (mo has no Newton iterations when macrocon is not asked for)
-        oo.map.alignment = mo.map.alignment;
-        oo.source_guidance = &gs;
-        oo.target_guidance = &gt;
-        oo.guidance_weight = weight;
-        const auto to = std::chrono::steady_clock::now();
-        const SurfaceMap gm = map_patches(src.patch, dst.patch, oo);
-        phi[name] = gm.phi;
-        reflected[name] = gm.reflected;
-        res.methods[name].seconds = seconds_since(to);
-        res.methods[name].iterations = gm.iterations;
-      };
-      if (wants("oracle")) {
-        // Guidance = the base-mesh position of every vertex's true correspondent (the source's
-        // mirrored for a mirrored pair): descriptors without ambiguity, so what is left of the
-        // error is the optimizer's and the distortion prior's share.
-        const TriMesh& base = model.base().mesh;
-        auto guidance = [&](const std::vector<int>& host, bool mirror) {
-          Eigen::MatrixXd g(static_cast<Eigen::Index>(host.size()), 3);
-          Vec3 mean = Vec3::Zero();
-          int known = 0;
-          for (std::size_t v = 0; v < host.size(); ++v) {
-            if (host[v] < 0) continue;
-            const int h = mirror ? model.mirror[static_cast<std::size_t>(host[v])] : host[v];
-            g.row(static_cast<Eigen::Index>(v)) = base.positions[static_cast<std::size_t>(h)].transpose();
-            mean += base.positions[static_cast<std::size_t>(h)];
-            ++known;
-          }
-          mean /= std::max(known, 1);
-          for (std::size_t v = 0; v < host.size(); ++v)
-            if (host[v] < 0) g.row(static_cast<Eigen::Index>(v)) = mean.transpose();
-          return g;
-        };
-        run_guided("oracle", guidance(src.host, slot.mirrored), guidance(dst.host, false), kOracleGuidanceWeight);
-      }
-      if (wants("landmarks") && !sources.empty()) {
-        // What an artist can give: a few corresponding points clicked on both meshes (here true
-        // pairs, spread by farthest-point sampling over the source), and as guidance the geodesic
-        // distance from each, computed on each patch.
-        const HeatGeodesics src_heat(src.patch.mesh), dst_heat(dst.patch.mesh);
-        const int count = std::min(options.landmarks, static_cast<int>(sources.size()));
-        Eigen::MatrixXd gs(src.patch.mesh.num_vertices(), count), gt(dst.patch.mesh.num_vertices(), count);
-        Eigen::VectorXd nearest = src_heat.from_point(src.patch.center.triangle, src.patch.center.barycentric);
-        for (int k = 0; k < count; ++k) {
-          int best = 0;  // the evaluated source vertex farthest from the center and the picks so far
-          for (int c = 1; c < static_cast<int>(sources.size()); ++c)
-            if (nearest[sources[c]] > nearest[sources[best]]) best = c;
-          gs.col(k) = src_heat.from_vertices({sources[best]});
-          gt.col(k) = dst_heat.from_vertices({truths[best]});
-          nearest = nearest.cwiseMin(gs.col(k));
-        }
-        run_guided("landmarks", gs, gt, kLandmarkGuidanceWeight);
-      }
-
-      // Where each evaluated point lands, per method, then one heat solve per true vertex.
-      const TriangleLocator2D locator(dst.patch.uv, dst.patch.mesh.triangles);
-      std::map<std::string, std::vector<PointLocation>> landed;
-      for (auto& [name, p] : phi) {
-        std::vector<PointLocation>& l = landed[name];
-        l.resize(sources.size());
-        for_each_block(static_cast<int>(sources.size()), 64, [&](int begin, int end, int) {
-          for (int k = begin; k < end; ++k) l[k] = locator.locate(p[sources[k]]);
-        });
-      }
-      const HeatGeodesics heat(dst.patch.mesh);
-      const double scale = 1.0 / std::sqrt(patch_area(dst.patch.mesh));
-      res.target_edge_eps = scale * mean_edge_length(dst.patch.mesh);
-      std::map<std::string, std::vector<double>> eps;
-      for (auto& [name, l] : landed) eps[name].assign(sources.size(), -1.0);
-      for_each_block(static_cast<int>(sources.size()), 8, [&](int begin, int end, int) {
-        for (int k = begin; k < end; ++k) {
-          bool needed = false;
-          for (auto& [name, l] : landed) needed = needed || l[k].triangle >= 0;
-          if (!needed) continue;
-          const Eigen::VectorXd d = heat.from_vertices({truths[k]});
-          for (auto& [name, l] : landed) {
-            if (l[k].triangle < 0) continue;
-            const Tri& t = dst.patch.mesh.triangles[l[k].triangle];
-            eps[name][k] = scale * std::max(0.0, l[k].barycentric[0] * d[t[0]] + l[k].barycentric[1] * d[t[1]] +
-                                                     l[k].barycentric[2] * d[t[2]]);
-          }
-        }
-      });
-      // Overlap: source vertex area mapped inside the target.
-      const Eigen::VectorXd va = [&] {
-        Eigen::VectorXd areas = Eigen::VectorXd::Zero(src.patch.mesh.num_vertices());
-        for (int t = 0; t < src.patch.mesh.num_triangles(); ++t)
-          for (int k = 0; k < 3; ++k) areas[src.patch.mesh.triangles[t][k]] += triangle_area(src.patch.mesh, t) / 3;
-        return areas;
-      }();
-      for (auto& [name, p] : phi) {
-        MethodPairResult& r = res.methods[name];
-        double sum = 0;
-        int within = 0, count = 0;
-        for (double e : eps[name]) {
-          if (e < 0) continue;
-          sum += e;
-          within += e <= 0.05;
-          ++count;
-        }
-        r.evaluated = count;
-        r.mean_eps = count ? sum / count : 0.0;
-        r.within_0_05 = count ? static_cast<double>(within) / count : 0.0;
-        r.reflected = reflected[name];
-        r.flipped_triangles = flipped(src.patch.mesh, p, reflected[name]);
-        double inside = 0;
-        for (std::size_t v = 0; v < p.size(); ++v)
-          if (locator.locate(p[v]).triangle >= 0) inside += va[static_cast<Eigen::Index>(v)];
-        r.overlap = inside / va.sum();
-      }
-    });
-    if (options.log) {
-      std::ostringstream line;
-      line << "pair " << i << " " << slot.model << " " << slot.source_class << " -> " << slot.target_class
-           << " (" << res.source_vertices << " -> " << res.target_vertices << " vertices, "
-           << res.ground_truth_vertices << " with ground truth, target edge eps100 "
-           << fmt(100 * res.target_edge_eps) << "):";
-      for (const auto& [name, r] : res.methods)
-        line << " " << name << (r.reflected ? " (mirrored)" : "") << " eps100 " << fmt(100 * r.mean_eps) << " within " << fmt(r.within_0_05) << " flips "
-             << r.flipped_triangles << " overlap " << fmt(r.overlap) << " " << fmt(r.seconds) << "s it "
-             << r.iterations << ";";
-      if (!res.orientation_note.empty()) line << " (" << res.orientation_note << ")";
-      options.log(line.str());
-    }
+    arena.execute([&] { evaluate_pair(model, slot, i, options, res); });
+    if (options.log) log_pair(options, i, slot, res);
     results.push_back(std::move(res));
   }
   return results;

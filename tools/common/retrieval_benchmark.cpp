@@ -202,6 +202,156 @@ RetrievalBenchmark build_retrieval_benchmark(const RetrievalBenchmarkOptions& op
   return set;
 }
 
+namespace {
+
+constexpr std::size_t kTop = 10;  // hits kept per query (precision and recall at 1..kTop)
+
+// What the folds gather, per ring count r. distance[r] row q is d_q(q, .) under q's vocabulary.
+struct FoldRuns {
+  std::vector<std::vector<double>> distance;  // d_i(i, j), row i
+  std::vector<std::vector<double>> query_seconds, build_seconds;
+  std::vector<double> vocab_seconds, sigmas, vocab_sizes;
+  std::vector<std::vector<std::vector<RetrievalHit>>> top;
+};
+
+// Histograms of every patch under this fold's vocabulary (library entries and the queries), then
+// each query against all other patches, for one ring count.
+void answer_fold_queries(const RetrievalBenchmark& set, std::size_t descriptor_index, const RetrievalConfig& config,
+                         const std::vector<std::size_t>& queries, const std::vector<std::size_t>& library,
+                         std::size_t r, FoldRuns& runs) {
+  const std::size_t n = set.patches.size();
+  const std::size_t length = config.histogram_length();
+  std::vector<float> hist(n * length);
+  std::vector<double> hist_seconds(n);
+  tbb::parallel_for(std::size_t{0}, n, [&](std::size_t p) {
+    const auto th = Clock::now();
+    const std::vector<float> h = bag_of_features(config, set.patches[p].descriptors[descriptor_index]);
+    hist_seconds[p] = seconds_since(th);
+    std::copy(h.begin(), h.end(), hist.begin() + static_cast<std::ptrdiff_t>(p * length));
+  });
+  double library_hist = 0;
+  for (const std::size_t p : library) library_hist += hist_seconds[p];
+  runs.build_seconds[r].push_back(runs.vocab_seconds.back() + library_hist);
+
+  // Each query against all other patches: a flat library array without the query (what a real
+  // library holds), scanned by top_n_l1, timed together with the query's own histogram.
+  std::vector<float> others((n - 1) * length);
+  std::vector<std::size_t> others_index(n - 1);
+  for (const std::size_t q : queries) {
+    std::size_t e = 0;
+    for (std::size_t p = 0; p < n; ++p) {
+      if (p == q) continue;
+      std::copy(hist.begin() + static_cast<std::ptrdiff_t>(p * length),
+                hist.begin() + static_cast<std::ptrdiff_t>((p + 1) * length),
+                others.begin() + static_cast<std::ptrdiff_t>(e * length));
+      others_index[e++] = p;
+    }
+    const auto tq = Clock::now();
+    const std::vector<float> hq = bag_of_features(config, set.patches[q].descriptors[descriptor_index]);
+    std::vector<RetrievalHit> hits = top_n_l1(others.data(), n - 1, length, hq.data(), kTop);
+    runs.query_seconds[r].push_back(seconds_since(tq));
+    for (RetrievalHit& h : hits) h.entry = others_index[h.entry];
+    runs.top[r][q] = std::move(hits);
+    // The whole row (for ranks, the confusion and the MDS picture).
+    for (std::size_t p = 0; p < n; ++p)
+      runs.distance[r][q * n + p] =
+          p == q ? 0.0 : l1_distance(hist.data() + q * length, hist.data() + p * length, length);
+  }
+}
+
+// One fold: the vocabulary of the other folds, every patch histogrammed with it, and the fold's
+// queries answered against all other patches, for every ring count.
+void evaluate_fold(const RetrievalBenchmark& set, std::size_t descriptor_index, const RetrievalEvalOptions& options,
+                   int fold, FoldRuns& runs) {
+  const std::size_t n = set.patches.size();
+  std::vector<std::size_t> queries, library;
+  std::vector<Eigen::MatrixXd> training;
+  for (std::size_t p = 0; p < n; ++p) {
+    if (set.patches[p].fold == fold) {
+      queries.push_back(p);
+    } else {
+      library.push_back(p);
+      training.push_back(set.patches[p].descriptors[descriptor_index].values);
+    }
+  }
+  if (queries.empty()) return;
+  require(!library.empty(), MCON_ERROR_INVALID_ARGUMENT, "retrieval evaluation: a fold holds every patch");
+  RetrievalBuildOptions bo;
+  bo.descriptor = set.descriptors[descriptor_index];
+  bo.vocabulary_size = options.vocabulary_size;
+  bo.sigma_bof = options.sigma_bof;
+  bo.seed = options.seed;
+  bo.max_training_points = options.max_training_points;
+  const auto tv = Clock::now();
+  RetrievalConfig config = build_retrieval_config(training, bo);
+  runs.vocab_seconds.push_back(seconds_since(tv));
+  runs.sigmas.push_back(config.sigma_bof);
+  runs.vocab_sizes.push_back(config.vocabulary_size);
+  training.clear();
+
+  for (std::size_t r = 0; r < options.rings.size(); ++r) {
+    config.rings = options.rings[r];
+    answer_fold_queries(set, descriptor_index, config, queries, library, r, runs);
+  }
+  if (options.log)
+    options.log("fold " + std::to_string(fold) + ": " + std::to_string(queries.size()) + " queries, vocabulary of " +
+                std::to_string(config.vocabulary_size) + " words from " + std::to_string(library.size()) +
+                " patches in " + std::to_string(runs.vocab_seconds.back()) + " s");
+}
+
+// Rank of the first same-class patch in query q's full row (ties broken by index, as top_n_l1).
+int first_correct_rank(const RetrievalBenchmark& set, const std::vector<double>& distance, std::size_t q) {
+  const std::size_t n = set.patches.size();
+  const std::string& label = set.patches[q].label;
+  std::vector<std::size_t> order;
+  for (std::size_t p = 0; p < n; ++p)
+    if (p != q) order.push_back(p);
+  const double* row = distance.data() + q * n;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return row[a] < row[b]; });
+  int rank = 0;
+  for (std::size_t i = 0; i < order.size() && rank == 0; ++i)
+    if (set.patches[order[i]].label == label) rank = static_cast<int>(i + 1);
+  return rank;
+}
+
+// The scores of ring count r from the gathered top hits and distances.
+void score_rings(const RetrievalBenchmark& set, const FoldRuns& runs, std::size_t r,
+                 std::map<std::string, int>& class_size, RetrievalEvaluation& ev) {
+  const std::size_t n = set.patches.size();
+  ev.precision_at.assign(kTop, 0.0);
+  ev.recall_at.assign(kTop, 0.0);
+  std::map<std::string, int> class_hits;
+  int correct = 0, recall_queries = 0;
+  for (std::size_t q = 0; q < n; ++q) {
+    const std::string& label = set.patches[q].label;
+    const std::vector<RetrievalHit>& hits = runs.top[r][q];
+    const int relevant = class_size[label] - 1;
+    int same = 0;
+    for (std::size_t i = 0; i < kTop; ++i) {
+      if (i < hits.size() && set.patches[hits[i].entry].label == label) ++same;
+      ev.precision_at[i] += static_cast<double>(same) / static_cast<double>(i + 1);
+      if (relevant > 0) ev.recall_at[i] += static_cast<double>(same) / relevant;
+    }
+    if (relevant > 0) ++recall_queries;
+    const bool hit = !hits.empty() && set.patches[hits[0].entry].label == label;
+    if (hit) {
+      ++correct;
+      ++class_hits[label];
+    } else if (!hits.empty()) {
+      ++ev.confusion[{label, set.patches[hits[0].entry].label}];
+      const int rank = first_correct_rank(set, runs.distance[r], q);
+      ev.misses.push_back({static_cast<int>(q), static_cast<int>(hits[0].entry), rank});
+    }
+  }
+  ev.nn_accuracy = static_cast<double>(correct) / static_cast<double>(n);
+  for (double& v : ev.precision_at) v /= static_cast<double>(n);
+  for (double& v : ev.recall_at) v = recall_queries > 0 ? v / recall_queries : 0.0;
+  for (const auto& [label, size] : class_size)
+    ev.class_nn_accuracy[label] = static_cast<double>(class_hits[label]) / static_cast<double>(size);
+}
+
+}  // namespace
+
 std::vector<RetrievalEvaluation> evaluate_retrieval(const RetrievalBenchmark& set, std::size_t descriptor_index,
                                                     const RetrievalEvalOptions& options) {
   require(descriptor_index < set.descriptors.size(), MCON_ERROR_INVALID_ARGUMENT,
@@ -209,91 +359,17 @@ std::vector<RetrievalEvaluation> evaluate_retrieval(const RetrievalBenchmark& se
   require(!options.rings.empty(), MCON_ERROR_INVALID_ARGUMENT, "retrieval evaluation: no ring count");
   const std::size_t n = set.patches.size();
   require(n >= 2, MCON_ERROR_INVALID_ARGUMENT, "retrieval evaluation: need at least two patches");
-  constexpr std::size_t kTop = 10;
-  const auto log = [&](const std::string& s) {
-    if (options.log) options.log(s);
-  };
 
   const std::size_t R = options.rings.size();
   // Per fold: the vocabulary of the other folds, every patch histogrammed with it, and the fold's
   // queries answered against all other patches. distance[r] row q is d_q(q, .) under q's vocabulary.
   std::vector<RetrievalEvaluation> results(R);
-  std::vector<std::vector<double>> distance(R, std::vector<double>(n * n, 0.0));  // d_i(i, j), row i
-  std::vector<std::vector<double>> query_seconds(R), build_seconds(R);
-  std::vector<double> vocab_seconds, sigmas, vocab_sizes;
-  std::vector<std::vector<std::vector<RetrievalHit>>> top(R, std::vector<std::vector<RetrievalHit>>(n));
-
-  for (int fold = 0; fold < set.folds; ++fold) {
-    std::vector<std::size_t> queries, library;
-    std::vector<Eigen::MatrixXd> training;
-    for (std::size_t p = 0; p < n; ++p) {
-      if (set.patches[p].fold == fold) {
-        queries.push_back(p);
-      } else {
-        library.push_back(p);
-        training.push_back(set.patches[p].descriptors[descriptor_index].values);
-      }
-    }
-    if (queries.empty()) continue;
-    require(!library.empty(), MCON_ERROR_INVALID_ARGUMENT, "retrieval evaluation: a fold holds every patch");
-    RetrievalBuildOptions bo;
-    bo.descriptor = set.descriptors[descriptor_index];
-    bo.vocabulary_size = options.vocabulary_size;
-    bo.sigma_bof = options.sigma_bof;
-    bo.seed = options.seed;
-    bo.max_training_points = options.max_training_points;
-    const auto tv = Clock::now();
-    RetrievalConfig config = build_retrieval_config(training, bo);
-    vocab_seconds.push_back(seconds_since(tv));
-    sigmas.push_back(config.sigma_bof);
-    vocab_sizes.push_back(config.vocabulary_size);
-    training.clear();
-
-    for (std::size_t r = 0; r < R; ++r) {
-      config.rings = options.rings[r];
-      const std::size_t length = config.histogram_length();
-      // Histograms of every patch under this fold's vocabulary (library entries and the queries).
-      std::vector<float> hist(n * length);
-      std::vector<double> hist_seconds(n);
-      tbb::parallel_for(std::size_t{0}, n, [&](std::size_t p) {
-        const auto th = Clock::now();
-        const std::vector<float> h = bag_of_features(config, set.patches[p].descriptors[descriptor_index]);
-        hist_seconds[p] = seconds_since(th);
-        std::copy(h.begin(), h.end(), hist.begin() + static_cast<std::ptrdiff_t>(p * length));
-      });
-      double library_hist = 0;
-      for (const std::size_t p : library) library_hist += hist_seconds[p];
-      build_seconds[r].push_back(vocab_seconds.back() + library_hist);
-
-      // Each query against all other patches: a flat library array without the query (what a real
-      // library holds), scanned by top_n_l1, timed together with the query's own histogram.
-      std::vector<float> others((n - 1) * length);
-      std::vector<std::size_t> others_index(n - 1);
-      for (const std::size_t q : queries) {
-        std::size_t e = 0;
-        for (std::size_t p = 0; p < n; ++p) {
-          if (p == q) continue;
-          std::copy(hist.begin() + static_cast<std::ptrdiff_t>(p * length),
-                    hist.begin() + static_cast<std::ptrdiff_t>((p + 1) * length),
-                    others.begin() + static_cast<std::ptrdiff_t>(e * length));
-          others_index[e++] = p;
-        }
-        const auto tq = Clock::now();
-        const std::vector<float> hq = bag_of_features(config, set.patches[q].descriptors[descriptor_index]);
-        std::vector<RetrievalHit> hits = top_n_l1(others.data(), n - 1, length, hq.data(), kTop);
-        query_seconds[r].push_back(seconds_since(tq));
-        for (RetrievalHit& h : hits) h.entry = others_index[h.entry];
-        top[r][q] = std::move(hits);
-        // The whole row (for ranks, the confusion and the MDS picture).
-        for (std::size_t p = 0; p < n; ++p)
-          distance[r][q * n + p] =
-              p == q ? 0.0 : l1_distance(hist.data() + q * length, hist.data() + p * length, length);
-      }
-    }
-    log("fold " + std::to_string(fold) + ": " + std::to_string(queries.size()) + " queries, vocabulary of " +
-        std::to_string(config.vocabulary_size) + " words from " + std::to_string(library.size()) + " patches in " +
-        std::to_string(vocab_seconds.back()) + " s");
-  }
+  FoldRuns runs;
+  runs.distance.assign(R, std::vector<double>(n * n, 0.0));
+  runs.query_seconds.resize(R);
+  runs.build_seconds.resize(R);
+  runs.top.assign(R, std::vector<std::vector<RetrievalHit>>(n));
+  for (int fold = 0; fold < set.folds; ++fold) evaluate_fold(set, descriptor_index, options, fold, runs);
 
   std::map<std::string, int> class_size;
   for (const BenchmarkPatch& p : set.patches) ++class_size[p.label];
@@ -302,54 +378,17 @@ std::vector<RetrievalEvaluation> evaluate_retrieval(const RetrievalBenchmark& se
     RetrievalEvaluation& ev = results[r];
     ev.descriptor = set.descriptors[descriptor_index];
     ev.rings = options.rings[r];
-    ev.vocabulary_size = static_cast<int>(median_of(vocab_sizes));
-    ev.sigma_bof = median_of(sigmas);
+    ev.vocabulary_size = static_cast<int>(median_of(runs.vocab_sizes));
+    ev.sigma_bof = median_of(runs.sigmas);
     ev.class_size = class_size;
-    ev.precision_at.assign(kTop, 0.0);
-    ev.recall_at.assign(kTop, 0.0);
-    std::map<std::string, int> class_hits;
-    int correct = 0, recall_queries = 0;
-    for (std::size_t q = 0; q < n; ++q) {
-      const std::string& label = set.patches[q].label;
-      const std::vector<RetrievalHit>& hits = top[r][q];
-      const int relevant = class_size[label] - 1;
-      int same = 0;
-      for (std::size_t i = 0; i < kTop; ++i) {
-        if (i < hits.size() && set.patches[hits[i].entry].label == label) ++same;
-        ev.precision_at[i] += static_cast<double>(same) / static_cast<double>(i + 1);
-        if (relevant > 0) ev.recall_at[i] += static_cast<double>(same) / relevant;
-      }
-      if (relevant > 0) ++recall_queries;
-      const bool hit = !hits.empty() && set.patches[hits[0].entry].label == label;
-      if (hit) {
-        ++correct;
-        ++class_hits[label];
-      } else if (!hits.empty()) {
-        ++ev.confusion[{label, set.patches[hits[0].entry].label}];
-        // Rank of the first same-class patch in the full row (ties broken by index, as top_n_l1).
-        std::vector<std::size_t> order;
-        for (std::size_t p = 0; p < n; ++p)
-          if (p != q) order.push_back(p);
-        const double* row = distance[r].data() + q * n;
-        std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return row[a] < row[b]; });
-        int rank = 0;
-        for (std::size_t i = 0; i < order.size() && rank == 0; ++i)
-          if (set.patches[order[i]].label == label) rank = static_cast<int>(i + 1);
-        ev.misses.push_back({static_cast<int>(q), static_cast<int>(hits[0].entry), rank});
-      }
-    }
-    ev.nn_accuracy = static_cast<double>(correct) / static_cast<double>(n);
-    for (double& v : ev.precision_at) v /= static_cast<double>(n);
-    for (double& v : ev.recall_at) v = recall_queries > 0 ? v / recall_queries : 0.0;
-    for (const auto& [label, size] : class_size)
-      ev.class_nn_accuracy[label] = static_cast<double>(class_hits[label]) / static_cast<double>(size);
-    ev.library_build_seconds = median_of(build_seconds[r]);
-    ev.vocabulary_seconds = median_of(vocab_seconds);
-    ev.query_seconds_median = median_of(query_seconds[r]);
+    score_rings(set, runs, r, class_size, ev);
+    ev.library_build_seconds = median_of(runs.build_seconds[r]);
+    ev.vocabulary_seconds = median_of(runs.vocab_seconds);
+    ev.query_seconds_median = median_of(runs.query_seconds[r]);
     ev.distances.assign(n * n, 0.0);
     for (std::size_t i = 0; i < n; ++i)
       for (std::size_t j = 0; j < n; ++j)
-        ev.distances[i * n + j] = 0.5 * (distance[r][i * n + j] + distance[r][j * n + i]);
+        ev.distances[i * n + j] = 0.5 * (runs.distance[r][i * n + j] + runs.distance[r][j * n + i]);
   }
   return results;
 }

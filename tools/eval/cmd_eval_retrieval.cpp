@@ -66,15 +66,21 @@ tools::Json evaluation_summary(const tools::RetrievalEvaluation& ev) {
   return j;
 }
 
-int run_eval_retrieval(const Args& args) {
-  if (!args.empty() && (args[0] == "--help" || args[0] == "-h")) {
-    std::fputs(kUsage, stdout);
-    return 0;
-  }
+// The command line of eval-retrieval, checked.
+struct EvalRetrievalCommand {
+  tools::RetrievalBenchmarkOptions options;
+  long rings = kDefaultRings, vocabulary = 128, threads = 0;
+  double sigma = 0.0;
+  bool compare = false, json = false;
+  std::string plot_dir;
+};
+
+EvalRetrievalCommand parse_eval_retrieval(const Args& args) {
   const ArgParser p(args, {"shared", "seed", "people", "faces", "descriptor", "rings", "vocabulary", "sigma",
                            "threads", "plot"},
                     {"json", "compare"});
-  tools::RetrievalBenchmarkOptions options;
+  EvalRetrievalCommand cmd;
+  tools::RetrievalBenchmarkOptions& options = cmd.options;
   options.shared_dir = p.required("shared");
   require(std::filesystem::is_directory(options.shared_dir + "/bench"), MCON_ERROR_IO,
           "--shared '" + options.shared_dir + "' has no bench/ folder (expected the shared data folder)");
@@ -89,210 +95,270 @@ int run_eval_retrieval(const Args& args) {
   const std::string descriptor = p.get("descriptor", kDefaultDescriptor);
   require(is_builtin_descriptor(descriptor), MCON_ERROR_INVALID_ARGUMENT,
           "--descriptor must be curv9, hks or wks (got '" + descriptor + "')");
-  const long rings = p.integer("rings", kDefaultRings);
-  require(rings >= 1 && rings <= 64, MCON_ERROR_INVALID_ARGUMENT, "--rings must be in 1..64");
-  const long vocabulary = p.integer("vocabulary", 128);
-  require(vocabulary >= 1 && vocabulary <= 4096, MCON_ERROR_INVALID_ARGUMENT, "--vocabulary must be in 1..4096");
-  const double sigma = p.number("sigma", 0.0);
-  require(std::isfinite(sigma) && sigma >= 0, MCON_ERROR_INVALID_ARGUMENT,
+  cmd.rings = p.integer("rings", kDefaultRings);
+  require(cmd.rings >= 1 && cmd.rings <= 64, MCON_ERROR_INVALID_ARGUMENT, "--rings must be in 1..64");
+  cmd.vocabulary = p.integer("vocabulary", 128);
+  require(cmd.vocabulary >= 1 && cmd.vocabulary <= 4096, MCON_ERROR_INVALID_ARGUMENT,
+          "--vocabulary must be in 1..4096");
+  cmd.sigma = p.number("sigma", 0.0);
+  require(std::isfinite(cmd.sigma) && cmd.sigma >= 0, MCON_ERROR_INVALID_ARGUMENT,
           "--sigma must be 0 (median rule) or positive");
-  const long threads = p.integer("threads", 0);
-  require(threads >= 0 && threads <= 1024, MCON_ERROR_INVALID_ARGUMENT, "--threads must be in 0..1024 (0 = all)");
-  const bool compare = p.flag("compare"), json = p.flag("json");
-  const std::string plot_dir = p.get("plot");
-  if (!plot_dir.empty()) {
+  cmd.threads = p.integer("threads", 0);
+  require(cmd.threads >= 0 && cmd.threads <= 1024, MCON_ERROR_INVALID_ARGUMENT,
+          "--threads must be in 0..1024 (0 = all)");
+  cmd.compare = p.flag("compare");
+  cmd.json = p.flag("json");
+  cmd.plot_dir = p.get("plot");
+  if (!cmd.plot_dir.empty()) {
     std::error_code ec;
-    std::filesystem::create_directories(plot_dir, ec);
-    require(std::filesystem::is_directory(plot_dir), MCON_ERROR_IO, "--plot: cannot create '" + plot_dir + "'");
+    std::filesystem::create_directories(cmd.plot_dir, ec);
+    require(std::filesystem::is_directory(cmd.plot_dir), MCON_ERROR_IO,
+            "--plot: cannot create '" + cmd.plot_dir + "'");
   }
 
   options.descriptors = {descriptor};
-  if (compare)
+  if (cmd.compare)
     for (const char* d : {kDescriptorCurv9, kDescriptorHks, kDescriptorWks})
       if (d != descriptor) options.descriptors.push_back(d);
   options.log = [](const std::string& s) { std::fprintf(stderr, "eval-retrieval: %s\n", s.c_str()); };
+  return cmd;
+}
 
-  tbb::task_arena arena(threads > 0 ? static_cast<int>(threads) : tbb::task_arena::automatic);
+// Every evaluated (descriptor, rings), the main one first, each logged with its wrong nearest neighbours.
+std::vector<tools::RetrievalEvaluation> evaluate_table(const tools::RetrievalBenchmark& set,
+                                                       const EvalRetrievalCommand& cmd) {
+  const tools::RetrievalBenchmarkOptions& options = cmd.options;
+  tools::RetrievalEvalOptions eo;
+  eo.vocabulary_size = static_cast<int>(cmd.vocabulary);
+  eo.sigma_bof = cmd.sigma;
+  eo.seed = options.seed;
+  eo.log = options.log;
+  std::vector<std::uint32_t> ring_list = {static_cast<std::uint32_t>(cmd.rings)};
+  if (cmd.compare)
+    for (const std::uint32_t r : {1u, 2u, 4u, 8u})
+      if (r != ring_list[0]) ring_list.push_back(r);
+  std::vector<tools::RetrievalEvaluation> table;
+  for (std::size_t d = 0; d < set.descriptors.size(); ++d) {
+    eo.rings = d == 0 ? ring_list : std::vector<std::uint32_t>{1u, 2u, 4u, 8u};
+    if (!cmd.compare) eo.rings = ring_list;
+    std::vector<tools::RetrievalEvaluation> evs = tools::evaluate_retrieval(set, d, eo);
+    for (auto& ev : evs) {
+      std::string confused;
+      for (const auto& [pair, count] : ev.confusion)
+        confused += " " + std::to_string(count) + "x " + pair.first + "->" + pair.second;
+      char line[200];
+      std::snprintf(line, sizeof line, "%s rings %u: nn accuracy %.4f, precision@4 %.4f;", ev.descriptor.c_str(),
+                    ev.rings, ev.nn_accuracy, ev.precision_at[3]);
+      options.log(line + (confused.empty() ? std::string(" no wrong nearest neighbour") : " wrong:" + confused));
+      table.push_back(std::move(ev));
+    }
+  }
+  return table;
+}
+
+// Per-patch preparation figures over the whole set.
+struct PatchTotals {
+  std::vector<double> prepare_s, describe_s;
+  int attempts = 0, removed = 0, vertices = 0;
+};
+
+PatchTotals patch_totals(const tools::RetrievalBenchmark& set) {
+  PatchTotals t;
+  for (const tools::BenchmarkPatch& bp : set.patches) {
+    t.prepare_s.push_back(bp.prepare_seconds);
+    t.describe_s.push_back(bp.describe_seconds.front());
+    t.attempts += bp.attempts - 1;
+    t.removed += bp.removed_vertices;
+    t.vertices += bp.vertices;
+  }
+  return t;
+}
+
+// A well-separated group (hands and feet, far from the head classes) squeezes the rest into a
+// corner of the picture: if the first axis has a gap of more than 30% of its span, also draw
+// the MDS recomputed on the larger side alone (mds_zoom.svg).
+void write_mds_zoom_plot(const tools::ScatterPlot& sc, const tools::RetrievalEvaluation& main_ev, std::size_t n,
+                         const std::string& plot_dir) {
+  char title[160];
+  std::vector<std::size_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return sc.xy[2 * a] < sc.xy[2 * b]; });
+  double best_gap = 0;
+  std::size_t split = 0;
+  for (std::size_t i = 1; i < n; ++i) {
+    const double gap = sc.xy[2 * order[i]] - sc.xy[2 * order[i - 1]];
+    if (gap > best_gap) best_gap = gap, split = i;
+  }
+  const double span = n ? sc.xy[2 * order[n - 1]] - sc.xy[2 * order[0]] : 0.0;
+  if (n >= 4 && span > 0 && best_gap > 0.3 * span) {
+    std::vector<std::size_t> keep(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(split));
+    if (keep.size() < n - split) keep.assign(order.begin() + static_cast<std::ptrdiff_t>(split), order.end());
+    std::sort(keep.begin(), keep.end());
+    const std::size_t m = keep.size();
+    std::vector<double> sub(m * m);
+    for (std::size_t a = 0; a < m; ++a)
+      for (std::size_t b = 0; b < m; ++b) sub[a * m + b] = main_ev.distances[keep[a] * n + keep[b]];
+    tools::ScatterPlot zoom;
+    std::snprintf(title, sizeof title, "MDS of the %zu patches of the larger group (%s, %u ring%s; 2 axes keep %.0f%%)", m,
+                  main_ev.descriptor.c_str(), main_ev.rings, main_ev.rings == 1 ? "" : "s",
+                  100 * tools::classical_mds_2d_explained(sub, m));
+    zoom.title = title;
+    zoom.xy = tools::classical_mds_2d(sub, m);
+    zoom.groups = sc.groups;
+    zoom.markers = sc.markers;
+    for (const std::size_t i : keep) {
+      zoom.group.push_back(sc.group[i]);
+      zoom.marker.push_back(sc.marker[i]);
+    }
+    tools::write_scatter_svg(plot_dir + "/mds_zoom.svg", zoom);
+  }
+}
+
+// precision_recall.svg, mds.svg and maybe mds_zoom.svg of the main evaluation.
+void write_plots(const tools::RetrievalBenchmark& set, const tools::RetrievalEvaluation& main_ev,
+                 const std::string& plot_dir) {
+  const std::size_t n = set.patches.size();
+  tools::PrecisionRecallPlot pr;
+  char title[160];
+  std::snprintf(title, sizeof title, "%s, %u ring%s, k = %d: %zu patches, nn accuracy %.3f, P@4 %.3f", main_ev.descriptor.c_str(),
+                main_ev.rings, main_ev.rings == 1 ? "" : "s", main_ev.vocabulary_size, n, main_ev.nn_accuracy,
+                main_ev.precision_at[3]);
+  pr.title = title;
+  pr.precision = main_ev.precision_at;
+  pr.recall = main_ev.recall_at;
+  tools::write_precision_recall_svg(plot_dir + "/precision_recall.svg", pr);
+  tools::ScatterPlot sc;
+  const double explained = tools::classical_mds_2d_explained(main_ev.distances, n);
+  std::snprintf(title, sizeof title, "MDS of bag-of-features L1 distances (%s, %u ring%s; 2 axes keep %.0f%%)",
+                main_ev.descriptor.c_str(), main_ev.rings, main_ev.rings == 1 ? "" : "s", 100 * explained);
+  sc.title = title;
+  sc.xy = tools::classical_mds_2d(main_ev.distances, n);
+  sc.groups = set.classes;
+  sc.markers = {"MakeHuman", "ICT"};
+  for (const tools::BenchmarkPatch& bp : set.patches) {
+    sc.group.push_back(static_cast<int>(std::find(set.classes.begin(), set.classes.end(), bp.label) - set.classes.begin()));
+    sc.marker.push_back(bp.model == "ict" ? 1 : 0);
+  }
+  tools::write_scatter_svg(plot_dir + "/mds.svg", sc);
+  write_mds_zoom_plot(sc, main_ev, n, plot_dir);
+}
+
+tools::Json confusion_json(const tools::RetrievalEvaluation& main_ev) {
+  tools::Json conf = tools::Json::array();
+  for (const auto& [pair, count] : main_ev.confusion) {
+    tools::Json c = tools::Json::object();
+    c.set("query_class", pair.first);
+    c.set("neighbour_class", pair.second);
+    c.set("count", count);
+    conf.push_back(c);
+  }
+  return conf;
+}
+
+tools::Json misses_json(const tools::RetrievalBenchmark& set, const tools::RetrievalEvaluation& main_ev) {
+  tools::Json misses = tools::Json::array();
+  for (const auto& m : main_ev.misses) {
+    tools::Json c = tools::Json::object();
+    c.set("query", patch_name(set.patches[static_cast<std::size_t>(m.query)]));
+    c.set("nearest", patch_name(set.patches[static_cast<std::size_t>(m.neighbour)]));
+    c.set("first_correct_rank", m.first_correct_rank);
+    misses.push_back(c);
+  }
+  return misses;
+}
+
+// The --json object on stdout (called inside the command's task arena: it reports its threads).
+void print_json(const tools::RetrievalBenchmark& set, const std::vector<tools::RetrievalEvaluation>& table,
+                const PatchTotals& totals, const EvalRetrievalCommand& cmd) {
+  const tools::RetrievalBenchmarkOptions& options = cmd.options;
+  const tools::RetrievalEvaluation& main_ev = table.front();
+  const std::size_t n = set.patches.size();
+  tools::Json j = tools::Json::object();
+  j.set("patches", static_cast<unsigned long>(n));
+  j.set("classes", static_cast<unsigned long>(set.classes.size()));
+  tools::Json names = tools::Json::array(), sizes = tools::Json::object(), acc = tools::Json::object();
+  for (const std::string& c : set.classes) {
+    names.push_back(c);
+    sizes.set(c, main_ev.class_size.at(c));
+    acc.set(c, main_ev.class_nn_accuracy.at(c));
+  }
+  j.set("class_names", names);
+  j.set("class_size", sizes);
+  j.set("descriptor", main_ev.descriptor);
+  j.set("rings", static_cast<unsigned>(main_ev.rings));
+  j.set("seed", static_cast<unsigned long>(options.seed));
+  j.set("people", options.people);
+  j.set("faces", options.faces);
+  j.set("vocabulary_size", main_ev.vocabulary_size);
+  j.set("sigma_bof", main_ev.sigma_bof);
+  j.set("nn_accuracy", main_ev.nn_accuracy);
+  j.set("precision_at", number_array(main_ev.precision_at));
+  j.set("recall_at", number_array(main_ev.recall_at));
+  j.set("class_nn_accuracy", acc);
+  j.set("confusion", confusion_json(main_ev));
+  j.set("misses", misses_json(set, main_ev));
+  j.set("library_build_seconds", main_ev.library_build_seconds);
+  j.set("vocabulary_seconds", main_ev.vocabulary_seconds);
+  j.set("query_seconds_median", main_ev.query_seconds_median);
+  j.set("describe_seconds_median", tools::median_of(totals.describe_s));
+  j.set("prepare_seconds_median", tools::median_of(totals.prepare_s));
+  j.set("instances_seconds", set.instances_seconds);
+  j.set("patches_seconds", set.patches_seconds);
+  j.set("threads", tbb::this_task_arena::max_concurrency());
+  j.set("folds", set.folds);
+  j.set("vocabulary_rule",
+        "leave-one-out; the normalization, k-means vocabulary and sigma_bof answering a query are fitted on "
+        "the patches of the other folds only (fold = subject number mod folds; person i and face i are "
+        "subject i; with a single subject, patch number mod 2), so neither the query nor its own person "
+        "or face shapes the words");
+  j.set("retessellation",
+        "per patch: quad diagonals alternate or random, then seeded halfedge-collapse decimation of the "
+        "instance removing 20-40% of its vertices (center kept), then the heat-method geodesic disk");
+  j.set("mean_patch_vertices", n ? static_cast<double>(totals.vertices) / static_cast<double>(n) : 0.0);
+  j.set("retessellation_retries", totals.attempts);
+  if (cmd.compare) {
+    tools::Json t = tools::Json::array();
+    for (const auto& ev : table) t.push_back(evaluation_summary(ev));
+    j.set("comparison", t);
+  }
+  std::fputs(tools::write_json(j).c_str(), stdout);
+  std::fputc('\n', stdout);
+}
+
+void print_text(const tools::RetrievalBenchmark& set, const std::vector<tools::RetrievalEvaluation>& table,
+                const PatchTotals& totals, const EvalRetrievalCommand& cmd) {
+  const tools::RetrievalBenchmarkOptions& options = cmd.options;
+  const tools::RetrievalEvaluation& main_ev = table.front();
+  const std::size_t n = set.patches.size();
+  std::printf("%zu patches in %zu classes (%d people, %d faces, seed %llu), %d re-tessellation retries\n", n,
+              set.classes.size(), options.people, options.faces, static_cast<unsigned long long>(options.seed),
+              totals.attempts);
+  for (const auto& ev : table)
+    std::printf("%-5s rings %u: nn accuracy %.3f, precision@4 %.3f, recall@4 %.3f, build %.2f s, query %.2e s\n",
+                ev.descriptor.c_str(), ev.rings, ev.nn_accuracy, ev.precision_at[3], ev.recall_at[3],
+                ev.library_build_seconds, ev.query_seconds_median);
+  for (const auto& [pair, count] : main_ev.confusion)
+    std::printf("  %d x %s -> %s\n", count, pair.first.c_str(), pair.second.c_str());
+}
+
+int run_eval_retrieval(const Args& args) {
+  if (!args.empty() && (args[0] == "--help" || args[0] == "-h")) {
+    std::fputs(kUsage, stdout);
+    return 0;
+  }
+  const EvalRetrievalCommand cmd = parse_eval_retrieval(args);
+
+  tbb::task_arena arena(cmd.threads > 0 ? static_cast<int>(cmd.threads) : tbb::task_arena::automatic);
   int status = 0;
   arena.execute([&] {
-    const tools::RetrievalBenchmark set = tools::build_retrieval_benchmark(options);
-
-    tools::RetrievalEvalOptions eo;
-    eo.vocabulary_size = static_cast<int>(vocabulary);
-    eo.sigma_bof = sigma;
-    eo.seed = options.seed;
-    eo.log = options.log;
-    std::vector<std::uint32_t> ring_list = {static_cast<std::uint32_t>(rings)};
-    if (compare)
-      for (const std::uint32_t r : {1u, 2u, 4u, 8u})
-        if (r != ring_list[0]) ring_list.push_back(r);
-    std::vector<tools::RetrievalEvaluation> table;
-    for (std::size_t d = 0; d < set.descriptors.size(); ++d) {
-      eo.rings = d == 0 ? ring_list : std::vector<std::uint32_t>{1u, 2u, 4u, 8u};
-      if (!compare) eo.rings = ring_list;
-      std::vector<tools::RetrievalEvaluation> evs = tools::evaluate_retrieval(set, d, eo);
-      for (auto& ev : evs) {
-        std::string confused;
-        for (const auto& [pair, count] : ev.confusion)
-          confused += " " + std::to_string(count) + "x " + pair.first + "->" + pair.second;
-        char line[200];
-        std::snprintf(line, sizeof line, "%s rings %u: nn accuracy %.4f, precision@4 %.4f;", ev.descriptor.c_str(),
-                      ev.rings, ev.nn_accuracy, ev.precision_at[3]);
-        options.log(line + (confused.empty() ? std::string(" no wrong nearest neighbour") : " wrong:" + confused));
-        table.push_back(std::move(ev));
-      }
-    }
-    const tools::RetrievalEvaluation& main_ev = table.front();
-    const std::size_t n = set.patches.size();
-
-    std::vector<double> prepare_s, describe_s;
-    int attempts = 0, removed = 0, vertices = 0;
-    for (const tools::BenchmarkPatch& bp : set.patches) {
-      prepare_s.push_back(bp.prepare_seconds);
-      describe_s.push_back(bp.describe_seconds.front());
-      attempts += bp.attempts - 1;
-      removed += bp.removed_vertices;
-      vertices += bp.vertices;
-    }
-
-    if (!plot_dir.empty()) {
-      tools::PrecisionRecallPlot pr;
-      char title[160];
-      std::snprintf(title, sizeof title, "%s, %u ring%s, k = %d: %zu patches, nn accuracy %.3f, P@4 %.3f", main_ev.descriptor.c_str(),
-                    main_ev.rings, main_ev.rings == 1 ? "" : "s", main_ev.vocabulary_size, n, main_ev.nn_accuracy,
-                    main_ev.precision_at[3]);
-      pr.title = title;
-      pr.precision = main_ev.precision_at;
-      pr.recall = main_ev.recall_at;
-      tools::write_precision_recall_svg(plot_dir + "/precision_recall.svg", pr);
-      tools::ScatterPlot sc;
-      const double explained = tools::classical_mds_2d_explained(main_ev.distances, n);
-      std::snprintf(title, sizeof title, "MDS of bag-of-features L1 distances (%s, %u ring%s; 2 axes keep %.0f%%)",
-                    main_ev.descriptor.c_str(), main_ev.rings, main_ev.rings == 1 ? "" : "s", 100 * explained);
-      sc.title = title;
-      sc.xy = tools::classical_mds_2d(main_ev.distances, n);
-      sc.groups = set.classes;
-      sc.markers = {"MakeHuman", "ICT"};
-      for (const tools::BenchmarkPatch& bp : set.patches) {
-        sc.group.push_back(static_cast<int>(std::find(set.classes.begin(), set.classes.end(), bp.label) - set.classes.begin()));
-        sc.marker.push_back(bp.model == "ict" ? 1 : 0);
-      }
-      tools::write_scatter_svg(plot_dir + "/mds.svg", sc);
-      // A well-separated group (hands and feet, far from the head classes) squeezes the rest into a
-      // corner of the picture: if the first axis has a gap of more than 30% of its span, also draw
-      // the MDS recomputed on the larger side alone (mds_zoom.svg).
-      std::vector<std::size_t> order(n);
-      for (std::size_t i = 0; i < n; ++i) order[i] = i;
-      std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return sc.xy[2 * a] < sc.xy[2 * b]; });
-      double best_gap = 0;
-      std::size_t split = 0;
-      for (std::size_t i = 1; i < n; ++i) {
-        const double gap = sc.xy[2 * order[i]] - sc.xy[2 * order[i - 1]];
-        if (gap > best_gap) best_gap = gap, split = i;
-      }
-      const double span = n ? sc.xy[2 * order[n - 1]] - sc.xy[2 * order[0]] : 0.0;
-      if (n >= 4 && span > 0 && best_gap > 0.3 * span) {
-        std::vector<std::size_t> keep(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(split));
-        if (keep.size() < n - split) keep.assign(order.begin() + static_cast<std::ptrdiff_t>(split), order.end());
-        std::sort(keep.begin(), keep.end());
-        const std::size_t m = keep.size();
-        std::vector<double> sub(m * m);
-        for (std::size_t a = 0; a < m; ++a)
-          for (std::size_t b = 0; b < m; ++b) sub[a * m + b] = main_ev.distances[keep[a] * n + keep[b]];
-        tools::ScatterPlot zoom;
-        std::snprintf(title, sizeof title, "MDS of the %zu patches of the larger group (%s, %u ring%s; 2 axes keep %.0f%%)", m,
-                      main_ev.descriptor.c_str(), main_ev.rings, main_ev.rings == 1 ? "" : "s",
-                      100 * tools::classical_mds_2d_explained(sub, m));
-        zoom.title = title;
-        zoom.xy = tools::classical_mds_2d(sub, m);
-        zoom.groups = sc.groups;
-        zoom.markers = sc.markers;
-        for (const std::size_t i : keep) {
-          zoom.group.push_back(sc.group[i]);
-          zoom.marker.push_back(sc.marker[i]);
-        }
-        tools::write_scatter_svg(plot_dir + "/mds_zoom.svg", zoom);
-      }
-    }
-
-    if (json) {
-      tools::Json j = tools::Json::object();
-      j.set("patches", static_cast<unsigned long>(n));
-      j.set("classes", static_cast<unsigned long>(set.classes.size()));
-      tools::Json names = tools::Json::array(), sizes = tools::Json::object(), acc = tools::Json::object();
-      for (const std::string& c : set.classes) {
-        names.push_back(c);
-        sizes.set(c, main_ev.class_size.at(c));
-        acc.set(c, main_ev.class_nn_accuracy.at(c));
-      }
-      j.set("class_names", names);
-      j.set("class_size", sizes);
-      j.set("descriptor", main_ev.descriptor);
-      j.set("rings", static_cast<unsigned>(main_ev.rings));
-      j.set("seed", static_cast<unsigned long>(options.seed));
-      j.set("people", options.people);
-      j.set("faces", options.faces);
-      j.set("vocabulary_size", main_ev.vocabulary_size);
-      j.set("sigma_bof", main_ev.sigma_bof);
-      j.set("nn_accuracy", main_ev.nn_accuracy);
-      j.set("precision_at", number_array(main_ev.precision_at));
-      j.set("recall_at", number_array(main_ev.recall_at));
-      j.set("class_nn_accuracy", acc);
-      tools::Json conf = tools::Json::array();
-      for (const auto& [pair, count] : main_ev.confusion) {
-        tools::Json c = tools::Json::object();
-        c.set("query_class", pair.first);
-        c.set("neighbour_class", pair.second);
-        c.set("count", count);
-        conf.push_back(c);
-      }
-      j.set("confusion", conf);
-      tools::Json misses = tools::Json::array();
-      for (const auto& m : main_ev.misses) {
-        tools::Json c = tools::Json::object();
-        c.set("query", patch_name(set.patches[static_cast<std::size_t>(m.query)]));
-        c.set("nearest", patch_name(set.patches[static_cast<std::size_t>(m.neighbour)]));
-        c.set("first_correct_rank", m.first_correct_rank);
-        misses.push_back(c);
-      }
-      j.set("misses", misses);
-      j.set("library_build_seconds", main_ev.library_build_seconds);
-      j.set("vocabulary_seconds", main_ev.vocabulary_seconds);
-      j.set("query_seconds_median", main_ev.query_seconds_median);
-      j.set("describe_seconds_median", tools::median_of(describe_s));
-      j.set("prepare_seconds_median", tools::median_of(prepare_s));
-      j.set("instances_seconds", set.instances_seconds);
-      j.set("patches_seconds", set.patches_seconds);
-      j.set("threads", tbb::this_task_arena::max_concurrency());
-      j.set("folds", set.folds);
-      j.set("vocabulary_rule",
-            "leave-one-out; the normalization, k-means vocabulary and sigma_bof answering a query are fitted on "
-            "the patches of the other folds only (fold = subject number mod folds; person i and face i are "
-            "subject i; with a single subject, patch number mod 2), so neither the query nor its own person "
-            "or face shapes the words");
-      j.set("retessellation",
-            "per patch: quad diagonals alternate or random, then seeded halfedge-collapse decimation of the "
-            "instance removing 20-40% of its vertices (center kept), then the heat-method geodesic disk");
-      j.set("mean_patch_vertices", n ? static_cast<double>(vertices) / static_cast<double>(n) : 0.0);
-      j.set("retessellation_retries", attempts);
-      if (compare) {
-        tools::Json t = tools::Json::array();
-        for (const auto& ev : table) t.push_back(evaluation_summary(ev));
-        j.set("comparison", t);
-      }
-      std::fputs(tools::write_json(j).c_str(), stdout);
-      std::fputc('\n', stdout);
-    } else {
-      std::printf("%zu patches in %zu classes (%d people, %d faces, seed %llu), %d re-tessellation retries\n", n,
-                  set.classes.size(), options.people, options.faces, static_cast<unsigned long long>(options.seed),
-                  attempts);
-      for (const auto& ev : table)
-        std::printf("%-5s rings %u: nn accuracy %.3f, precision@4 %.3f, recall@4 %.3f, build %.2f s, query %.2e s\n",
-                    ev.descriptor.c_str(), ev.rings, ev.nn_accuracy, ev.precision_at[3], ev.recall_at[3],
-                    ev.library_build_seconds, ev.query_seconds_median);
-      for (const auto& [pair, count] : main_ev.confusion)
-        std::printf("  %d x %s -> %s\n", count, pair.first.c_str(), pair.second.c_str());
-    }
+    const tools::RetrievalBenchmark set = tools::build_retrieval_benchmark(cmd.options);
+    const std::vector<tools::RetrievalEvaluation> table = evaluate_table(set, cmd);
+    const PatchTotals totals = patch_totals(set);
+    if (!cmd.plot_dir.empty()) write_plots(set, table.front(), cmd.plot_dir);
+    if (cmd.json)
+      print_json(set, table, totals, cmd);
+    else
+      print_text(set, table, totals, cmd);
     status = 0;
   });
   return status;

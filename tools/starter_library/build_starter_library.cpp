@@ -187,6 +187,146 @@ Constraints example_constraints(const starter::Geometry& g, const std::vector<do
   return c;
 }
 
+// The MakeHuman body as an SDK mesh.
+void create_body_mesh(mcon_context ctx, const sample_mesh& body, const std::string& model, mcon_mesh* mesh) {
+  mcon_mesh_desc desc;
+  check(mcon_mesh_desc_init(&desc), "mcon_mesh_desc_init");
+  desc.positions = body.positions;
+  desc.position_type = MCON_SCALAR_FLOAT32;
+  desc.vertex_count = body.vertex_count;
+  desc.indices = body.indices;
+  desc.triangle_count = body.triangle_count;
+  check(mcon_mesh_create(ctx, &desc, mesh), "mcon_mesh_create(" + model + ")");
+}
+
+// The patch's arrays (positions, triangles, uv, center) read back through the C API.
+starter::Geometry patch_geometry(mcon_patch patch, mcon_patch_info& info) {
+  check(mcon_patch_info_init(&info), "mcon_patch_info_init");
+  check(mcon_patch_get_info(patch, &info), "mcon_patch_get_info");
+  starter::Geometry g;
+  g.p.resize(3 * info.vertex_count);
+  g.t.resize(3 * info.triangle_count);
+  g.uv.resize(2 * info.vertex_count);
+  check(mcon_patch_get_positions(patch, g.p.data(), g.p.size()), "mcon_patch_get_positions");
+  check(mcon_patch_get_triangles(patch, g.t.data(), g.t.size()), "mcon_patch_get_triangles");
+  check(mcon_patch_get_uv(patch, g.uv.data(), g.uv.size()), "mcon_patch_get_uv");
+  g.center_face = info.center_patch_triangle;
+  for (int k = 0; k < 3; ++k) g.center_bary[static_cast<std::size_t>(k)] = info.center_barycentric[k];
+  return g;
+}
+
+// C views of the guides and features (points[i] holds polylines[i]'s points).
+struct PolylineViews {
+  std::vector<std::vector<mcon_surface_point>> points;
+  std::vector<mcon_polyline> polylines;
+};
+
+PolylineViews polyline_views(const Constraints& c) {
+  PolylineViews v;
+  std::vector<std::vector<mcon_surface_point>>& points = v.points;
+  std::vector<mcon_polyline>& polylines = v.polylines;
+  auto add_polylines = [&](const std::vector<starter::Polyline>& list, mcon_polyline_kind kind) {
+    for (const auto& pl : list) {
+      std::vector<mcon_surface_point> pts;
+      for (const auto& sp : pl.points) {
+        mcon_surface_point q{};
+        q.face = sp.face;
+        for (int k = 0; k < 3; ++k) q.barycentric[k] = sp.bary[static_cast<std::size_t>(k)];
+        pts.push_back(q);
+      }
+      points.push_back(std::move(pts));
+      mcon_polyline l{};
+      l.kind = kind;
+      l.closed = pl.closed ? 1u : 0u;
+      polylines.push_back(l);
+    }
+  };
+  add_polylines(c.guides, MCON_POLYLINE_GUIDE);
+  add_polylines(c.features, MCON_POLYLINE_FEATURE);
+  for (std::size_t i = 0; i < polylines.size(); ++i) {
+    polylines[i].points = points[i].data();
+    polylines[i].point_count = points[i].size();
+  }
+  return v;
+}
+
+std::vector<mcon_vertex_field> field_views(const std::vector<Field>& fields) {
+  std::vector<mcon_vertex_field> cfields;
+  for (const Field& f : fields) {
+    mcon_vertex_field cf{};
+    cf.name = f.name.c_str();
+    cf.kind = f.kind;
+    cf.dimension = f.dimension;
+    cf.values = f.values.empty() ? nullptr : f.values.data();
+    cf.labels = f.labels.empty() ? nullptr : f.labels.data();
+    cfields.push_back(cf);
+  }
+  return cfields;
+}
+
+// One entry of entries.json on an extracted patch: its procedural fields and constraints, added
+// to the library (which copies everything), and its line of the build log.
+void add_patch_entry(mcon_library library, mcon_patch patch, const mcon::tools::Json& e, const std::string& name,
+                     const std::string& klass, const std::string& author, const std::string& licence) {
+  mcon_patch_info info;
+  const starter::Geometry g = patch_geometry(patch, info);
+
+  const std::vector<double> d = starter::geodesic_distance(g);
+  const std::vector<Field> fields = example_fields(g, d);
+  const Constraints c = example_constraints(g, d, e.at("constraints"), name);
+
+  // C views of everything (the library copies on add).
+  PolylineViews views = polyline_views(c);
+  std::vector<mcon_vertex_field> cfields = field_views(fields);
+  std::vector<std::string> tags{"example", "makehuman", klass};
+  if (const auto* extra = e.find("tags"))
+    for (const auto& t : extra->elements()) tags.push_back(t.as_string());
+  std::vector<const char*> ctags;
+  for (const auto& t : tags) ctags.push_back(t.c_str());
+  const std::string entry_name = name + " (MakeHuman body, procedural example constraints)";
+
+  mcon_library_entry_desc ed;
+  check(mcon_library_entry_desc_init(&ed), "mcon_library_entry_desc_init");
+  ed.patch = patch;
+  ed.id = static_cast<std::uint64_t>(e.at("id").as_number());
+  ed.name = entry_name.c_str();
+  ed.class_label = klass.c_str();
+  ed.tags = ctags.data();
+  ed.tag_count = ctags.size();
+  ed.author = author.c_str();
+  ed.licence = licence.c_str();
+  ed.polylines = views.polylines.data();
+  ed.polyline_count = views.polylines.size();
+  ed.singularities = c.singularities.data();
+  ed.singularity_count = c.singularities.size();
+  ed.fields = cfields.data();
+  ed.field_count = cfields.size();
+  std::uint64_t id = 0;
+  check(mcon_library_add_entry(library, &ed, &id), name + ": mcon_library_add_entry");
+  std::printf("  %-7s id %2llu  class %-6s  %5zu vertices  %2zu guides  %zu features  %zu singularities  %zu fields\n",
+              name.c_str(), static_cast<unsigned long long>(id), klass.c_str(), info.vertex_count,
+              c.guides.size(), c.features.size(), c.singularities.size(), fields.size());
+}
+
+// Cuts the entry's geodesic disk from the body and adds it; the patch is released either way.
+void add_entry(mcon_library library, mcon_mesh mesh, const mcon::tools::Json& e, const std::string& author,
+               const std::string& licence) {
+  const std::string name = e.at("name").as_string(), klass = e.at("class").as_string();
+  mcon_patch_options po;
+  check(mcon_patch_options_init(&po), "mcon_patch_options_init");
+  po.center_vertex = static_cast<std::uint32_t>(e.at("center_vertex").as_number());
+  po.radius = e.at("radius").as_number();
+  mcon_patch patch = nullptr;
+  check(mcon_patch_extract(mesh, &po, &patch), name + ": mcon_patch_extract");
+  try {
+    add_patch_entry(library, patch, e, name, klass, author, licence);
+  } catch (...) {
+    mcon_patch_release(patch);
+    throw;
+  }
+  mcon_patch_release(patch);
+}
+
 int run(int argc, char** argv) {
   if (argc != 4) {
     std::fprintf(stderr, "usage: build_starter_library ENTRIES.json MODEL_DIR OUT.mclb\n");
@@ -206,112 +346,11 @@ int run(int argc, char** argv) {
   int status = 0;
   try {
     check(mcon_context_create(nullptr, &ctx), "mcon_context_create");
-    mcon_mesh_desc desc;
-    check(mcon_mesh_desc_init(&desc), "mcon_mesh_desc_init");
-    desc.positions = body.positions;
-    desc.position_type = MCON_SCALAR_FLOAT32;
-    desc.vertex_count = body.vertex_count;
-    desc.indices = body.indices;
-    desc.triangle_count = body.triangle_count;
-    check(mcon_mesh_create(ctx, &desc, &mesh), "mcon_mesh_create(" + model + ")");
+    create_body_mesh(ctx, body, model, &mesh);
     check(mcon_library_create(ctx, &library), "mcon_library_create");
 
     const std::string author = root.at("author").as_string(), licence = root.at("licence").as_string();
-    for (const auto& e : root.at("entries").elements()) {
-      const std::string name = e.at("name").as_string(), klass = e.at("class").as_string();
-      mcon_patch_options po;
-      check(mcon_patch_options_init(&po), "mcon_patch_options_init");
-      po.center_vertex = static_cast<std::uint32_t>(e.at("center_vertex").as_number());
-      po.radius = e.at("radius").as_number();
-      mcon_patch patch = nullptr;
-      check(mcon_patch_extract(mesh, &po, &patch), name + ": mcon_patch_extract");
-      try {
-        mcon_patch_info info;
-        check(mcon_patch_info_init(&info), "mcon_patch_info_init");
-        check(mcon_patch_get_info(patch, &info), "mcon_patch_get_info");
-        starter::Geometry g;
-        g.p.resize(3 * info.vertex_count);
-        g.t.resize(3 * info.triangle_count);
-        g.uv.resize(2 * info.vertex_count);
-        check(mcon_patch_get_positions(patch, g.p.data(), g.p.size()), "mcon_patch_get_positions");
-        check(mcon_patch_get_triangles(patch, g.t.data(), g.t.size()), "mcon_patch_get_triangles");
-        check(mcon_patch_get_uv(patch, g.uv.data(), g.uv.size()), "mcon_patch_get_uv");
-        g.center_face = info.center_patch_triangle;
-        for (int k = 0; k < 3; ++k) g.center_bary[static_cast<std::size_t>(k)] = info.center_barycentric[k];
-
-        const std::vector<double> d = starter::geodesic_distance(g);
-        const std::vector<Field> fields = example_fields(g, d);
-        const Constraints c = example_constraints(g, d, e.at("constraints"), name);
-
-        // C views of everything (the library copies on add).
-        std::vector<std::vector<mcon_surface_point>> points;
-        std::vector<mcon_polyline> polylines;
-        auto add_polylines = [&](const std::vector<starter::Polyline>& list, mcon_polyline_kind kind) {
-          for (const auto& pl : list) {
-            std::vector<mcon_surface_point> pts;
-            for (const auto& sp : pl.points) {
-              mcon_surface_point q{};
-              q.face = sp.face;
-              for (int k = 0; k < 3; ++k) q.barycentric[k] = sp.bary[static_cast<std::size_t>(k)];
-              pts.push_back(q);
-            }
-            points.push_back(std::move(pts));
-            mcon_polyline l{};
-            l.kind = kind;
-            l.closed = pl.closed ? 1u : 0u;
-            polylines.push_back(l);
-          }
-        };
-        add_polylines(c.guides, MCON_POLYLINE_GUIDE);
-        add_polylines(c.features, MCON_POLYLINE_FEATURE);
-        for (std::size_t i = 0; i < polylines.size(); ++i) {
-          polylines[i].points = points[i].data();
-          polylines[i].point_count = points[i].size();
-        }
-        std::vector<mcon_vertex_field> cfields;
-        for (const Field& f : fields) {
-          mcon_vertex_field cf{};
-          cf.name = f.name.c_str();
-          cf.kind = f.kind;
-          cf.dimension = f.dimension;
-          cf.values = f.values.empty() ? nullptr : f.values.data();
-          cf.labels = f.labels.empty() ? nullptr : f.labels.data();
-          cfields.push_back(cf);
-        }
-        std::vector<std::string> tags{"example", "makehuman", klass};
-        if (const auto* extra = e.find("tags"))
-          for (const auto& t : extra->elements()) tags.push_back(t.as_string());
-        std::vector<const char*> ctags;
-        for (const auto& t : tags) ctags.push_back(t.c_str());
-        const std::string entry_name = name + " (MakeHuman body, procedural example constraints)";
-
-        mcon_library_entry_desc ed;
-        check(mcon_library_entry_desc_init(&ed), "mcon_library_entry_desc_init");
-        ed.patch = patch;
-        ed.id = static_cast<std::uint64_t>(e.at("id").as_number());
-        ed.name = entry_name.c_str();
-        ed.class_label = klass.c_str();
-        ed.tags = ctags.data();
-        ed.tag_count = ctags.size();
-        ed.author = author.c_str();
-        ed.licence = licence.c_str();
-        ed.polylines = polylines.data();
-        ed.polyline_count = polylines.size();
-        ed.singularities = c.singularities.data();
-        ed.singularity_count = c.singularities.size();
-        ed.fields = cfields.data();
-        ed.field_count = cfields.size();
-        std::uint64_t id = 0;
-        check(mcon_library_add_entry(library, &ed, &id), name + ": mcon_library_add_entry");
-        std::printf("  %-7s id %2llu  class %-6s  %5zu vertices  %2zu guides  %zu features  %zu singularities  %zu fields\n",
-                    name.c_str(), static_cast<unsigned long long>(id), klass.c_str(), info.vertex_count,
-                    c.guides.size(), c.features.size(), c.singularities.size(), fields.size());
-      } catch (...) {
-        mcon_patch_release(patch);
-        throw;
-      }
-      mcon_patch_release(patch);
-    }
+    for (const auto& e : root.at("entries").elements()) add_entry(library, mesh, e, author, licence);
 
     mcon_retrieval_options ro;
     check(mcon_retrieval_options_init(&ro), "mcon_retrieval_options_init");
