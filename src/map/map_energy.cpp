@@ -35,6 +35,14 @@ Eigen::Matrix2d jacobian_at(const Eigen::VectorXd& x, const Tri& tri, const Eige
   return X * rest_inverse;
 }
 
+// values[index[j]] += the block sums of triangle term j (sums: one row of index.size() per
+// block), in block order.
+void add_block_sums(const std::vector<double>& sums, const std::vector<int>& index, std::vector<double>& values) {
+  const std::size_t k = index.size();
+  for (std::size_t b = 0; k > 0 && b < sums.size() / k; ++b)
+    for (std::size_t j = 0; j < k; ++j) values[index[j]] += sums[b * k + j];
+}
+
 }  // namespace
 
 const std::vector<MapEnergyTerm>& map_energy_terms() {
@@ -235,8 +243,7 @@ MapEnergyTerms MapEnergy::evaluate(const Eigen::VectorXd& x) const {
   MapEnergyTerms terms;
   terms.values.assign(map_energy_terms().size(), 0.0);
   // The triangle terms per block; an inverted triangle makes the distortion and barrier +infinity.
-  const int tblocks = (nt + kTriangleBlock - 1) / kTriangleBlock;
-  std::vector<double> sums(static_cast<std::size_t>(tblocks) * k, 0.0);
+  std::vector<double> sums(static_cast<std::size_t>(block_count(nt, kTriangleBlock)) * k, 0.0);
   for_each_block(nt, kTriangleBlock, [&](int begin, int end, int b) {
     double* sum = &sums[static_cast<std::size_t>(b) * k];
     for (int t = begin; t < end; ++t) {
@@ -245,8 +252,7 @@ MapEnergyTerms MapEnergy::evaluate(const Eigen::VectorXd& x) const {
       for (std::size_t j = 0; j < k; ++j) sum[j] += w * tt.energy[j](J, weights_, nullptr, nullptr);
     }
   });
-  for (int b = 0; b < tblocks; ++b)
-    for (std::size_t j = 0; j < k; ++j) terms.values[tt.index[j]] += sums[static_cast<std::size_t>(b) * k + j];
+  add_block_sums(sums, tt.index, terms.values);
   terms.values[tt.descriptor] = deterministic_sum(s.num_vertices, kVertexBlock, [&](int v) {
     thread_local std::vector<double> scratch;
     scratch.resize(3 * static_cast<std::size_t>(d));
@@ -270,8 +276,7 @@ void MapEnergy::derivatives(const Eigen::VectorXd& x, Derivatives& out) const {
   out.vertex_hessians.resize(nv);
   std::vector<Vector6d> tri_grad(static_cast<std::size_t>(nt));
   std::vector<Vec2> vert_grad(static_cast<std::size_t>(nv));
-  const int tblocks = (nt + kTriangleBlock - 1) / kTriangleBlock;
-  std::vector<double> sums(static_cast<std::size_t>(tblocks) * k, 0.0);
+  std::vector<double> sums(static_cast<std::size_t>(block_count(nt, kTriangleBlock)) * k, 0.0);
   for_each_block(nt, kTriangleBlock, [&](int begin, int end, int b) {
     double* sum = &sums[static_cast<std::size_t>(b) * k];
     for (int t = begin; t < end; ++t) {
@@ -297,8 +302,7 @@ void MapEnergy::derivatives(const Eigen::VectorXd& x, Derivatives& out) const {
   });
   MapEnergyTerms terms;
   terms.values.assign(map_energy_terms().size(), 0.0);
-  for (int b = 0; b < tblocks; ++b)
-    for (std::size_t j = 0; j < k; ++j) terms.values[tt.index[j]] += sums[static_cast<std::size_t>(b) * k + j];
+  add_block_sums(sums, tt.index, terms.values);
   const double descriptor_weight = weights_.*map_energy_terms()[tt.descriptor].weight;
   terms.values[tt.descriptor] = deterministic_sum(nv, kVertexBlock, [&](int v) {
     thread_local std::vector<double> scratch;
