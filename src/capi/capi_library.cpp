@@ -40,6 +40,23 @@ Eigen::MatrixXd read_rows(const double* values, std::size_t rows, std::uint32_t 
 
 namespace {
 
+// The stored descriptor name of an mcon_retrieval_descriptor (builtin_descriptors() or, for
+// CUSTOM, the library's own caller-supplied name).
+std::string descriptor_name(std::uint32_t code, const std::string& library_descriptor) {
+  if (const BuiltinDescriptor* d = find_builtin_descriptor_code(code)) return d->name;
+  if (code == MCON_RETRIEVAL_DESCRIPTOR_CUSTOM) {
+    require(is_custom_descriptor(library_descriptor), MCON_ERROR_INVALID_ARGUMENT,
+            "descriptor CUSTOM needs entries added with caller-supplied descriptors (the library's are '" +
+                library_descriptor + "')");
+    return library_descriptor;
+  }
+  std::string known;
+  for (const BuiltinDescriptor& d : builtin_descriptors())
+    known += std::string(d.name) + " " + std::to_string(d.code) + ", ";
+  fail(MCON_ERROR_INVALID_ARGUMENT, "descriptor " + std::to_string(code) + " is not an mcon_retrieval_descriptor (" +
+                                        known + "custom " + std::to_string(MCON_RETRIEVAL_DESCRIPTOR_CUSTOM) + ")");
+}
+
 mcon_retrieval_options default_retrieval_options() {
   auto o = zeroed_struct<mcon_retrieval_options>();
   o.descriptor = MCON_RETRIEVAL_DESCRIPTOR_CURV9;
@@ -202,27 +219,7 @@ mcon_status mcon_library_build_retrieval(mcon_library library, const mcon_retrie
     const auto o =
         read_options(options, sizeof(mcon_retrieval_options), "mcon_retrieval_options", default_retrieval_options());
     LibraryRetrievalOptions lo;
-    switch (o.descriptor) {
-      case MCON_RETRIEVAL_DESCRIPTOR_CURV9:
-        lo.descriptor = kDescriptorCurv9;
-        break;
-      case MCON_RETRIEVAL_DESCRIPTOR_HKS:
-        lo.descriptor = kDescriptorHks;
-        break;
-      case MCON_RETRIEVAL_DESCRIPTOR_WKS:
-        lo.descriptor = kDescriptorWks;
-        break;
-      case MCON_RETRIEVAL_DESCRIPTOR_CUSTOM:
-        require(is_custom_descriptor(library->library.retrieval().descriptor), MCON_ERROR_INVALID_ARGUMENT,
-                "descriptor CUSTOM needs entries added with caller-supplied descriptors (the library's are '" +
-                    library->library.retrieval().descriptor + "')");
-        lo.descriptor = library->library.retrieval().descriptor;
-        break;
-      default:
-        fail(MCON_ERROR_INVALID_ARGUMENT, "descriptor " + std::to_string(o.descriptor) +
-                                              " is not an mcon_retrieval_descriptor (CURV9 1, HKS 3, WKS 4, "
-                                              "CUSTOM 256)");
-    }
+    lo.descriptor = descriptor_name(o.descriptor, library->library.retrieval().descriptor);
     require(std::isfinite(o.sigma_bof), MCON_ERROR_NON_FINITE, "sigma_bof is not finite");
     lo.vocabulary_size = o.vocabulary_size;
     lo.rings = o.rings;

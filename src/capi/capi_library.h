@@ -11,6 +11,7 @@
 #include "capi/capi_handles.h"
 #include "library/constraint_library.h"
 #include "library/library_retrieval.h"
+#include "retrieval/retrieval_descriptors.h"
 
 struct mcon_library_t {
   static constexpr std::uint32_t kMagic = 0x4d434c0a;  // "MCL"
@@ -44,9 +45,7 @@ inline const MacroConstraint& entry_at(const mcon_library_t* library, std::size_
 
 // mcon_retrieval_descriptor of a stored descriptor name (0 for a name this build does not know).
 inline std::uint32_t descriptor_code(const std::string& name) {
-  if (name == "curv9") return MCON_RETRIEVAL_DESCRIPTOR_CURV9;
-  if (name == "hks") return MCON_RETRIEVAL_DESCRIPTOR_HKS;
-  if (name == "wks") return MCON_RETRIEVAL_DESCRIPTOR_WKS;
+  if (const BuiltinDescriptor* d = find_builtin_descriptor(name)) return d->code;
   if (is_custom_descriptor(name)) return MCON_RETRIEVAL_DESCRIPTOR_CUSTOM;
   return 0;
 }

@@ -12,6 +12,7 @@
 #include "base/error.h"
 #include "base/text.h"
 #include "mesh/mesh_topology.h"
+#include "retrieval/retrieval_descriptors.h"
 
 namespace mcon {
 namespace {
@@ -179,7 +180,8 @@ void validate_retrieval_config(const RetrievalConfig& c, mcon_status status) {
   check.text(c.descriptor, "descriptor " + quoted(c.descriptor));
   const std::uint32_t builtin = builtin_descriptor_values(c.descriptor);
   check(builtin > 0 || is_custom_descriptor(c.descriptor),
-        "unknown descriptor " + quoted(c.descriptor) + " (this build knows curv9, hks, wks and custom:<name>)");
+        "unknown descriptor " + quoted(c.descriptor) + " (this build knows " + builtin_descriptor_names() +
+            ", and custom:<name>)");
   // 0: no descriptors computed yet (an empty library); otherwise the descriptor's own dimension.
   check(builtin == 0 || d == 0 || d == builtin,
         "descriptor " + quoted(c.descriptor) + " has " + std::to_string(builtin) +

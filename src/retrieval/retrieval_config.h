@@ -14,21 +14,11 @@ namespace mcon {
 // mcon_retrieval_options_init and the CLI read it from here.
 inline constexpr std::uint32_t kDefaultRetrievalRings = 1;
 
-// Descriptor names as stored in RetrievalConfig::descriptor: the built-in ones (computed by
-// retrieval/retrieval_descriptors.h) and caller-supplied ones, "custom:<name>". The library
-// validator reads these names from files, so they live here, with no dependency on the code
-// that computes them.
+// The default descriptor's name as stored in RetrievalConfig::descriptor. Every built-in
+// descriptor (name, C API code, dimension, how it is computed) is one row of builtin_descriptors()
+// in retrieval/retrieval_descriptors.cpp; caller-supplied ones are named "custom:<name>".
 inline constexpr const char* kDescriptorCurv9 = "curv9";
-inline constexpr const char* kDescriptorHks = "hks";
-inline constexpr const char* kDescriptorWks = "wks";
 inline constexpr const char* kCustomDescriptorPrefix = "custom:";
-
-// Values per vertex of a built-in descriptor (curv9 9; hks and wks 100 samples), 0 for any other name.
-inline std::uint32_t builtin_descriptor_values(const std::string& name) {
-  if (name == kDescriptorCurv9) return 9;
-  if (name == kDescriptorHks || name == kDescriptorWks) return 100;
-  return 0;
-}
 
 // "custom:<name>" with a non-empty <name>: descriptors supplied by the caller, of any dimension.
 inline bool is_custom_descriptor(const std::string& name) {

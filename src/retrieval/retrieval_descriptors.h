@@ -4,7 +4,9 @@
 // evaluation all describe patches through this one function, so they agree bit for bit.
 #pragma once
 
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include "retrieval/bag_of_features.h"
 #include "descriptors/curvature_descriptors.h"
@@ -13,10 +15,29 @@
 
 namespace mcon {
 
-// Built-in descriptor names: kDescriptorCurv9 / kDescriptorHks / kDescriptorWks
-// (retrieval/retrieval_config.h). True for "curv9", "hks", "wks".
+// One built-in retrieval descriptor. Adding a descriptor = one row of builtin_descriptors()
+// (retrieval_descriptors.cpp) plus its mcon_retrieval_descriptor value in the public header; the
+// library validator, the C API, the CLI and the evaluation all read this table.
+struct BuiltinDescriptor {
+  const char* name;     // as stored in RetrievalConfig::descriptor and in library files
+  std::uint32_t code;   // its mcon_retrieval_descriptor value
+  std::uint32_t values; // per vertex
+  Eigen::MatrixXd (*compute)(const TriMesh& mesh, PatchBoundary boundary);
+};
+
+// Every built-in descriptor, in C API code order.
+const std::vector<BuiltinDescriptor>& builtin_descriptors();
+// The row named `name` (or with C API code `code`), or nullptr.
+const BuiltinDescriptor* find_builtin_descriptor(const std::string& name);
+const BuiltinDescriptor* find_builtin_descriptor_code(std::uint32_t code);
+// "curv9, hks or wks": the names for error messages.
+std::string builtin_descriptor_names();
+
+// True for a name of builtin_descriptors().
 bool is_builtin_descriptor(const std::string& name);
-// Values per vertex of a built-in descriptor (9, 100, 100); throws INVALID_ARGUMENT otherwise.
+// Values per vertex of a built-in descriptor, 0 for any other name.
+std::uint32_t builtin_descriptor_values(const std::string& name);
+// Values per vertex of a built-in descriptor; throws INVALID_ARGUMENT otherwise.
 int builtin_descriptor_dimension(const std::string& name);
 
 // Per-vertex values of a built-in descriptor on a patch normalized to geodesic radius 1.

@@ -438,7 +438,7 @@ void set_dimension(fb::LibraryT& l, std::uint32_t d) {
 
 TEST(ConstraintLibraryHostile, UnknownDescriptorNamesAndWrongDimensions) {
   expect_rejected(load_forged([](fb::LibraryT& l) { l.retrieval->descriptor = "bogus"; }), MCON_ERROR_INVALID_LIBRARY,
-                  "retrieval config: unknown descriptor 'bogus' (this build knows curv9, hks, wks and custom:<name>)");
+                  "retrieval config: unknown descriptor 'bogus' (this build knows curv9, hks or wks, and custom:<name>)");
   expect_rejected(load_forged([](fb::LibraryT& l) { l.retrieval->descriptor = "custom:"; }),
                   MCON_ERROR_INVALID_LIBRARY, "unknown descriptor 'custom:'");
   expect_rejected(load_forged([](fb::LibraryT& l) { l.retrieval->descriptor = "CURV9"; }), MCON_ERROR_INVALID_LIBRARY,

@@ -9,6 +9,7 @@
 #include "library_cli.h"
 #include "library/library_file.h"
 #include "library/library_retrieval.h"
+#include "retrieval/retrieval_descriptors.h"
 
 namespace mcon::cli {
 namespace {
@@ -160,8 +161,8 @@ int run_build(const Args& args) {
 
   LibraryRetrievalOptions options;
   options.descriptor = get(p, "descriptor", "curv9");
-  require(options.descriptor == "curv9" || options.descriptor == "hks" || options.descriptor == "wks",
-          MCON_ERROR_INVALID_ARGUMENT, "--descriptor must be curv9, hks or wks (got '" + options.descriptor + "')");
+  require(is_builtin_descriptor(options.descriptor), MCON_ERROR_INVALID_ARGUMENT,
+          "--descriptor must be " + builtin_descriptor_names() + " (got '" + options.descriptor + "')");
   const long rings = parse_integer("rings", get(p, "rings", std::to_string(kDefaultRetrievalRings)));
   const long k = parse_integer("vocabulary", get(p, "vocabulary", std::to_string(kDefaultVocabularySize)));
   const long seed = parse_integer("seed", get(p, "seed", "0"));

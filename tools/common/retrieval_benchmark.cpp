@@ -110,7 +110,7 @@ RetrievalBenchmark build_retrieval_benchmark(const RetrievalBenchmarkOptions& op
   require(!options.descriptors.empty(), MCON_ERROR_INVALID_ARGUMENT, "retrieval benchmark: no descriptor");
   for (const std::string& d : options.descriptors)
     require(is_builtin_descriptor(d), MCON_ERROR_INVALID_ARGUMENT,
-            "retrieval benchmark: unknown descriptor '" + d + "' (curv9, hks or wks)");
+            "retrieval benchmark: unknown descriptor '" + d + "' (" + builtin_descriptor_names() + ")");
   require(options.min_decimation >= 0 && options.min_decimation <= options.max_decimation &&
               options.max_decimation < 1,
           MCON_ERROR_INVALID_ARGUMENT, "retrieval benchmark: decimation fractions must satisfy 0 <= min <= max < 1");

@@ -94,7 +94,7 @@ EvalRetrievalCommand parse_eval_retrieval(const Args& args) {
   options.faces = static_cast<int>(faces);
   const std::string descriptor = p.get("descriptor", kDefaultDescriptor);
   require(is_builtin_descriptor(descriptor), MCON_ERROR_INVALID_ARGUMENT,
-          "--descriptor must be curv9, hks or wks (got '" + descriptor + "')");
+          "--descriptor must be " + builtin_descriptor_names() + " (got '" + descriptor + "')");
   cmd.rings = p.integer("rings", kDefaultRings);
   require(cmd.rings >= 1 && cmd.rings <= 64, MCON_ERROR_INVALID_ARGUMENT, "--rings must be in 1..64");
   cmd.vocabulary = p.integer("vocabulary", 128);
@@ -118,8 +118,8 @@ EvalRetrievalCommand parse_eval_retrieval(const Args& args) {
 
   options.descriptors = {descriptor};
   if (cmd.compare)
-    for (const char* d : {kDescriptorCurv9, kDescriptorHks, kDescriptorWks})
-      if (d != descriptor) options.descriptors.push_back(d);
+    for (const BuiltinDescriptor& row : builtin_descriptors())
+      if (row.name != descriptor) options.descriptors.push_back(row.name);
   options.log = [](const std::string& s) { std::fprintf(stderr, "eval-retrieval: %s\n", s.c_str()); };
   return cmd;
 }
