@@ -3,57 +3,26 @@
 #include <cmath>
 #include <vector>
 
-#include "descriptors/curvature_descriptors.h"
 #include "descriptors/descriptor_pyramid.h"
 #include "base/error.h"
-#include "operators/heat_geodesics.h"
+#include "map/map_channels.h"
 
 namespace mcon {
 
 namespace {
 
-constexpr double kChiralityCenterRadius = 0.3;  // normalized geodesic radius of the center normal
-
-// Per-vertex channels of one patch before the joint normalization: mean curvature at sigma 0.1
-// (thesis §4.4: smooth, orientation-blind), the geodesic distance from the patch center and the
-// straight-line (3D) distance from it. Both patches are geodesic disks around corresponding
-// centers (docs/design.md §1: "patches are disks with a known center"), so the center distance
-// pins every point's ring, which curvature alone cannot on parts with repeated features
-// (fingers, toes); the chord is extrinsic and tells the directions of a bent patch apart
-// (across vs. along a forearm, where intrinsic descriptors are blind).
+// Per-vertex channels of one patch before the joint normalization (map_channels(), in column
+// order); the center-based ones only when `center_channels`.
 Eigen::MatrixXd raw_channels(const Patch& patch, bool center_channels) {
-  const int n = patch.mesh.num_vertices();
-  Eigen::MatrixXd c(n, center_channels ? 4 : 1);
-  c.col(0) = mean_curvature_descriptor(patch.mesh);
-  if (!center_channels) return c;
-  require(patch.center.triangle >= 0 && patch.center.triangle < patch.mesh.num_triangles(),
-          MCON_ERROR_INVALID_ARGUMENT, "map_patches: the patch has no center triangle");
-  const HeatGeodesics heat(patch.mesh);
-  const Vec3 b = patch.center.barycentric.cwiseMax(0.0) / patch.center.barycentric.cwiseMax(0.0).sum();
-  c.col(1) = heat.from_point(patch.center.triangle, b);
-  const Tri& t = patch.mesh.triangles[patch.center.triangle];
-  const Vec3 center = b[0] * patch.mesh.positions[t[0]] + b[1] * patch.mesh.positions[t[1]] +
-                      b[2] * patch.mesh.positions[t[2]];
-  for (int v = 0; v < n; ++v) c(v, 2) = (patch.mesh.positions[v] - center).norm();
-  // Chirality: n_c . ((p - c) x n_p), with n_p the vertex normal and n_c the mean normal around
-  // the center. It is invariant to rigid motions and changes sign under a reflection, so unlike
-  // every other channel it tells a right foot from a left one (orientation-blind descriptors rate
-  // a patch and its mirror image alike, which made the mirror decision a coin toss on feet).
-  std::vector<Vec3> normal(n, Vec3::Zero());
-  for (const Tri& tr : patch.mesh.triangles) {
-    const Vec3 a = (patch.mesh.positions[tr[1]] - patch.mesh.positions[tr[0]])
-                       .cross(patch.mesh.positions[tr[2]] - patch.mesh.positions[tr[0]]);
-    for (int k = 0; k < 3; ++k) normal[tr[k]] += a;
-  }
-  Vec3 nc = Vec3::Zero();
-  for (int v = 0; v < n; ++v)
-    if (c(v, 1) < kChiralityCenterRadius) nc += normal[v];
-  if (nc.norm() > 0) nc.normalize();
-  for (int v = 0; v < n; ++v) {
-    const double len = normal[v].norm();
-    c(v, 3) = len > 0 ? nc.dot((patch.mesh.positions[v] - center).cross(normal[v] / len)) : 0.0;
-  }
-  require(c.allFinite(), MCON_ERROR_NUMERICAL, "map_patches: non-finite center distance");
+  const std::vector<MapChannel>& channels = map_channels();
+  Eigen::MatrixXd c(patch.mesh.num_vertices(), center_channels ? static_cast<Eigen::Index>(channels.size()) : 1);
+  PatchCenterFrame frame;
+  frame.patch = &patch;
+  if (center_channels) frame = patch_center_frame(patch);
+  Eigen::Index k = 0;
+  for (const MapChannel& channel : channels)
+    if (center_channels || !channel.center_based) c.col(k++) = channel.compute(frame);
+  require(c.allFinite(), MCON_ERROR_NUMERICAL, "map_patches: non-finite descriptor channel");
   return c;
 }
 
@@ -78,11 +47,17 @@ SurfaceMap map_patches(const Patch& source, const Patch& target, const PatchMapO
     require(options.guidance_weight >= 0 && std::isfinite(options.guidance_weight), MCON_ERROR_INVALID_ARGUMENT,
             "map_patches: invalid guidance weight");
   }
-  const bool center = options.center_distance_weight > 0 || options.chord_weight > 0 || options.chirality_weight > 0;
+  bool center = false;
+  for (const MapChannel& channel : map_channels()) center |= channel.center_based && channel.weight(options) > 0;
   Eigen::MatrixXd s = raw_channels(source, center), t = raw_channels(target, center);
   // Joint normalization (thesis §3.1: every dimension std 1 over both patches), then weights.
-  std::vector<double> weights = {1.0, options.center_distance_weight, options.chord_weight, options.chirality_weight};
-  weights.resize(static_cast<std::size_t>(s.cols()));
+  std::vector<double> weights;
+  std::vector<int> chiral_columns;
+  for (const MapChannel& channel : map_channels()) {
+    if (!center && channel.center_based) continue;
+    if (channel.chiral && channel.weight(options) > 0) chiral_columns.push_back(static_cast<int>(weights.size()));
+    weights.push_back(channel.weight(options));
+  }
   if (options.source_guidance) {
     const Eigen::Index c0 = s.cols(), g = options.source_guidance->cols();
     s.conservativeResize(Eigen::NoChange, c0 + g);
@@ -90,12 +65,6 @@ SurfaceMap map_patches(const Patch& source, const Patch& target, const PatchMapO
     s.rightCols(g) = *options.source_guidance;
     t.rightCols(g) = *options.target_guidance;
     weights.resize(static_cast<std::size_t>(c0 + g), options.guidance_weight);
-  }
-  // The chord channel carries arc - chord (both in radius units, before any normalization):
-  // zero along straight directions, growing across bent ones.
-  if (center) {
-    s.col(2) = s.col(1) - s.col(2);
-    t.col(2) = t.col(1) - t.col(2);
   }
   for (int k = 0; k < s.cols(); ++k) {
     const double mean = (s.col(k).sum() + t.col(k).sum()) / static_cast<double>(s.rows() + t.rows());
@@ -108,7 +77,7 @@ SurfaceMap map_patches(const Patch& source, const Patch& target, const PatchMapO
   const std::vector<Eigen::MatrixXd> source_levels = descriptor_pyramid(source.mesh, s, options.pyramid_sigmas);
   const std::vector<Eigen::MatrixXd> target_levels = descriptor_pyramid(target.mesh, t, options.pyramid_sigmas);
   SurfaceMapOptions map_options = options.map;
-  if (center && options.chirality_weight > 0) map_options.chiral_columns = {3};
+  if (!chiral_columns.empty()) map_options.chiral_columns = chiral_columns;
   return compute_surface_map({source.mesh, source.uv, source_levels}, {target.mesh, target.uv, target_levels},
                              map_options);
 }
