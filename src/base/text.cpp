@@ -1,5 +1,7 @@
 #include "base/text.h"
 
+#include <charconv>
+
 namespace mcon {
 namespace {
 
@@ -87,6 +89,12 @@ std::string printable_text(std::string_view text) {
     }
   }
   return out;
+}
+
+std::string number_text(double value) {
+  char buffer[64];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return std::string(buffer, result.ptr);
 }
 
 }  // namespace mcon

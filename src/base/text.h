@@ -23,4 +23,8 @@ std::string text_problem(std::string_view text);
 // a backslash is doubled, so the result is unambiguous. Everything else is kept as it is.
 std::string printable_text(std::string_view text);
 
+// `value` in the shortest form that reads back to the same double ("1e-12", "0.3"): for
+// messages, where std::to_string would print 1e-12 as "0.000000".
+std::string number_text(double value);
+
 }  // namespace mcon

@@ -8,6 +8,7 @@
 #include <unordered_map>
 
 #include "base/error.h"
+#include "base/text.h"
 #include "mesh/edge_key.h"
 
 namespace mcon {
@@ -21,6 +22,26 @@ int find_root(std::vector<int>& parent, int i) {
   return i;
 }
 
+// Coordinates within the supported range (mesh.h), checked after finiteness.
+void check_coordinate_range(const TriMesh& mesh) {
+  if (mesh.positions.empty()) return;
+  Vec3 lo = mesh.positions[0], hi = mesh.positions[0];
+  for (int v = 0; v < mesh.num_vertices(); ++v) {
+    const Vec3& p = mesh.positions[v];
+    if (p.cwiseAbs().maxCoeff() > kMaxCoordinate)
+      fail(MCON_ERROR_INVALID_ARGUMENT, "vertex " + std::to_string(v) + " has a coordinate of magnitude " +
+                                            number_text(p.cwiseAbs().maxCoeff()) + ", outside the supported range (|x| <= " +
+                                            number_text(kMaxCoordinate) + "); rescale the mesh (e.g. to metres)");
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const double extent = (hi - lo).norm();
+  if (mesh.num_vertices() > 1 && extent < kMinExtent)
+    fail(MCON_ERROR_INVALID_ARGUMENT, "the mesh's bounding box diagonal is " + number_text(extent) +
+                                          ", below the supported minimum " + number_text(kMinExtent) +
+                                          "; rescale the mesh (e.g. to metres)");
+}
+
 // Finite positions; triangle indices in range and distinct.
 void check_positions_and_indices(const TriMesh& mesh) {
   const int nv = mesh.num_vertices();
@@ -30,6 +51,7 @@ void check_positions_and_indices(const TriMesh& mesh) {
     if (!(std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z())))
       fail(MCON_ERROR_NON_FINITE, "vertex " + std::to_string(v) + " has a non-finite coordinate");
   }
+  check_coordinate_range(mesh);
   for (int t = 0; t < nt; ++t) {
     const Tri& tri = mesh.triangles[t];
     for (int i = 0; i < 3; ++i) {

@@ -37,6 +37,13 @@ struct MeshArrays {
   std::size_t triangle_count = 0;
 };
 
+// The supported coordinate range: every |coordinate| <= kMaxCoordinate and a bounding box whose
+// diagonal is >= kMinExtent. Outside it, squared lengths and areas over- or underflow (a grid
+// scaled by 1e200 or 1e-100 has "zero-area" triangles, at 1e100 the Laplacian cannot be
+// factorized); validation reports MCON_ERROR_INVALID_ARGUMENT naming the range instead.
+inline constexpr double kMaxCoordinate = 1e15;
+inline constexpr double kMinExtent = 1e-15;
+
 // Copies strided arrays into a TriMesh and validates it (throws mcon::Error).
 TriMesh mesh_from_arrays(const MeshArrays& arrays);
 

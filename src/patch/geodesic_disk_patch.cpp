@@ -10,6 +10,7 @@
 
 #include "patch/disk_parametrization.h"
 #include "base/error.h"
+#include "base/text.h"
 #include "mesh/edge_key.h"
 #include "operators/heat_geodesics.h"
 #include "mesh/mesh_region.h"
@@ -30,7 +31,7 @@ enum class Side : std::uint8_t { kIn, kOn, kOut };
 
 void check_options(const TriMesh& host, const PatchOptions& o) {
   require(std::isfinite(o.radius) && o.radius > 0, MCON_ERROR_INVALID_ARGUMENT,
-          "radius must be finite and > 0 (got " + std::to_string(o.radius) + ")");
+          "radius must be finite and > 0 (got " + number_text(o.radius) + ")");
   require(std::isfinite(o.snap_fraction) && o.snap_fraction >= 0 && o.snap_fraction <= 0.45,
           MCON_ERROR_INVALID_ARGUMENT, "snap_fraction must lie in [0, 0.45]");
   const PatchCenter& c = o.center;
@@ -150,8 +151,20 @@ IsoRegion cut_at_radius(const MeshRegion& region, Eigen::VectorXd d, const Patch
   iso.d = std::move(d);
   iso.center_vertex = c.vertex >= 0 ? region.host_to_vertex[c.vertex] : -1;
   require(iso.center_vertex < 0 || iso.side[iso.center_vertex] == Side::kIn, MCON_ERROR_INVALID_ARGUMENT,
-          "radius " + std::to_string(r) + " is too small for the mesh resolution at the center");
+          "radius " + number_text(r) + " is too small for the mesh resolution at the center");
   return iso;
+}
+
+// A radius beyond every distance makes the "disk" the whole part of the mesh, bounded by the
+// mesh's own border rather than the geodesic circle, and its normalization meaningless. (A whole
+// closed surface is reported as NOT_A_DISK before this.)
+void require_radius_within_reach(const IsoRegion& iso) {
+  double reach = 0;
+  for (int v = 0; v < iso.region.mesh.num_vertices(); ++v)
+    if (std::isfinite(iso.d[v])) reach = std::max(reach, iso.d[v]);
+  require(reach >= iso.r, MCON_ERROR_INVALID_ARGUMENT,
+          "radius " + number_text(iso.r) + " is larger than the whole part of the mesh around the center (its "
+          "farthest point is at geodesic distance " + number_text(reach) + "); use a radius below that");
 }
 
 // 3. The disk's triangles: those with an inside corner, connected to the center through
@@ -173,7 +186,7 @@ std::vector<char> disk_triangles(const IsoRegion& iso, const PatchCenter& c) {
     }
   }
   require(!stack.empty(), MCON_ERROR_INVALID_ARGUMENT,
-          "radius " + std::to_string(iso.r) + " is too small for the mesh resolution at the center");
+          "radius " + number_text(iso.r) + " is too small for the mesh resolution at the center");
   while (!stack.empty()) {
     const int t = stack.back();
     stack.pop_back();
@@ -545,6 +558,7 @@ Patch extract_geodesic_disk(const TriMesh& host, const PatchOptions& options) {
   if (!holes.empty()) pt = build_topology(draft.patch.mesh);
   Patch& patch = draft.patch;
   require_one_disk(patch, pt);
+  require_radius_within_reach(iso);
   report(0.7);
 
   if (c.vertex >= 0)  // 8.

@@ -191,3 +191,60 @@ TEST(GeodesicDiskPatch, ProgressCanCancel) {
   EXPECT_EQ(extraction_status(host, o), MCON_ERROR_CANCELLED);
   EXPECT_EQ(calls, 3);
 }
+
+// A radius beyond the whole part of the mesh used to give a "disk" bounded by the mesh border,
+// normalized so that its geodesic radius was far from 1 (radius 2 here: 0.37).
+TEST(GeodesicDiskPatch, RadiusBeyondTheWholeMeshIsAnError) {
+  const TriMesh host = test_meshes::make_grid(21, 1.0);
+  for (double r : {2.0, 1e30}) {
+    std::string message;
+    try {
+      extract_geodesic_disk(host, at_vertex(10 * 21 + 10, r));
+    } catch (const Error& e) {
+      EXPECT_EQ(e.status(), MCON_ERROR_INVALID_ARGUMENT);
+      message = e.what();
+    }
+    EXPECT_NE(message.find("larger than the whole part of the mesh"), std::string::npos) << r << ": " << message;
+  }
+  // Within the grid (the border is at distance 0.5) it is a valid disk of geodesic radius 1.
+  const Patch p = extract_valid_disk(host, at_vertex(10 * 21 + 10, 0.45));
+  EXPECT_NEAR(p.max_geodesic_distance, 1.0, 0.05);
+}
+
+// Messages print the radius in full: 1e-12 used to read "radius 0.000000 is too small".
+TEST(GeodesicDiskPatch, TooSmallRadiusIsPrintedInFull) {
+  const TriMesh host = test_meshes::make_grid(21, 1.0);
+  std::string message;
+  try {
+    extract_geodesic_disk(host, at_vertex(10 * 21 + 10, 1e-12));
+  } catch (const Error& e) {
+    message = e.what();
+  }
+  EXPECT_NE(message.find("radius 1e-12 "), std::string::npos) << message;
+}
+
+// The supported coordinate range holds end to end: a grid scaled to either end gives the same
+// normalized disk; beyond it validation names the range.
+TEST(GeodesicDiskPatch, ScaleWithinTheSupportedRangeGivesTheSameDisk) {
+  const TriMesh unit = test_meshes::make_grid(31, 1.0, 0.3);
+  const Patch ref = extract_valid_disk(unit, at_vertex(15 * 31 + 15, 0.3));
+  for (double scale : {1e-14, 1e14}) {
+    TriMesh host = unit;
+    for (Vec3& p : host.positions) p *= scale;
+    const Patch p = extract_valid_disk(host, at_vertex(15 * 31 + 15, 0.3 * scale));
+    EXPECT_EQ(p.mesh.num_vertices(), ref.mesh.num_vertices()) << scale;
+    EXPECT_NEAR(p.max_geodesic_distance, ref.max_geodesic_distance, 1e-6) << scale;
+  }
+  for (double scale : {1e200, 1e100, 1e-100}) {
+    TriMesh host = unit;
+    for (Vec3& p : host.positions) p *= scale;
+    std::string message;
+    try {
+      validate_mesh(host);
+    } catch (const Error& e) {
+      EXPECT_EQ(e.status(), MCON_ERROR_INVALID_ARGUMENT) << scale;
+      message = e.what();
+    }
+    EXPECT_NE(message.find("supported"), std::string::npos) << scale << ": " << message;
+  }
+}

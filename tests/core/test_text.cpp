@@ -47,3 +47,10 @@ TEST(Text, PrintableEscapesControlsAndBadBytesOnly) {
   EXPECT_EQ(printable_text("back\\slash"), "back\\\\slash");  // unambiguous: "\x1b" typed out stays distinct
   EXPECT_EQ(invalid_utf8_offset(printable_text("\xff\x80\xed\xa0\x80")), std::string::npos);
 }
+
+TEST(Text, NumbersAreShownInFullPrecision) {
+  EXPECT_EQ(number_text(1e-12), "1e-12");
+  EXPECT_EQ(number_text(0.3), "0.3");
+  EXPECT_EQ(number_text(2.0), "2");
+  EXPECT_EQ(number_text(1.0 / 3.0), "0.3333333333333333");
+}
