@@ -75,7 +75,7 @@ def strided_rows(name: str, array, dtypes, columns: Optional[int] = None, vector
         raise ValueError(f"{name} must have shape {want}{' or (n,)' if vector else ''}, got {a.shape}")
     itemsize, align = a.dtype.itemsize, a.dtype.alignment
     row_bytes = a.shape[1] * itemsize
-    if a.shape[1] > 1 and a.strides[1] != itemsize:
+    if a.shape[0] > 0 and a.shape[1] > 1 and a.strides[1] != itemsize:  # numpy gives empty arrays strides (0, 0)
         raise ValueError(f"{name}: the values of a row must be contiguous (strides[1] == {itemsize}), got strides "
                          f"{a.strides}: rows may be strided, columns not (numpy.ascontiguousarray makes a C-contiguous copy)")
     if a.shape[0] < 2:

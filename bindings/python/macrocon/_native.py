@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import ctypes
 import ctypes.util
+import numbers
 import os
 import sys
 from pathlib import Path
@@ -20,8 +21,45 @@ LOG_CALLBACK = ctypes.CFUNCTYPE(None, ctypes.c_void_p, ctypes.c_int32, ctypes.c_
 
 INVALID_INDEX = 0xFFFFFFFF
 
+# ctypes converts Python ints by truncation (2**32 + 5 becomes 5) and c_char_p stops at the first
+# NUL, so every integer and string that crosses the boundary is checked here first: structure
+# fields on assignment (Struct) and scalar arguments of every declared function.
+_INT_RANGES = {
+    t: ((0, 2 ** (8 * ctypes.sizeof(t)) - 1) if t(-1).value > 0 else
+        (-(2 ** (8 * ctypes.sizeof(t) - 1)), 2 ** (8 * ctypes.sizeof(t) - 1) - 1))
+    for t in (ctypes.c_int8, ctypes.c_uint8, ctypes.c_int16, ctypes.c_uint16, ctypes.c_int32, ctypes.c_uint32,
+              ctypes.c_int64, ctypes.c_uint64, ctypes.c_size_t)
+}
 
-class ContextOptions(ctypes.Structure):
+
+def check_value(what: str, value, ctype) -> None:
+    """InvalidArgumentError for an integer outside ``ctype``'s range or a string with a NUL byte."""
+    problem = None
+    if ctype in _INT_RANGES and isinstance(value, numbers.Integral) and not isinstance(value, bool):
+        lo, hi = _INT_RANGES[ctype]
+        if not lo <= int(value) <= hi:
+            problem = f"{what} is {int(value)}, outside the range of its C type ({lo}..{hi})"
+    elif ctype is ctypes.c_char_p and isinstance(value, (bytes, str)):
+        if (b"\0" if isinstance(value, bytes) else "\0") in value:
+            problem = f"{what} contains a NUL character, which would cut the string short on the C side"
+    if problem:
+        from .errors import InvalidArgumentError  # errors imports this module
+
+        raise InvalidArgumentError(2, problem)
+
+
+class Struct(ctypes.Structure):
+    """A ctypes structure whose integer and string fields are range- and NUL-checked on assignment."""
+
+    def __setattr__(self, name, value):
+        for field in type(self)._fields_:
+            if field[0] == name:
+                check_value(f"{type(self).__name__}.{name}", value, field[1])
+                break
+        super().__setattr__(name, value)
+
+
+class ContextOptions(Struct):
     _fields_ = [
         ("struct_size", ctypes.c_uint32),
         ("max_threads", ctypes.c_uint32),
@@ -30,7 +68,7 @@ class ContextOptions(ctypes.Structure):
     ]
 
 
-class MeshDesc(ctypes.Structure):
+class MeshDesc(Struct):
     _fields_ = [
         ("struct_size", ctypes.c_uint32),
         ("positions", ctypes.c_void_p),
@@ -43,7 +81,7 @@ class MeshDesc(ctypes.Structure):
     ]
 
 
-class PatchOptions(ctypes.Structure):
+class PatchOptions(Struct):
     _fields_ = [
         ("struct_size", ctypes.c_uint32),
         ("center_vertex", ctypes.c_uint32),
@@ -57,7 +95,7 @@ class PatchOptions(ctypes.Structure):
     ]
 
 
-class PatchInfo(ctypes.Structure):
+class PatchInfo(Struct):
     _fields_ = [
         ("struct_size", ctypes.c_uint32),
         ("vertex_count", c_size),
@@ -76,11 +114,11 @@ class PatchInfo(ctypes.Structure):
 
 # ---- constraint libraries and retrieval (mcon_library_*) ----
 
-class SurfacePoint(ctypes.Structure):
+class SurfacePoint(Struct):
     _fields_ = [("face", ctypes.c_uint32), ("barycentric", ctypes.c_double * 3)]
 
 
-class Polyline(ctypes.Structure):
+class Polyline(Struct):
     _fields_ = [
         ("kind", ctypes.c_uint32),
         ("closed", ctypes.c_uint32),
@@ -89,11 +127,11 @@ class Polyline(ctypes.Structure):
     ]
 
 
-class Singularity(ctypes.Structure):
+class Singularity(Struct):
     _fields_ = [("location", SurfacePoint), ("index_quarters", ctypes.c_int32)]
 
 
-class VertexField(ctypes.Structure):
+class VertexField(Struct):
     _fields_ = [
         ("name", ctypes.c_char_p),
         ("kind", ctypes.c_uint32),
@@ -104,7 +142,7 @@ class VertexField(ctypes.Structure):
     ]
 
 
-class LibraryEntryDesc(ctypes.Structure):
+class LibraryEntryDesc(Struct):
     _fields_ = [
         ("struct_size", ctypes.c_uint32),
         ("patch", ctypes.c_void_p),
@@ -127,7 +165,7 @@ class LibraryEntryDesc(ctypes.Structure):
     ]
 
 
-class LibraryInfo(ctypes.Structure):
+class LibraryInfo(Struct):
     _fields_ = [
         ("struct_size", ctypes.c_uint32),
         ("entry_count", c_size),
@@ -141,7 +179,7 @@ class LibraryInfo(ctypes.Structure):
     ]
 
 
-class RetrievalOptions(ctypes.Structure):
+class RetrievalOptions(Struct):
     _fields_ = [
         ("struct_size", ctypes.c_uint32),
         ("descriptor", ctypes.c_uint32),
@@ -154,7 +192,7 @@ class RetrievalOptions(ctypes.Structure):
     ]
 
 
-class LibraryEntryInfo(ctypes.Structure):
+class LibraryEntryInfo(Struct):
     _fields_ = [
         ("struct_size", ctypes.c_uint32),
         ("id", ctypes.c_uint64),
@@ -172,7 +210,7 @@ class LibraryEntryInfo(ctypes.Structure):
 
 # ---- re-embedding maps and transfer (mcon_map_*) ----
 
-class PatchFrame(ctypes.Structure):
+class PatchFrame(Struct):
     _fields_ = [
         ("struct_size", ctypes.c_uint32),
         ("center_triangle", ctypes.c_uint32),
@@ -182,7 +220,7 @@ class PatchFrame(ctypes.Structure):
     ]
 
 
-class MapOptions(ctypes.Structure):
+class MapOptions(Struct):
     _fields_ = [
         ("struct_size", ctypes.c_uint32),
         ("seed", ctypes.c_uint64),
@@ -202,7 +240,7 @@ class MapOptions(ctypes.Structure):
     ]
 
 
-class MapInfo(ctypes.Structure):
+class MapInfo(Struct):
     _fields_ = [
         ("struct_size", ctypes.c_uint32),
         ("source_vertex_count", c_size),
@@ -232,7 +270,7 @@ class MapInfo(ctypes.Structure):
     ]
 
 
-class CrossFieldOptions(ctypes.Structure):
+class CrossFieldOptions(Struct):
     _fields_ = [
         ("struct_size", ctypes.c_uint32),
         ("alignment_weight", ctypes.c_double),
@@ -379,6 +417,20 @@ def _missing(name: str):
     return call
 
 
+def _checked_call(name: str, fn, argtypes):
+    """``fn`` with its integer and string arguments checked (check_value) before the call."""
+    checks = [(i, t) for i, t in enumerate(argtypes) if t in _INT_RANGES or t is ctypes.c_char_p]
+
+    def call(*args):
+        for i, t in checks:
+            if i < len(args):
+                check_value(f"{name} argument {i + 1}", args[i], t)
+        return fn(*args)
+
+    call.__name__ = name
+    return call
+
+
 for _name, _args in _SIGNATURES.items():
     try:
         _fn = getattr(lib, _name)
@@ -388,6 +440,8 @@ for _name, _args in _SIGNATURES.items():
         continue
     _fn.argtypes = _args
     _fn.restype = c_status
+    if any(t in _INT_RANGES or t is ctypes.c_char_p for t in _args):
+        setattr(lib, _name, _checked_call(_name, _fn, _args))
 
 
 def library_version() -> tuple[int, int, int]:

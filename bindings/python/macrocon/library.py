@@ -132,6 +132,7 @@ def _utf8(name: str, text: Optional[str]) -> Optional[bytes]:
         return None
     if not isinstance(text, str):
         raise TypeError(f"{name} must be a str, got {type(text).__name__}")
+    _native.check_value(name, text, ctypes.c_char_p)  # a NUL would cut the name short in C
     return text.encode("utf-8")
 
 

@@ -134,6 +134,9 @@ class Map(_Handle):
     def __init__(self, handle: ctypes.c_void_p, source: Patch, target: Patch):
         super().__init__(handle)
         self.source, self.target = source, target
+        # The C map keeps its own references to both patches: its methods work after the Python
+        # patches are closed, so the vertex counts are read once, here.
+        self._source_vertices, self._target_vertices = source.vertex_count, target.vertex_count
 
     @classmethod
     def compute(
@@ -230,7 +233,7 @@ class Map(_Handle):
     def correspondences(self, direction: Direction = Direction.SOURCE_TO_TARGET) -> Tuple[np.ndarray, np.ndarray]:
         """Per vertex of the direction's domain: (triangle of the other patch, -1 = outside; barycentric (n, 3))."""
         d = Direction(direction)
-        n = self.source.vertex_count if d == Direction.SOURCE_TO_TARGET else self.target.vertex_count
+        n = self._source_vertices if d == Direction.SOURCE_TO_TARGET else self._target_vertices
         tri, bary = np.zeros(n, np.int32), np.zeros((n, 3))
         check(_native.lib.mcon_map_get_correspondences(self.handle, int(d), ptr(tri), ptr(bary), n))
         return tri, bary
@@ -238,14 +241,14 @@ class Map(_Handle):
     @property
     def phi(self) -> np.ndarray:
         """(source vertices, 2): the deformed source disk in the target disk's plane."""
-        out = np.zeros((self.source.vertex_count, 2))
+        out = np.zeros((self._source_vertices, 2))
         check(_native.lib.mcon_map_get_phi(self.handle, ptr(out), out.size))
         return out
 
     @property
     def outside_mask(self) -> np.ndarray:
         """(target vertices,) bool: True where a target vertex has no source preimage."""
-        out = np.zeros(self.target.vertex_count, np.uint8)
+        out = np.zeros(self._target_vertices, np.uint8)
         check(_native.lib.mcon_map_get_outside_mask(self.handle, ptr(out), out.size))
         return out.astype(bool)
 
@@ -285,9 +288,9 @@ class Map(_Handle):
         if k == FieldKind.INTEGER_LABEL:
             raise ValueError("integer labels go through transfer_labels (never blended)")
         v = _unstrided_rows("values", values, np.float64, copy)
-        if v.shape[0] != self.source.vertex_count:
-            raise ValueError(f"values has {v.shape[0]} rows, the source {self.source.vertex_count} vertices")
-        out = np.zeros((self.target.vertex_count, v.shape[1]))
+        if v.shape[0] != self._source_vertices:
+            raise ValueError(f"values has {v.shape[0]} rows, the source {self._source_vertices} vertices")
+        out = np.zeros((self._target_vertices, v.shape[1]))
         check(_native.lib.mcon_map_transfer_field(self.handle, int(k), v.shape[1], ptr(v), v.size, ptr(out), out.size))
         return out
 
@@ -297,9 +300,9 @@ class Map(_Handle):
         C-contiguous only (no stride in mcon_map_transfer_labels); ``copy=True`` as in transfer_field.
         """
         v = _unstrided_rows("labels", labels, np.int32, copy)
-        if v.shape[0] != self.source.vertex_count:
-            raise ValueError(f"labels has {v.shape[0]} rows, the source {self.source.vertex_count} vertices")
-        out = np.zeros((self.target.vertex_count, v.shape[1]), np.int32)
+        if v.shape[0] != self._source_vertices:
+            raise ValueError(f"labels has {v.shape[0]} rows, the source {self._source_vertices} vertices")
+        out = np.zeros((self._target_vertices, v.shape[1]), np.int32)
         check(_native.lib.mcon_map_transfer_labels(self.handle, v.shape[1], ptr(v), v.size, int(outside_label), ptr(out),
                                                    out.size))
         return out
