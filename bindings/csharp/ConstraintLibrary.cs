@@ -220,7 +220,7 @@ namespace Macrocon
                             IntPtr start = Interleaved.Start(what, records, f.RecordOffset, scalar);
                             fields[i].name = pins.Utf8(f.Name);
                             fields[i].kind = (uint)f.Kind;
-                            fields[i].dimension = (uint)f.Dimension;
+                            fields[i].dimension = checked((uint)f.Dimension);
                             if (labels) fields[i].labels = start; else fields[i].values = start;
                             fields[i].stride = (UIntPtr)f.RecordStride;
                             continue;
@@ -232,7 +232,7 @@ namespace Macrocon
                             throw new ArgumentException($"Fields[{i}] holds {length} values, the patch needs {f.Dimension * patch.VertexCount}");
                         fields[i].name = pins.Utf8(f.Name);
                         fields[i].kind = (uint)f.Kind;
-                        fields[i].dimension = (uint)f.Dimension;
+                        fields[i].dimension = checked((uint)f.Dimension);
                         if (labels) fields[i].labels = pins.Pin(f.Labels); else fields[i].values = pins.Pin(f.Values);
                     }
                     desc.fields = pins.Pin(fields);
@@ -245,7 +245,7 @@ namespace Macrocon
                         Interleaved.Check("DescriptorRecords", Interleaved.ByteLength(e.DescriptorRecords), e.DescriptorOffset,
                                           e.DescriptorStride, patch.VertexCount, 8 * e.DescriptorDimension, 8);
                         desc.descriptors = Interleaved.Start("DescriptorRecords", records, e.DescriptorOffset, 8);
-                        desc.descriptor_dimension = (uint)e.DescriptorDimension;
+                        desc.descriptor_dimension = checked((uint)e.DescriptorDimension);
                         desc.descriptor_stride = (UIntPtr)e.DescriptorStride;
                     }
                     else if (e.Descriptors != null)
@@ -253,7 +253,7 @@ namespace Macrocon
                         if (e.DescriptorDimension < 1 || e.Descriptors.Length != e.DescriptorDimension * patch.VertexCount)
                             throw new ArgumentException("Descriptors must hold DescriptorDimension values per patch vertex");
                         desc.descriptors = pins.Pin(e.Descriptors);
-                        desc.descriptor_dimension = (uint)e.DescriptorDimension;
+                        desc.descriptor_dimension = checked((uint)e.DescriptorDimension);
                     }
                     Native.Check(Native.mcon_library_add_entry(Handle, ref desc, out ulong id));
                     return id;
@@ -326,7 +326,7 @@ namespace Macrocon
             UIntPtr count;
             fixed (byte* d = &MemoryMarshal.GetReference(rowBytes))
                 Native.Check(Native.mcon_library_query_descriptors(Handle, patch.Handle, Interleaved.Start("rowBytes", (IntPtr)d, offset, 8),
-                                                                   (uint)dimension, (UIntPtr)stride, (UIntPtr)n, r.Ids, r.Indices,
+                                                                   checked((uint)dimension), (UIntPtr)stride, (UIntPtr)n, r.Ids, r.Indices,
                                                                    r.Distances, (UIntPtr)r.Ids.Length, out count));
             return Trim(r, count);
         }
@@ -350,7 +350,7 @@ namespace Macrocon
             var r = Results(n);
             UIntPtr count;
             fixed (double* d = &MemoryMarshal.GetReference(descriptors))
-                Native.Check(Native.mcon_library_query_descriptors(Handle, patch.Handle, (IntPtr)d, (uint)dimension, UIntPtr.Zero,
+                Native.Check(Native.mcon_library_query_descriptors(Handle, patch.Handle, (IntPtr)d, checked((uint)dimension), UIntPtr.Zero,
                                                                    (UIntPtr)n, r.Ids, r.Indices, r.Distances, (UIntPtr)r.Ids.Length,
                                                                    out count));
             return Trim(r, count);

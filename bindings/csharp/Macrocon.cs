@@ -344,10 +344,14 @@ namespace Macrocon
             [Out] double[] directions, [Out] double[] confidence, UIntPtr capacity);
         [DllImport(Lib)] internal static extern Status mcon_patch_write_rosy(PatchHandle patch, IntPtr directions, UIntPtr triangleCount, byte[] path);
 
-        /// <summary>A NUL-terminated UTF-8 copy of a string (paths and metadata).</summary>
+        /// <summary>A NUL-terminated UTF-8 copy of a string (paths and metadata); a NUL inside would cut it short.</summary>
         internal static byte[] Utf8(string s)
         {
             if (s == null) return null;
+            int nul = s.IndexOf('\0');
+            if (nul >= 0)
+                throw new ArgumentException("the string contains a NUL character at index " + nul +
+                                            ", which would cut it short on the C side: remove it");
             var bytes = System.Text.Encoding.UTF8.GetBytes(s);
             Array.Resize(ref bytes, bytes.Length + 1);
             return bytes;

@@ -105,7 +105,7 @@ namespace Macrocon
                     settings.TargetGuidance.Length != (long)d * target.VertexCount)
                     throw new ArgumentException("guidance needs GuidanceDimension >= 1 values per source and per target vertex (" +
                                                 source.VertexCount + " and " + target.VertexCount + " vertices)");
-                o.guidance_dimension = (uint)d;
+                o.guidance_dimension = checked((uint)d);
                 if (settings.GuidanceWeight.HasValue) o.guidance_weight = settings.GuidanceWeight.Value;
             }
             else if (settings.GuidanceDimension != 0)
@@ -223,7 +223,7 @@ namespace Macrocon
                 throw new ArgumentException($"values must hold {dimension} per source vertex ({sourceVertices})");
             var o = new double[dimension * targetVertices];
             fixed (double* v = &MemoryMarshal.GetReference(values))
-                Native.Check(Native.mcon_map_transfer_field(Handle, kind, (uint)dimension, (IntPtr)v, (UIntPtr)values.Length, o,
+                Native.Check(Native.mcon_map_transfer_field(Handle, kind, checked((uint)dimension), (IntPtr)v, (UIntPtr)values.Length, o,
                                                             (UIntPtr)o.Length));
             return o;
         }
@@ -263,7 +263,7 @@ namespace Macrocon
                 throw new ArgumentException($"labels must hold {dimension} per source vertex ({sourceVertices})");
             var o = new int[dimension * targetVertices];
             fixed (int* v = &MemoryMarshal.GetReference(labels))
-                Native.Check(Native.mcon_map_transfer_labels(Handle, (uint)dimension, (IntPtr)v, (UIntPtr)labels.Length, outsideLabel, o,
+                Native.Check(Native.mcon_map_transfer_labels(Handle, checked((uint)dimension), (IntPtr)v, (UIntPtr)labels.Length, outsideLabel, o,
                                                              (UIntPtr)o.Length));
             return o;
         }

@@ -355,6 +355,12 @@ static class Tests
             var far = new EntryDesc { Polylines = new[] { new Polyline { Points = new[] { Third(0), Third((uint)patch.TriangleCount + 10) } } } };
             var e = Expect<MacroconException>(() => lib.AddEntry(patch, far));
             Check(e.Status == Status.InvalidArgument && e.Message.Length > 20, "bad face: " + e.Message);
+            // A NUL inside a string would cut it short on the C side: rejected before the call.
+            var nul = Expect<ArgumentException>(() => lib.AddEntry(patch, new EntryDesc { Name = "uv\0x" }));
+            Check(nul.Message.Contains("NUL"), "NUL in a name: " + nul.Message);
+            Expect<ArgumentException>(() => lib.AddEntry(patch, new EntryDesc { Tags = new[] { "ok", "a\0b" } }));
+            Expect<ArgumentException>(() => lib.Save("dir\0name.mcl"));
+            Check(lib.Count == 0, "rejected entries are not stored");
             var nan = new double[patch.VertexCount]; nan[3] = double.NaN;
             Check(Expect<MacroconException>(() => lib.AddEntry(patch, new EntryDesc { Fields = new[] { new Field { Name = "x", Values = nan } } })).Status
                   == Status.NonFinite, "nan field");
