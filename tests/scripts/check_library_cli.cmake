@@ -130,6 +130,13 @@ run_checked(EXPECT_FAILURE "needs --class" COMMAND ${CLI} library build
   --out ${WORK}/x.mclb --mesh ${MESH} --face-range ${RANGE} --center-vertex 297 --radius 0.5)
 run_checked(EXPECT_FAILURE "not a vertex" COMMAND ${CLI} query
   --library ${LIB} --mesh ${MESH} --face-range ${RANGE} --center-vertex 99999999 --radius 0.5)
+# Out-of-range integers are errors, not clamped to LONG_MAX (which made a huge --top valid).
+run_checked(EXPECT_FAILURE "--center-vertex is out of range" COMMAND ${CLI} query
+  --library ${LIB} --mesh ${MESH} --face-range ${RANGE} --center-vertex 99999999999999999999999 --radius 0.5)
+run_checked(EXPECT_FAILURE "--top is out of range" COMMAND ${CLI} query
+  --library ${LIB} --mesh ${MESH} --face-range ${RANGE} --center-vertex 297 --radius 0.5 --top 18446744073709551617)
+run_checked(EXPECT_FAILURE "--radius is out of range" COMMAND ${CLI} query
+  --library ${LIB} --mesh ${MESH} --face-range ${RANGE} --center-vertex 297 --radius 1e999)
 if(EXISTS ${WORK}/x.mclb)
   message(FATAL_ERROR "a failed build left a file behind")
 endif()

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "command/args.h"
 #include "command/command.h"
 #include "library/constraint_library.h"
 #include "base/error.h"
@@ -30,29 +31,13 @@ struct EntrySpec {
 inline void parse_face_range(const std::string& s, long& begin, long& end) {
   const auto colon = s.find(':');
   require(colon != std::string::npos, MCON_ERROR_INVALID_ARGUMENT, "--face-range expects BEGIN:END, got '" + s + "'");
-  char* stop = nullptr;
-  const std::string a = s.substr(0, colon), b = s.substr(colon + 1);
-  begin = std::strtol(a.c_str(), &stop, 10);
-  require(!a.empty() && *stop == '\0', MCON_ERROR_INVALID_ARGUMENT, "--face-range expects BEGIN:END, got '" + s + "'");
-  end = std::strtol(b.c_str(), &stop, 10);
-  require(!b.empty() && *stop == '\0', MCON_ERROR_INVALID_ARGUMENT, "--face-range expects BEGIN:END, got '" + s + "'");
+  begin = ArgParser::parse_integer("face-range", s.substr(0, colon));
+  end = ArgParser::parse_integer("face-range", s.substr(colon + 1));
   require(begin >= 0 && end > begin, MCON_ERROR_INVALID_ARGUMENT, "--face-range needs 0 <= BEGIN < END");
 }
 
-inline long parse_integer(const std::string& option, const std::string& s) {
-  char* stop = nullptr;
-  const long v = std::strtol(s.c_str(), &stop, 10);
-  require(!s.empty() && *stop == '\0', MCON_ERROR_INVALID_ARGUMENT,
-          "--" + option + " expects an integer, got '" + s + "'");
-  return v;
-}
-
-inline double parse_real(const std::string& option, const std::string& s) {
-  char* stop = nullptr;
-  const double v = std::strtod(s.c_str(), &stop);
-  require(!s.empty() && *stop == '\0', MCON_ERROR_INVALID_ARGUMENT, "--" + option + " expects a number, got '" + s + "'");
-  return v;
-}
+inline long parse_integer(const std::string& option, const std::string& s) { return ArgParser::parse_integer(option, s); }
+inline double parse_real(const std::string& option, const std::string& s) { return ArgParser::parse_number(option, s); }
 
 // Meshes read once per (file, face range).
 class MeshCache {

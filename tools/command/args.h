@@ -1,6 +1,8 @@
 // Minimal `--key value` / `--flag` argument parsing for the CLI subcommands.
 #pragma once
 
+#include <cerrno>
+#include <cmath>
 #include <cstdlib>
 #include <map>
 #include <set>
@@ -44,18 +46,27 @@ class ArgParser {
   }
   long integer(const std::string& key, long fallback) const {
     if (!has(key)) return fallback;
-    const std::string s = get(key);
+    return parse_integer(key, get(key));
+  }
+  // The whole text must be the number; out-of-range values are errors, not clamped (strtol
+  // saturates at LONG_MAX with ERANGE, which once let --top 2**64+1 through).
+  static long parse_integer(const std::string& key, const std::string& s) {
     char* end = nullptr;
+    errno = 0;
     const long v = std::strtol(s.c_str(), &end, 10);
     require(end && *end == '\0' && !s.empty(), MCON_ERROR_INVALID_ARGUMENT,
             "--" + key + " expects an integer, got '" + s + "'");
+    require(errno != ERANGE, MCON_ERROR_INVALID_ARGUMENT, "--" + key + " is out of range: '" + s + "'");
     return v;
   }
   static double parse_number(const std::string& key, const std::string& s) {
     char* end = nullptr;
+    errno = 0;
     const double v = std::strtod(s.c_str(), &end);
     require(end && *end == '\0' && !s.empty(), MCON_ERROR_INVALID_ARGUMENT,
             "--" + key + " expects a number, got '" + s + "'");
+    require(std::isfinite(v) && !(errno == ERANGE && v != 0), MCON_ERROR_INVALID_ARGUMENT,
+            "--" + key + " is out of range: '" + s + "'");
     return v;
   }
 
