@@ -1,12 +1,15 @@
 /*
  * Macrocon: retrieval and re-embedding of macro constraints for quad meshing.
  *
- * The stable C ABI. Conventions (see README "C API conventions"):
+ * The stable C ABI. Conventions (docs/api.md has the reasoning):
  *  - Every function returns an mcon_status. MCON_OK is 0; anything else is an error, and a
  *    human-readable message for it is kept per thread: mcon_get_last_error().
  *  - Objects are opaque, reference-counted handles. *_create / *_extract return a handle with one
  *    reference; mcon_X_retain adds one, mcon_X_release drops one and frees at zero. Releasing a
- *    NULL handle is a no-op that returns MCON_OK.
+ *    NULL handle is a no-op that returns MCON_OK; releasing more often than created and retained,
+ *    or using a released handle, is MCON_ERROR_INVALID_ARGUMENT (objects that others hold, e.g. a
+ *    map's patches, stay alive for them).
+ *  - Coordinates: every |coordinate| <= 1e15 and a bounding-box diagonal >= 1e-15.
  *  - Options structs start with `uint32_t struct_size`; fill them with the matching *_init
  *    function, then change what you need. The library reads only the fields that fit inside
  *    struct_size, so code compiled against an older header keeps working.

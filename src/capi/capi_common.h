@@ -62,41 +62,73 @@ mcon_status guard(const char* function, F&& body, const mcon_context& log_contex
   }
 }
 
-// Every handle object starts with this header. The magic tag catches wrong-type and
-// already-freed handles in most cases (a best effort: a freed handle is still undefined).
+// The registry of live handle objects: check_handle asks it before it reads anything behind a
+// handle, so a released (freed) or made-up handle is an error, not a read of freed memory.
+// Handles are plain pointers, so a new object at a freed one's address is found again (the
+// registry cannot tell them apart); docs/api.md says so.
+void register_handle(const void* header);  // may throw std::bad_alloc
+void unregister_handle(const void* header) noexcept;
+bool handle_is_live(const void* header) noexcept;
+
+// Every handle object starts with this header: a type tag and two reference counts in one
+// atomic word. The low 32 bits count the caller's references (create and mcon_*_retain minus
+// mcon_*_release), the high 32 bits the references other SDK objects hold (a map on its
+// patches, every object on its context). The object lives while either is non-zero, and a
+// caller's release beyond its own references is an error instead of freeing what a map holds.
 struct HandleHeader {
+  static constexpr std::uint64_t kCallerMask = 0xFFFFFFFFu;
+  static constexpr std::uint64_t kOwnerUnit = std::uint64_t{1} << 32;
   std::uint32_t magic;
-  std::atomic<std::int32_t> references{1};
-  explicit HandleHeader(std::uint32_t m) : magic(m) {}
+  std::atomic<std::uint64_t> references{1};
+  explicit HandleHeader(std::uint32_t m) : magic(m) { register_handle(this); }
+  ~HandleHeader() { unregister_handle(this); }
+  HandleHeader(const HandleHeader&) = delete;
+  HandleHeader& operator=(const HandleHeader&) = delete;
+  std::uint64_t caller_references() const { return references.load() & kCallerMask; }
 };
 
 template <typename T>
 T* check_handle(T* handle, const char* what) {
   require(handle != nullptr, MCON_ERROR_NULL_POINTER, std::string(what) + " handle is NULL");
-  require(handle->header.magic == T::kMagic && handle->header.references.load() > 0, MCON_ERROR_INVALID_ARGUMENT,
+  require(handle_is_live(&handle->header) && handle->header.magic == T::kMagic &&
+              handle->header.caller_references() > 0,
+          MCON_ERROR_INVALID_ARGUMENT,
           std::string(what) + " handle is not a valid " + what + " (wrong type or already released)");
   return handle;
 }
 
+// mcon_*_retain: one more caller reference.
 template <typename T>
 void retain(T* handle, const char* what) {
   check_handle(handle, what)->header.references.fetch_add(1);
 }
 
+// mcon_*_release: drops one caller reference, frees the object when nothing holds it any more.
 template <typename T>
 void release(T* handle, const char* what) {
   if (handle == nullptr) return;
   check_handle(handle, what);
-  if (handle->header.references.fetch_sub(1) == 1) {
+  std::uint64_t v = handle->header.references.load();
+  do {
+    require((v & HandleHeader::kCallerMask) > 0, MCON_ERROR_INVALID_ARGUMENT,
+            std::string(what) + " handle was released more often than it was created and retained");
+  } while (!handle->header.references.compare_exchange_weak(v, v - 1));
+  if (v - 1 == 0) {
     handle->header.magic = 0;
     delete handle;
   }
 }
 
-// For destructors of objects that hold a reference they took themselves (always valid).
+// A reference an SDK object takes on another one it keeps (the handle was validated by the
+// caller's entry point), and its release in the keeper's destructor.
+template <typename T>
+void retain_owned(T* handle) noexcept {
+  handle->header.references.fetch_add(HandleHeader::kOwnerUnit);
+}
+
 template <typename T>
 void release_owned(T* handle) noexcept {
-  if (handle != nullptr && handle->header.references.fetch_sub(1) == 1) {
+  if (handle != nullptr && handle->header.references.fetch_sub(HandleHeader::kOwnerUnit) == HandleHeader::kOwnerUnit) {
     handle->header.magic = 0;
     delete handle;
   }

@@ -71,7 +71,7 @@ mcon_retrieval_options default_retrieval_options() {
 void make_handle(mcon_context context, ConstraintLibrary library, mcon_library* out) {
   auto handle = std::make_unique<mcon_library_t>();
   handle->replace(std::move(library));
-  retain(context, "context");
+  retain_owned(context);
   handle->context = context;
   *out = handle.release();
 }

@@ -94,7 +94,7 @@ mcon_status mcon_patch_create_from_arrays(mcon_context context, const mcon_mesh_
     const MeshTopology topology = build_topology(patch->patch.mesh);
     patch->boundary_loops = static_cast<std::uint32_t>(topology.boundary_loops.size());
     patch->euler_characteristic = euler_characteristic(patch->patch.mesh, topology);
-    retain(context, "context");
+    retain_owned(context);
     patch->context = context;
     *out_patch = patch.release();
   });
@@ -163,9 +163,9 @@ mcon_status mcon_map_compute(mcon_patch source, mcon_patch target, const mcon_ma
     require(flips == 0, MCON_ERROR_NUMERICAL,
             "the map has " + std::to_string(flips) + " inverted triangles (a locally injective map has none)");
     map->flipped_triangles = 0;
-    retain(source, "patch");
+    retain_owned(source);
     map->source = source;
-    retain(target, "patch");
+    retain_owned(target);
     map->target = target;
     map->context = source->context;
     *out_map = map.release();

@@ -52,7 +52,7 @@ mcon_status mcon_mesh_create(mcon_context context, const mcon_mesh_desc* desc, m
 
     auto mesh = std::make_unique<mcon_mesh_t>();
     mesh->mesh = run_in_arena(context, [&] { return mesh_from_arrays(arrays); });
-    retain(context, "context");
+    retain_owned(context);
     mesh->context = context;
     *out_mesh = mesh.release();
   });

@@ -100,7 +100,7 @@ mcon_status mcon_patch_extract(mcon_mesh host, const mcon_patch_options* options
                 " boundary loops and Euler characteristic " + std::to_string(patch->euler_characteristic) +
                 " (a disk has 1 and 1)");
 
-    retain(host->context, "context");
+    retain_owned(host->context);
     patch->context = host->context;
     *out_patch = patch.release();
   });

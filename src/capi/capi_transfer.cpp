@@ -119,7 +119,7 @@ mcon_status mcon_map_transfer_polylines(mcon_map map, const uint32_t* triangles,
       for (Vec3& x : p.positions) x = to_host(target, x);
       set->point_count += p.points.size();
     }
-    retain(map->target, "patch");
+    retain_owned(map->target);
     set->patch = map->target;
     set->context = map->target->context;
     *out_polylines = set.release();

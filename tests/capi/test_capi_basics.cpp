@@ -195,6 +195,36 @@ TEST(CapiContext, RetainReleaseCountAndRejectBadHandles) {
   EXPECT_EQ(mcon_mesh_get_counts(mesh.get(), &nv, &nt), MCON_OK);  // and nothing happened to it
 }
 
+// A released handle is recognized without reading the freed object (the registry of live
+// handles): under AddressSanitizer the old magic-tag check was a heap-use-after-free here.
+TEST(CapiContext, ReleasedHandlesAreErrorsWithoutTouchingFreedMemory) {
+  mcon_context c = nullptr;
+  ASSERT_EQ(mcon_context_create(nullptr, &c), MCON_OK);
+  mcon_mesh m = make_mesh(c, arrays_of(mcon::test_meshes::make_grid(3))).release();
+  ASSERT_EQ(mcon_mesh_release(m), MCON_OK);  // freed
+  size_t nv = 0, nt = 0;
+  EXPECT_EQ(mcon_mesh_get_counts(m, &nv, &nt), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(last_message().find("already released"), std::string::npos) << last_message();
+  EXPECT_EQ(mcon_mesh_release(m), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(mcon_context_release(c), MCON_OK);
+  EXPECT_EQ(mcon_context_release(c), MCON_ERROR_INVALID_ARGUMENT);
+}
+
+// The caller's references and those SDK objects hold are counted apart: releasing a context more
+// often than it was created and retained is an error even while a mesh still keeps it alive.
+TEST(CapiContext, OverReleaseIsAnErrorWhileAnotherObjectHoldsTheHandle) {
+  mcon_context c = nullptr;
+  ASSERT_EQ(mcon_context_create(nullptr, &c), MCON_OK);
+  MeshPtr m = make_mesh(c, arrays_of(mcon::test_meshes::make_grid(3)));
+  ASSERT_EQ(mcon_context_release(c), MCON_OK);  // the caller's only reference
+  EXPECT_EQ(mcon_context_release(c), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(last_message().find("released"), std::string::npos) << last_message();
+  EXPECT_EQ(mcon_context_retain(c), MCON_ERROR_INVALID_ARGUMENT);  // the caller gave it up
+  size_t nv = 0, nt = 0;
+  EXPECT_EQ(mcon_mesh_get_counts(m.get(), &nv, &nt), MCON_OK);  // the mesh's reference is intact
+  EXPECT_EQ(nv, 9u);
+}
+
 namespace {
 
 struct LogRecord {

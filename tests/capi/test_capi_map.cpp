@@ -192,6 +192,23 @@ TEST(CapiMap, TheMapKeepsItsPatchesAlive) {
   EXPECT_EQ(mcon_map_release(map.get()), MCON_OK);
 }
 
+// Over-releasing a patch a map holds used to return MCON_OK and free it under the map.
+TEST(CapiMap, OverReleasingAPatchTheMapHoldsIsAnError) {
+  Noses n = noses();
+  const MapPtr map = compute(n.source.get(), n.target.get(), fast_options());
+  ASSERT_TRUE(map);
+  mcon_patch source = n.source.release();
+  const size_t ns = arrays_of_patch(source).nv();
+  ASSERT_EQ(mcon_patch_release(source), MCON_OK);
+  EXPECT_EQ(mcon_patch_release(source), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(mcon_patch_release(source), MCON_ERROR_INVALID_ARGUMENT);
+  std::vector<int32_t> tri(ns);
+  std::vector<double> bary(3 * ns);
+  EXPECT_EQ(mcon_map_get_correspondences(map.get(), MCON_MAP_SOURCE_TO_TARGET, tri.data(), bary.data(), ns),
+            MCON_OK)
+      << last_message();
+}
+
 TEST(CapiMap, ResultsAreIdenticalForOneAndTwoThreads) {
   std::vector<double> phi[2];
   std::vector<int32_t> tri[2];
