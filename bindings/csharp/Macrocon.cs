@@ -53,6 +53,7 @@ namespace Macrocon
     {
         public uint StructSize; public UIntPtr EntryCount; public RetrievalDescriptor Descriptor; public uint DescriptorDimension;
         public uint VocabularySize; public uint Rings; public uint HistogramLength; public double SigmaBof; public ulong Seed;
+        public uint FormatVersion; public uint ChecksumVerified;
     }
 
     /// <summary>mcon_library_entry_info (C layout).</summary>

@@ -381,6 +381,8 @@ typedef struct mcon_library_info {
   uint32_t histogram_length;     /* vocabulary_size * rings */
   double sigma_bof;
   uint64_t seed;
+  uint32_t format_version;        /* of the file or buffer it was opened from; 0 = made in memory */
+  uint32_t checksum_verified;     /* 1: its content checksum was verified; 0: none (format 1, or in memory) */
 } mcon_library_info;
 
 MCON_API mcon_status mcon_library_info_init(mcon_library_info* info);

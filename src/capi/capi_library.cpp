@@ -151,6 +151,8 @@ mcon_status mcon_library_get_info(mcon_library library, mcon_library_info* info)
     v.histogram_length = static_cast<std::uint32_t>(c.histogram_length());
     v.sigma_bof = c.sigma_bof;
     v.seed = c.seed;
+    v.format_version = library->library.origin().format_version;
+    v.checksum_verified = library->library.origin().checksum_verified ? 1u : 0u;
     write_info(info, sizeof(mcon_library_info), "mcon_library_info", v);
   });
 }

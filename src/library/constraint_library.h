@@ -114,6 +114,15 @@ class ConstraintLibrary {
   void set_name(std::string name) { name_ = std::move(name); }
   void set_description(std::string description) { description_ = std::move(description); }
 
+  // Where a loaded library came from: its file's format version (0 = made in memory) and whether
+  // a content checksum was verified (format 2 on; format 1 files carry none).
+  struct Origin {
+    std::uint32_t format_version = 0;
+    bool checksum_verified = false;
+  };
+  const Origin& origin() const { return origin_; }
+  void set_origin(Origin origin) { origin_ = origin; }
+
   // Validates and appends; id 0 gets (largest id in the library) + 1. Returns the entry's id.
   // A duplicate id or an invalid entry throws MCON_ERROR_INVALID_ARGUMENT and changes nothing.
   std::uint64_t add_entry(MacroConstraint entry);
@@ -148,6 +157,7 @@ class ConstraintLibrary {
   std::vector<MacroConstraint> entries_;
   std::unordered_map<std::uint64_t, std::size_t> position_of_id_;
   std::string name_;
+  Origin origin_;
   std::string description_;
 };
 

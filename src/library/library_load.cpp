@@ -221,9 +221,33 @@ std::uint32_t read_format_version(const std::uint8_t* bytes, std::size_t size) {
   return table->GetField<std::uint32_t>(fb::Library::VT_FORMAT_VERSION, 0);
 }
 
+std::string hex64(std::uint64_t v) {
+  static const char digits[] = "0123456789abcdef";
+  std::string s = "0x";
+  for (int shift = 60; shift >= 0; shift -= 4) s += digits[(v >> shift) & 15];
+  return s;
+}
+
+// Format 2 on: the content checksum must be present and match (a flipped bit anywhere, even in a
+// value every other check accepts, is caught here). Format 1 files carry none.
+ConstraintLibrary::Origin verify_checksum(const std::uint8_t* bytes, std::size_t size, std::uint32_t version) {
+  ConstraintLibrary::Origin origin;
+  origin.format_version = version;
+  if (version < 2) return origin;
+  const std::size_t at = library_checksum_offset(bytes);
+  if (at == 0) invalid("library format " + std::to_string(version) + " has no content checksum");
+  const std::uint64_t stored = flatbuffers::ReadScalar<std::uint64_t>(bytes + at);
+  const std::uint64_t computed = library_content_checksum(bytes, size, at);
+  if (stored != computed)
+    invalid("library content checksum mismatch (stored " + hex64(stored) + ", computed " + hex64(computed) +
+            "): the file is corrupt or was changed after it was written");
+  origin.checksum_verified = true;
+  return origin;
+}
+
 }  // namespace
 
-ConstraintLibrary load_library_from_buffer(const void* data, std::size_t size) {
+ConstraintLibrary load_library_from_buffer(const void* data, std::size_t size, bool check_checksum) {
   if (size < kLibraryMinBytes || size > kLibraryMaxBytes)
     invalid("library buffer has " + std::to_string(size) + " bytes, expected " + std::to_string(kLibraryMinBytes) +
             " to " + std::to_string(kLibraryMaxBytes));
@@ -265,6 +289,8 @@ ConstraintLibrary load_library_from_buffer(const void* data, std::size_t size) {
             "outside the buffer, is misaligned, or the nesting or table count exceeds the limits)");
 
   const fb::Library* root = fb::GetLibrary(bytes);
+  const ConstraintLibrary::Origin origin =
+      check_checksum ? verify_checksum(bytes, size, version) : ConstraintLibrary::Origin{version, false};
 
   Reader r(size);
   r.table();
@@ -274,6 +300,7 @@ ConstraintLibrary load_library_from_buffer(const void* data, std::size_t size) {
   validate_library_text(description, "library description", MCON_ERROR_INVALID_LIBRARY);
   library.set_name(std::move(name));
   library.set_description(std::move(description));
+  library.set_origin(origin);
   const auto* entries = root->entries();
   for (flatbuffers::uoffset_t i = 0, n = r.offsets(entries); i < n; ++i)
     library.append_entry(read_entry(r, entries->Get(i), i), MCON_ERROR_INVALID_LIBRARY);

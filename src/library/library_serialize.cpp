@@ -135,8 +135,11 @@ std::vector<std::uint8_t> serialize_library(const ConstraintLibrary& library) {
   lb.add_description(description);
   lb.add_retrieval(config);
   lb.add_entries(entries);
+  lb.add_content_checksum(0);  // written (ForceDefaults), then filled in by seal_library_buffer
   fb::FinishLibraryBuffer(b, lb.Finish());
-  return std::vector<std::uint8_t>(b.GetBufferPointer(), b.GetBufferPointer() + b.GetSize());
+  std::vector<std::uint8_t> bytes(b.GetBufferPointer(), b.GetBufferPointer() + b.GetSize());
+  seal_library_buffer(bytes);
+  return bytes;
 }
 
 void save_library_atomic(const ConstraintLibrary& library, const std::string& path) {

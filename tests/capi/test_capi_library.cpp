@@ -292,6 +292,26 @@ TEST_F(LibraryTest, AddAfterBuildIsFoundAtOnceAndRemoveShiftsIndices) {
   EXPECT_EQ(nose.indices[0], 1u);
 }
 
+TEST_F(LibraryTest, InfoSaysWhetherAChecksumWasVerified) {
+  LibraryPtr a = built_library(0);
+  mcon_library_info info;
+  ASSERT_EQ(mcon_library_info_init(&info), MCON_OK);
+  ASSERT_EQ(mcon_library_get_info(a.get(), &info), MCON_OK);
+  EXPECT_EQ(info.format_version, 0u);  // made in memory
+  EXPECT_EQ(info.checksum_verified, 0u);
+  std::vector<uint8_t> bytes = save_bytes(a.get());
+  mcon_library b_raw = nullptr;
+  ASSERT_EQ(mcon_library_open_memory(ctx_.get(), bytes.data(), bytes.size(), &b_raw), MCON_OK);
+  LibraryPtr b(b_raw);
+  ASSERT_EQ(mcon_library_get_info(b.get(), &info), MCON_OK);
+  EXPECT_EQ(info.format_version, 2u);
+  EXPECT_EQ(info.checksum_verified, 1u);
+  bytes[bytes.size() / 2] ^= 0x10;  // one bit anywhere
+  mcon_library c_raw = nullptr;
+  EXPECT_EQ(mcon_library_open_memory(ctx_.get(), bytes.data(), bytes.size(), &c_raw), MCON_ERROR_INVALID_LIBRARY);
+  EXPECT_EQ(c_raw, nullptr);
+}
+
 TEST_F(LibraryTest, MergeSameConfigIsReadyDifferentConfigNeedsABuild) {
   LibraryPtr a = built_library(0);
   const std::vector<uint8_t> bytes = save_bytes(a.get());

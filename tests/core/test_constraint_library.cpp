@@ -192,7 +192,10 @@ int run_in_child(const std::function<int()>& body) {
 Bytes pack(const fb::LibraryT& lib, const char* identifier = kLibraryFileIdentifier) {
   flatbuffers::FlatBufferBuilder b;
   b.Finish(fb::Library::Pack(b, &lib), identifier);
-  return Bytes(b.GetBufferPointer(), b.GetBufferPointer() + b.GetSize());
+  Bytes bytes(b.GetBufferPointer(), b.GetBufferPointer() + b.GetSize());
+  // A forged file carries a matching checksum, so that it reaches the check under test.
+  if (lib.content_checksum != 0 && std::string(identifier) == kLibraryFileIdentifier) seal_library_buffer(bytes);
+  return bytes;
 }
 
 // The sample library as mutable object-API tables, changed by `edit`, packed again.
@@ -320,16 +323,62 @@ TEST(ConstraintLibraryHostile, TooSmallTooLargeNullOrForeignBuffers) {
 TEST(ConstraintLibraryHostile, WrongIdentifierAndFormatVersions) {
   expect_rejected(try_load(forge([](fb::LibraryT&) {}, "PNG!")), MCON_ERROR_INVALID_LIBRARY, "'PNG!'");
   EXPECT_EQ(try_load(forge([](fb::LibraryT&) {})).status, MCON_OK);  // the forging itself is sound
-  expect_rejected(load_forged([](fb::LibraryT& l) { l.format_version = 2; }), MCON_ERROR_UNSUPPORTED,
-                  "format version 2 is newer");
+  const std::uint32_t next = kLibraryFormatVersion + 1;
+  const std::string newer = "format version " + std::to_string(next) + " is newer";
+  expect_rejected(load_forged([&](fb::LibraryT& l) { l.format_version = next; }), MCON_ERROR_UNSUPPORTED, newer);
   // A newer format is UNSUPPORTED even when the rest of its layout does not verify here.
-  Bytes future = forge([](fb::LibraryT& l) { l.format_version = 2; });
+  Bytes future = forge([&](fb::LibraryT& l) { l.format_version = next; });
   future.resize(future.size() - 64);
-  expect_rejected(try_load(future), MCON_ERROR_UNSUPPORTED, "format version 2 is newer");
+  expect_rejected(try_load(future), MCON_ERROR_UNSUPPORTED, newer);
   expect_rejected(load_forged([](fb::LibraryT& l) { l.format_version = 0; }), MCON_ERROR_INVALID_LIBRARY,
                   "no format version");
   expect_rejected(load_forged([](fb::LibraryT& l) { l.retrieval.reset(); }), MCON_ERROR_INVALID_LIBRARY,
                   "no retrieval config");
+}
+
+// Format 2: a content checksum over the whole buffer. Before it, 1,560 of 2,000 random one-bit
+// flips of the starter library loaded with changed values; now every flip is rejected, and those
+// that every other check would accept name the checksum.
+TEST(ConstraintLibraryHostile, EveryBitFlipIsRejected) {
+  const Bytes good = serialize_library(sample_library());
+  const ConstraintLibrary loaded = load_library_from_buffer(good.data(), good.size());
+  EXPECT_EQ(loaded.origin().format_version, kLibraryFormatVersion);
+  EXPECT_TRUE(loaded.origin().checksum_verified);
+  std::uint64_t state = 12345;
+  int by_checksum = 0;
+  const int flips = 2000;
+  for (int k = 0; k < flips; ++k) {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    const std::size_t bit = static_cast<std::size_t>((state >> 17) % (8 * good.size()));
+    Bytes bad = good;
+    bad[bit / 8] ^= static_cast<std::uint8_t>(1u << (bit % 8));
+    const Outcome o = try_load(bad);
+    ASSERT_TRUE(o.status == MCON_ERROR_INVALID_LIBRARY || o.status == MCON_ERROR_UNSUPPORTED)
+        << "bit " << bit << " flipped: status " << o.status << " " << o.message;
+    if (o.message.find("content checksum mismatch") != std::string::npos) ++by_checksum;
+  }
+  EXPECT_GT(by_checksum, flips / 2);  // most flips change values no other check can tell apart
+}
+
+TEST(ConstraintLibraryHostile, FormatOneLoadsWithoutChecksumFormatTwoNeedsOne) {
+  const Bytes old = forge([](fb::LibraryT& l) {
+    l.format_version = 1;
+    l.content_checksum = 0;  // not written: format 1 has no such field
+  });
+  const ConstraintLibrary lib = load_library_from_buffer(old.data(), old.size());
+  EXPECT_EQ(lib.origin().format_version, 1u);
+  EXPECT_FALSE(lib.origin().checksum_verified);
+  EXPECT_EQ(lib.size(), sample_library().size());
+  expect_rejected(load_forged([](fb::LibraryT& l) { l.content_checksum = 0; }), MCON_ERROR_INVALID_LIBRARY,
+                  "has no content checksum");
+  // A format-2 file whose content changed after it was sealed.
+  Bytes changed = serialize_library(sample_library());
+  std::unique_ptr<fb::LibraryT> edit(fb::GetLibrary(changed.data())->UnPack());
+  edit->name = "renamed";
+  flatbuffers::FlatBufferBuilder b;
+  b.Finish(fb::Library::Pack(b, edit.get()), kLibraryFileIdentifier);
+  expect_rejected(try_load(Bytes(b.GetBufferPointer(), b.GetBufferPointer() + b.GetSize())),
+                  MCON_ERROR_INVALID_LIBRARY, "content checksum mismatch");
 }
 
 TEST(ConstraintLibraryHostile, OutOfRangeIndices) {

@@ -241,6 +241,8 @@ int run_info(const Args& args) {
     tools::Json j = library_summary(lib);
     j.set("library", path);
     j.set("name", lib.name());
+    j.set("format_version", static_cast<unsigned long>(lib.origin().format_version));
+    j.set("checksum_verified", lib.origin().checksum_verified);
     tools::Json entries = tools::Json::array();
     for (const MacroConstraint& e : lib.entries()) {
       tools::Json o = tools::Json::object();
@@ -268,6 +270,8 @@ int run_info(const Args& args) {
   std::printf("%s: %zu entries; descriptor %s (d = %u), %u words x %u rings, sigma %.4g, seed %llu\n",
               printable_text(path).c_str(), lib.size(), printable_text(c.descriptor).c_str(), c.dimension,
               c.vocabulary_size, c.rings, c.sigma_bof, static_cast<unsigned long long>(c.seed));
+  std::printf("format %u, %s\n", lib.origin().format_version,
+              lib.origin().checksum_verified ? "content checksum verified" : "no content checksum (format 1)");
   std::printf("%8s  %-24s %-16s %8s %6s %6s %6s\n", "id", "name", "class", "vertices", "lines", "sing", "fields");
   for (const MacroConstraint& e : lib.entries())
     std::printf("%8llu  %-24s %-16s %8zu %6zu %6zu %6zu\n", static_cast<unsigned long long>(e.id),

@@ -176,6 +176,8 @@ class LibraryInfo(Struct):
         ("histogram_length", ctypes.c_uint32),
         ("sigma_bof", ctypes.c_double),
         ("seed", ctypes.c_uint64),
+        ("format_version", ctypes.c_uint32),
+        ("checksum_verified", ctypes.c_uint32),
     ]
 
 

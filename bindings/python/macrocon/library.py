@@ -98,6 +98,8 @@ class LibraryInfo:
     histogram_length: int
     sigma_bof: float
     seed: int
+    format_version: int = 0        # of the file or bytes it was opened from; 0 = made in memory
+    checksum_verified: bool = False  # False for format 1 files, which carry no checksum
 
 
 @dataclass(frozen=True)
@@ -292,7 +294,8 @@ class Library(_Handle):
         check(_native.lib.mcon_library_info_init(ctypes.byref(i)))
         check(_native.lib.mcon_library_get_info(self.handle, ctypes.byref(i)))
         return LibraryInfo(i.entry_count, RetrievalDescriptor(i.descriptor), i.descriptor_dimension, i.vocabulary_size,
-                           i.rings, i.histogram_length, i.sigma_bof, i.seed)
+                           i.rings, i.histogram_length, i.sigma_bof, i.seed, i.format_version,
+                           bool(i.checksum_verified))
 
     def __len__(self) -> int:
         n = _native.c_size()
