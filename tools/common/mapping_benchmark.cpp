@@ -20,11 +20,12 @@
 #include "operators/heat_geodesics.h"
 #include "base/parallel_blocks.h"
 #include "map/patch_map.h"
+#include "map/similarity_icp.h"
 #include "mesh/point_location_2d.h"
 
 namespace mcon::tools {
 
-const char* const kMappingMethods[3] = {"macrocon", "rigid", "thesis"};
+const char* const kMappingMethods[4] = {"macrocon", "rigid", "thesis", "proximity"};
 // Weight of each ground-truth guidance column of the `oracle` method (3 channels, each std 1).
 constexpr double kOracleGuidanceWeight = 3.0;
 // The `landmarks` method: the weight of each distance column (4 landmarks: 1 and 0.5 measured
@@ -197,7 +198,8 @@ void validate_mapping_options(const MappingEvalOptions& options) {
               options.landmarks <= 64,
           MCON_ERROR_INVALID_ARGUMENT, "eval-mapping: invalid options");
   for (const std::string& m : options.methods)
-    require(m == "macrocon" || m == "rigid" || m == "thesis" || m == "oracle" || m == "landmarks", MCON_ERROR_INVALID_ARGUMENT,
+    require(m == "macrocon" || m == "rigid" || m == "thesis" || m == "proximity" || m == "oracle" ||
+                m == "landmarks", MCON_ERROR_INVALID_ARGUMENT,
             "eval-mapping: unknown method '" + m + "'");
 }
 
@@ -346,6 +348,28 @@ PairMaps unguided_maps(const PairPatches& pp, const MappingEvalOptions& options,
   return maps;
 }
 
+// The proximity baseline (what a DCC user does today): similarity ICP of the source patch onto the
+// target patch in host coordinates (map/similarity_icp.h), then each source vertex's closest
+// target surface point, expressed in the target's disk coordinates. For a mirrored pair the user
+// knows the sides and mirrors the source (x -> -x, the models' left-right axis) first.
+void run_proximity(const PairPatches& pp, bool mirrored, PairMaps& maps, MappingPairResult& res) {
+  const auto t0 = std::chrono::steady_clock::now();
+  TriMesh source = host_mesh(pp.src.patch);
+  if (mirrored)
+    for (Vec3& p : source.positions) p.x() = -p.x();
+  const SimilarityIcpResult icp = similarity_icp(source, host_mesh(pp.dst.patch));
+  std::vector<Vec2> phi(icp.closest.size());
+  for (std::size_t v = 0; v < phi.size(); ++v) {
+    const Tri& t = pp.dst.patch.mesh.triangles[icp.closest[v].triangle];
+    const Vec3& b = icp.closest[v].barycentric;
+    phi[v] = b[0] * pp.dst.patch.uv[t[0]] + b[1] * pp.dst.patch.uv[t[1]] + b[2] * pp.dst.patch.uv[t[2]];
+  }
+  maps.phi["proximity"] = std::move(phi);
+  maps.reflected["proximity"] = mirrored;
+  res.methods["proximity"].seconds = seconds_since(t0);
+  res.methods["proximity"].iterations = icp.iterations;
+}
+
 // A guided method: the SDK's map with host guidance channels (PatchMapOptions).
 void run_guided(const char* name, const PairPatches& pp, const Eigen::MatrixXd& gs, const Eigen::MatrixXd& gt,
                 double weight, PairMaps& maps, MappingPairResult& res) {
@@ -483,6 +507,7 @@ void evaluate_pair(const Model& model, const MappingSlot& slot, int i, const Map
   const PairPatches pp = cut_pair_patches(model, options, slot, i, res);
   const GroundTruth truth = ground_truth(model, slot, pp, options, res);
   PairMaps maps = unguided_maps(pp, options, res);
+  if (wants(options, "proximity")) run_proximity(pp, slot.mirrored, maps, res);
   if (wants(options, "oracle"))
     run_guided("oracle", pp, oracle_guidance(model, pp.src.host, slot.mirrored), oracle_guidance(model, pp.dst.host, false),
                kOracleGuidanceWeight, maps, res);

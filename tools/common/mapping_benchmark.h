@@ -10,6 +10,9 @@
 //   rigid     its rigid initialization alone
 //   thesis    the thesis' fixed-step gradient descent from the same rigid start
 //             (common/thesis_gradient_descent.h)
+//   proximity what users have without the SDK: similarity ICP of the source onto the target in
+//             3D host coordinates (map/similarity_icp.h), then the closest target surface point
+//             of each source vertex (a mirrored pair's source is mirrored x -> -x first)
 #pragma once
 
 #include <cstdint>
@@ -22,7 +25,7 @@
 
 namespace mcon::tools {
 
-extern const char* const kMappingMethods[3];  // "macrocon", "rigid", "thesis"
+extern const char* const kMappingMethods[4];  // "macrocon", "rigid", "thesis", "proximity"
 extern const char* const kMappingParts[8];    // eye, nose, mouth, ear, face, hand, foot, arm
 
 // One kind of pair: model ("makehuman" or "ict"), body part, and whether the target is the
@@ -40,7 +43,7 @@ struct MappingEvalOptions {
   std::uint64_t seed = 1;
   int pairs = 0;                         // 0: one pair per MakeHuman slot (the default run)
   std::vector<std::string> parts;        // empty: all parts
-  std::vector<std::string> methods = {"macrocon", "rigid", "thesis"};
+  std::vector<std::string> methods = {"macrocon", "rigid", "thesis", "proximity"};
   int alignment_samples = 10000;         // rigid candidates (thesis: 10,000)
   int thesis_iterations = 15000;
   int max_evaluated_vertices = 300;      // per pair, deterministic stride subsample
