@@ -198,8 +198,8 @@ void validate_mapping_options(const MappingEvalOptions& options) {
               options.landmarks <= 64,
           MCON_ERROR_INVALID_ARGUMENT, "eval-mapping: invalid options");
   for (const std::string& m : options.methods)
-    require(m == "macrocon" || m == "rigid" || m == "thesis" || m == "proximity" || m == "oracle" ||
-                m == "landmarks", MCON_ERROR_INVALID_ARGUMENT,
+    require(m == "macrocon" || m == "rigid" || m == "thesis" || m == "proximity" ||
+                m == "macrocon-frame" || m == "oracle" || m == "landmarks", MCON_ERROR_INVALID_ARGUMENT,
             "eval-mapping: unknown method '" + m + "'");
 }
 
@@ -370,6 +370,21 @@ void run_proximity(const PairPatches& pp, bool mirrored, PairMaps& maps, Mapping
   res.methods["proximity"].iterations = icp.iterations;
 }
 
+// macrocon-frame: the SDK's map with the 3D-aligned start (PatchMapOptions::use_world_frame),
+// the source mirrored x -> -x first for a mirrored pair, as for proximity.
+void run_frame(const PairPatches& pp, bool mirrored, PairMaps& maps, std::map<std::string, MethodPairResult>& res) {
+  PatchMapOptions fo;
+  fo.map.alignment = maps.alignment;
+  fo.use_world_frame = true;
+  fo.world_frame_mirror = mirrored;
+  const auto t0 = std::chrono::steady_clock::now();
+  const SurfaceMap fm = map_patches(pp.src.patch, pp.dst.patch, fo);
+  maps.phi["macrocon-frame"] = fm.phi;
+  maps.reflected["macrocon-frame"] = fm.reflected;
+  res["macrocon-frame"].seconds = seconds_since(t0);
+  res["macrocon-frame"].iterations = fm.iterations;
+}
+
 // A guided method: the SDK's map with host guidance channels (PatchMapOptions).
 void run_guided(const char* name, const PairPatches& pp, const Eigen::MatrixXd& gs, const Eigen::MatrixXd& gt,
                 double weight, PairMaps& maps, MappingPairResult& res) {
@@ -508,6 +523,7 @@ void evaluate_pair(const Model& model, const MappingSlot& slot, int i, const Map
   const GroundTruth truth = ground_truth(model, slot, pp, options, res);
   PairMaps maps = unguided_maps(pp, options, res);
   if (wants(options, "proximity")) run_proximity(pp, slot.mirrored, maps, res);
+  if (wants(options, "macrocon-frame")) run_frame(pp, slot.mirrored, maps, res.methods);
   if (wants(options, "oracle"))
     run_guided("oracle", pp, oracle_guidance(model, pp.src.host, slot.mirrored), oracle_guidance(model, pp.dst.host, false),
                kOracleGuidanceWeight, maps, res);
@@ -760,6 +776,7 @@ void evaluate_cross_family_pair(const Model& src_model, const Model& dst_model, 
   MappingPairResult scratch;
   PairMaps maps = unguided_maps(pp, options, scratch);
   if (wants(options, "proximity")) run_proximity(pp, res.slot.mirrored, maps, scratch);
+  if (wants(options, "macrocon-frame")) run_frame(pp, res.slot.mirrored, maps, scratch.methods);
   res.orientation_note = scratch.orientation_note;
   const TriangleLocator2D locator(pp.dst.patch.uv, pp.dst.patch.mesh.triangles);
   const HeatGeodesics heat(pp.dst.patch.mesh);
@@ -798,7 +815,8 @@ std::vector<CrossFamilySlot> cross_family_slots(const std::vector<std::string>& 
 std::vector<CrossFamilyPairResult> run_cross_family_evaluation(const MappingEvalOptions& options) {
   validate_mapping_options(options);
   for (const std::string& m : options.methods)
-    require(m == "macrocon" || m == "rigid" || m == "thesis" || m == "proximity", MCON_ERROR_INVALID_ARGUMENT,
+    require(m == "macrocon" || m == "rigid" || m == "thesis" || m == "proximity" || m == "macrocon-frame",
+            MCON_ERROR_INVALID_ARGUMENT,
             "eval-mapping --cross-family: method '" + m + "' needs in-family ground truth");
   const std::vector<CrossFamilySlot> slots = cross_family_slots(options.parts);
   const SemanticLandmarks lm = read_semantic_landmarks(options.shared_dir);

@@ -199,6 +199,8 @@ class MapOptions(ctypes.Structure):
         ("guidance_dimension", ctypes.c_uint32),
         ("guidance_weight", ctypes.c_double),
         ("refine_sigma_factor", ctypes.c_double),
+        ("use_world_frame", ctypes.c_uint32),
+        ("world_frame_mirror", ctypes.c_uint32),
     ]
 
 
@@ -229,6 +231,7 @@ class MapInfo(ctypes.Structure):
         ("orientation_compared", ctypes.c_uint32),
         ("level0_energy_unreflected", ctypes.c_double),
         ("level0_energy_reflected", ctypes.c_double),
+        ("frame_decided", ctypes.c_uint32),
     ]
 
 
