@@ -121,3 +121,19 @@ if(NOT gross EQUAL 0 OR NOT wrong EQUAL 0)
   message(FATAL_ERROR "--cross-family: the nose maps should be right: ${cross_out}")
 endif()
 message(STATUS "eval-mapping --cross-family nose: ${cross_out}")
+
+# The 3D-aligned start (macrocon-frame, and frame-rigid = that start alone) on the two forearm
+# pairs (one mirrored): the start alone already lands about where the full map does (measured 7.5
+# and 7.4 mean eps x 100, macrocon 7.3; a start of the wrong orientation scores about 25 on the
+# forearm), and the map stays flip-free.
+run_checked(WHAT "eval-mapping --method macrocon,macrocon-frame,frame-rigid" OUTPUT_VARIABLE frame_out
+  COMMAND ${CLI} eval-mapping --shared ${SHARED} --classes arm --pairs 2 --method macrocon,macrocon-frame,frame-rigid
+          --json --quiet)
+string(JSON frame_eps GET "${frame_out}" methods macrocon-frame overall mean_eps100)
+string(JSON frame_flips GET "${frame_out}" methods macrocon-frame overall flipped_triangles)
+string(JSON free_eps GET "${frame_out}" methods macrocon overall mean_eps100)
+string(JSON start_eps GET "${frame_out}" methods frame-rigid overall mean_eps100)
+if(NOT frame_flips EQUAL 0 OR NOT frame_eps LESS 12 OR NOT start_eps LESS 12 OR NOT start_eps GREATER 0)
+  message(FATAL_ERROR "macrocon-frame: expected 0 flips and mean eps x 100 below 12 for the map and its start: ${frame_out}")
+endif()
+message(STATUS "eval-mapping macrocon-frame ${frame_eps} vs macrocon ${free_eps} (frame start ${start_eps})")

@@ -198,9 +198,9 @@ void validate_mapping_options(const MappingEvalOptions& options) {
               options.landmarks <= 64,
           MCON_ERROR_INVALID_ARGUMENT, "eval-mapping: invalid options");
   for (const std::string& m : options.methods)
-    require(m == "macrocon" || m == "rigid" || m == "thesis" || m == "proximity" ||
-                m == "macrocon-frame" || m == "oracle" || m == "landmarks", MCON_ERROR_INVALID_ARGUMENT,
-            "eval-mapping: unknown method '" + m + "'");
+    require(m == "macrocon" || m == "rigid" || m == "thesis" || m == "proximity" || m == "macrocon-frame" ||
+                m == "frame-rigid" || m == "oracle" || m == "landmarks",
+            MCON_ERROR_INVALID_ARGUMENT, "eval-mapping: unknown method '" + m + "'");
 }
 
 bool wants(const MappingEvalOptions& options, const char* m) {
@@ -383,6 +383,12 @@ void run_frame(const PairPatches& pp, bool mirrored, PairMaps& maps, std::map<st
   maps.reflected["macrocon-frame"] = fm.reflected;
   res["macrocon-frame"].seconds = seconds_since(t0);
   res["macrocon-frame"].iterations = fm.iterations;
+  // frame-rigid: that start alone (what `rigid` is to macrocon).
+  std::vector<Vec2> start(pp.src.patch.uv.size());
+  for (std::size_t v = 0; v < start.size(); ++v) start[v] = fm.alignment.transform.apply(pp.src.patch.uv[v]);
+  maps.phi["frame-rigid"] = std::move(start);
+  maps.reflected["frame-rigid"] = fm.alignment.transform.reflected;
+  res["frame-rigid"].seconds = fm.alignment_seconds;
 }
 
 // A guided method: the SDK's map with host guidance channels (PatchMapOptions).
@@ -523,7 +529,8 @@ void evaluate_pair(const Model& model, const MappingSlot& slot, int i, const Map
   const GroundTruth truth = ground_truth(model, slot, pp, options, res);
   PairMaps maps = unguided_maps(pp, options, res);
   if (wants(options, "proximity")) run_proximity(pp, slot.mirrored, maps, res);
-  if (wants(options, "macrocon-frame")) run_frame(pp, slot.mirrored, maps, res.methods);
+  if (wants(options, "macrocon-frame") || wants(options, "frame-rigid"))
+    run_frame(pp, slot.mirrored, maps, res.methods);
   if (wants(options, "oracle"))
     run_guided("oracle", pp, oracle_guidance(model, pp.src.host, slot.mirrored), oracle_guidance(model, pp.dst.host, false),
                kOracleGuidanceWeight, maps, res);
@@ -776,7 +783,8 @@ void evaluate_cross_family_pair(const Model& src_model, const Model& dst_model, 
   MappingPairResult scratch;
   PairMaps maps = unguided_maps(pp, options, scratch);
   if (wants(options, "proximity")) run_proximity(pp, res.slot.mirrored, maps, scratch);
-  if (wants(options, "macrocon-frame")) run_frame(pp, res.slot.mirrored, maps, scratch.methods);
+  if (wants(options, "macrocon-frame") || wants(options, "frame-rigid"))
+    run_frame(pp, res.slot.mirrored, maps, scratch.methods);
   res.orientation_note = scratch.orientation_note;
   const TriangleLocator2D locator(pp.dst.patch.uv, pp.dst.patch.mesh.triangles);
   const HeatGeodesics heat(pp.dst.patch.mesh);
@@ -815,7 +823,8 @@ std::vector<CrossFamilySlot> cross_family_slots(const std::vector<std::string>& 
 std::vector<CrossFamilyPairResult> run_cross_family_evaluation(const MappingEvalOptions& options) {
   validate_mapping_options(options);
   for (const std::string& m : options.methods)
-    require(m == "macrocon" || m == "rigid" || m == "thesis" || m == "proximity" || m == "macrocon-frame",
+    require(m == "macrocon" || m == "rigid" || m == "thesis" || m == "proximity" || m == "macrocon-frame" ||
+                m == "frame-rigid",
             MCON_ERROR_INVALID_ARGUMENT,
             "eval-mapping --cross-family: method '" + m + "' needs in-family ground truth");
   const std::vector<CrossFamilySlot> slots = cross_family_slots(options.parts);
@@ -836,8 +845,8 @@ std::vector<CrossFamilyPairResult> run_cross_family_evaluation(const MappingEval
       line << "cross-family " << i << " " << res.slot.source_model << " " << res.slot.source_class << " -> "
            << res.slot.target_model << " " << res.slot.target_class << " (" << res.landmarks.size() << " landmarks):";
       for (const auto& [name, r] : res.methods) {
-        line << " " << name << (r.reflected ? " (mirrored)" : "") << " median eps100 " << fmt(100 * median(r.landmark_eps))
-             << " inverted " << r.inverted_pairs << "/" << r.checked_pairs
+        line << " " << name << (r.reflected ? " (mirrored)" : "") << " median eps100 "
+             << fmt(100 * median(r.landmark_eps)) << " inverted " << r.inverted_pairs << "/" << r.checked_pairs
              << (r.inverted.empty() ? "" : " [" + r.inverted + "]") << " " << fmt(r.seconds) << "s;";
       }
       if (!res.orientation_note.empty()) line << " (" << res.orientation_note << ")";

@@ -25,7 +25,8 @@ const char* kUsage =
     "of each source vertex; a mirrored pair's source is mirrored x -> -x first); --method restricts to a list.\n"
     "Only when asked for: macrocon-frame = the SDK's map with the 3D-aligned start (use_world_frame: the\n"
     "ICP alignment expressed in the two disk parametrizations is the rigid start and decides orientation\n"
-    "and reflection; a mirrored pair's source mirrored x -> -x first), beside the frame-free macrocon.\n"
+    "and reflection; a mirrored pair's source mirrored x -> -x first), beside the frame-free macrocon;\n"
+    "frame-rigid = that start alone (what rigid is to macrocon).\n"
     "Diagnostic method, only when asked for (--method macrocon,oracle): oracle = the SDK's map with\n"
     "the ground-truth correspondents' base-mesh positions as extra guidance channels, i.e. what the\n"
     "optimizer and its distortion prior reach when the descriptors are unambiguous; landmarks = the\n"
@@ -47,12 +48,12 @@ const char* kUsage =
     "directions; eye and ear also mirrored: 14 pairs, restricted by --classes), scored on the semantic\n"
     "landmarks of bench/semantic-landmarks.json inside both patches: landmark eps = geodesic distance on\n"
     "the target between the mapped and the true landmark / sqrt(target patch area). Methods macrocon,\n"
-    "rigid, thesis, proximity, macrocon-frame. Reported per method: mean landmark eps x 100 per class and overall (mean\n"
-    "over pairs; also over all landmarks, and the median), gross_failures (share of pairs whose median\n"
-    "landmark eps > 0.15) and orientation_errors (pairs where a landmark pair separated along x = left-right\n"
-    "or y = up by >= 0.08 target radii comes out in the opposite order); --json adds \"cross_family\":\n"
-    "{\"pairs\", \"methods\": {m: {\"overall\": C, \"per_class\": {...}}}, \"cases\": [...]} beside the\n"
-    "in-family numbers, which stay as without the flag.\n";
+    "rigid, thesis, proximity, macrocon-frame, frame-rigid. Reported per method: mean landmark eps x 100\n"
+    "per class and overall (mean over pairs; also over all landmarks, and the median), gross_failures\n"
+    "(share of pairs whose median landmark eps > 0.15) and orientation_errors (pairs where a landmark\n"
+    "pair separated along x = left-right or y = up by >= 0.08 target radii comes out in the opposite\n"
+    "order); --json adds \"cross_family\": {\"pairs\", \"methods\": {m: {\"overall\": C, \"per_class\": {...}}},\n"
+    "\"cases\": [...]} beside the in-family numbers, which stay as without the flag.\n";
 
 std::vector<std::string> split(const std::string& s) {
   std::vector<std::string> out;
