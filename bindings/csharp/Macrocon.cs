@@ -80,6 +80,8 @@ namespace Macrocon
         public uint OrientationCompared;
         /// <summary>Their level-0 energies (-1: not compared).</summary>
         public double Level0EnergyUnreflected, Level0EnergyReflected;
+        /// <summary>1 if the world-frame start decided the orientation (use_world_frame), 0 if the descriptors did.</summary>
+        public uint FrameDecided;
     }
 
     /// <summary>A failed Macrocon call: the C status code and the library's message.</summary>
@@ -308,6 +310,7 @@ namespace Macrocon
             public IntPtr target_guidance; public UIntPtr target_guidance_stride;
             public uint guidance_dimension; public double guidance_weight;
             public double refine_sigma_factor;
+            public uint use_world_frame; public uint world_frame_mirror;
         }
 
         [StructLayout(LayoutKind.Sequential)]

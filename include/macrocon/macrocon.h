@@ -576,6 +576,14 @@ typedef struct mcon_map_options {
   /* Gaussian width factor of the refinement pass after the finest level: in (0, 1], 0 = no
    * pass; default 0.5 (docs/api.md). */
   double refine_sigma_factor;
+  /* Nonzero: the patches share a world frame (two meshes of one scene, host units as given at
+   * patch creation); the similarity ICP of the source onto the target in 3D, expressed in the two
+   * disk parametrizations, becomes the rigid start and decides orientation and reflection
+   * (mcon_map_info.frame_decided). Needs orientation AUTOMATIC. Default 0: frame-free.
+   * world_frame_mirror nonzero: mirror the source x -> -x in the world first (a left part onto a
+   * right one). */
+  uint32_t use_world_frame;
+  uint32_t world_frame_mirror;
 } mcon_map_options;
 
 MCON_API mcon_status mcon_map_options_init(mcon_map_options* options);
@@ -627,6 +635,9 @@ typedef struct mcon_map_info {
   /* The two level-0 energies of that comparison (lower is better); -1 if not compared. */
   double level0_energy_unreflected;
   double level0_energy_reflected;
+  /* 1 if the world-frame start decided the orientation and the rigid start (use_world_frame), 0
+   * if the descriptors did. */
+  uint32_t frame_decided;
 } mcon_map_info;
 
 MCON_API mcon_status mcon_map_info_init(mcon_map_info* info);

@@ -132,6 +132,10 @@ mcon_status mcon_map_compute(mcon_patch source, mcon_patch target, const mcon_ma
                 ")");
     po.map.refine_sigma_factors.clear();
     if (o.refine_sigma_factor > 0) po.map.refine_sigma_factors.push_back(o.refine_sigma_factor);
+    require(o.use_world_frame == 0 || o.orientation == MCON_MAP_ORIENTATION_AUTOMATIC, MCON_ERROR_INVALID_ARGUMENT,
+            "use_world_frame needs orientation AUTOMATIC (the frame decides the orientation)");
+    po.use_world_frame = o.use_world_frame != 0;
+    po.world_frame_mirror = o.world_frame_mirror != 0;
     Eigen::MatrixXd source_guidance, target_guidance;
     if (o.guidance_dimension == 0) {
       require(o.source_guidance == nullptr && o.target_guidance == nullptr, MCON_ERROR_INVALID_ARGUMENT,
@@ -212,6 +216,7 @@ mcon_status mcon_map_get_info(mcon_map map, mcon_map_info* info) {
     v.orientation_compared = m.orientation_compared ? 1 : 0;
     v.level0_energy_unreflected = m.level0_energy_unreflected;
     v.level0_energy_reflected = m.level0_energy_reflected;
+    v.frame_decided = m.frame_decided ? 1 : 0;
     write_info(info, kMapInfoMinSize, "mcon_map_info", v);
   });
 }

@@ -6,6 +6,7 @@
 #include "descriptors/descriptor_pyramid.h"
 #include "base/error.h"
 #include "map/map_channels.h"
+#include "map/similarity_icp.h"
 
 namespace mcon {
 
@@ -26,7 +27,58 @@ Eigen::MatrixXd raw_channels(const Patch& patch, bool center_channels) {
   return c;
 }
 
+// One orientation's weighted 2D Procrustes fit taking a (mirrored (x, -y) first if `reflected`)
+// onto b: the 2D case of Umeyama's eqs. 40-42 without scale, angle = atan2(sum w (a x b),
+// sum w (a . b)) over the centered sets, t = mean_b - R mean_a; returns the weighted squared residual.
+double fit_rigid_2d(const std::vector<Vec2>& a0, const std::vector<Vec2>& b, const std::vector<double>& w,
+                    bool reflected, RigidTransform2D& T) {
+  std::vector<Vec2> a(a0);
+  if (reflected)
+    for (Vec2& p : a) p.y() = -p.y();
+  double total = 0;
+  Vec2 ma = Vec2::Zero(), mb = Vec2::Zero();
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    total += w[i];
+    ma += w[i] * a[i];
+    mb += w[i] * b[i];
+  }
+  ma /= total;
+  mb /= total;
+  double sx = 0, sd = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    sx += w[i] * cross2(a[i] - ma, b[i] - mb);
+    sd += w[i] * (a[i] - ma).dot(b[i] - mb);
+  }
+  T.reflected = reflected;
+  T.angle = std::atan2(sx, sd);
+  T.translation = Vec2::Zero();
+  T.translation = mb - T.apply(reflected ? Vec2(ma.x(), -ma.y()) : ma);  // apply() mirrors its argument
+  double residual = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) residual += w[i] * (T.apply(a0[i]) - b[i]).squaredNorm();
+  return residual;
+}
+
 }  // namespace
+
+RigidTransform2D world_frame_start(const Patch& source, const Patch& target, bool mirror_x) {
+  TriMesh s = host_mesh(source);
+  if (mirror_x)
+    for (Vec3& p : s.positions) p.x() = -p.x();
+  const SimilarityIcpResult icp = similarity_icp(s, host_mesh(target));
+  std::vector<Vec2> b(icp.closest.size());
+  for (std::size_t v = 0; v < b.size(); ++v) {
+    const Tri& t = target.mesh.triangles[icp.closest[v].triangle];
+    const Vec3& w = icp.closest[v].barycentric;
+    b[v] = w[0] * target.uv[t[0]] + w[1] * target.uv[t[1]] + w[2] * target.uv[t[2]];
+  }
+  std::vector<double> weight(source.mesh.positions.size(), 0.0);
+  for (int t = 0; t < source.mesh.num_triangles(); ++t)
+    for (const int v : source.mesh.triangles[t]) weight[v] += triangle_area(source.mesh, t);
+  RigidTransform2D plain, mirrored;
+  const double rp = fit_rigid_2d(source.uv, b, weight, false, plain);
+  const double rm = fit_rigid_2d(source.uv, b, weight, true, mirrored);
+  return rm < rp ? mirrored : plain;
+}
 
 SurfaceMap map_patches(const Patch& source, const Patch& target, const PatchMapOptions& options) {
   require(!options.pyramid_sigmas.empty(), MCON_ERROR_INVALID_ARGUMENT, "map_patches: no descriptor levels");
@@ -78,6 +130,7 @@ SurfaceMap map_patches(const Patch& source, const Patch& target, const PatchMapO
   const std::vector<Eigen::MatrixXd> target_levels = descriptor_pyramid(target.mesh, t, options.pyramid_sigmas);
   SurfaceMapOptions map_options = options.map;
   if (!chiral_columns.empty()) map_options.chiral_columns = chiral_columns;
+  if (options.use_world_frame) map_options.frame_start = world_frame_start(source, target, options.world_frame_mirror);
   return compute_surface_map({source.mesh, source.uv, source_levels}, {target.mesh, target.uv, target_levels},
                              map_options);
 }

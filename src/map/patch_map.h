@@ -44,7 +44,21 @@ struct PatchMapOptions {
   const Eigen::MatrixXd* source_guidance = nullptr;
   const Eigen::MatrixXd* target_guidance = nullptr;
   double guidance_weight = 1.0;
+  // The 3D-aligned start, for patches that share a world frame (two meshes in one DCC scene; not
+  // a library entry from another asset): the similarity ICP of the source onto the target in host
+  // coordinates (map/similarity_icp.h), expressed in the two disk parametrizations as a 2D rigid
+  // motion (world_frame_start below), becomes the rigid start and decides orientation and
+  // reflection (SurfaceMap::frame_decided). world_frame_mirror: mirror the source x -> -x in the
+  // world first (mapping a left part onto a right one, +x the subject's left). Default off: the
+  // frame-free behaviour. Requires map.orientation automatic.
+  bool use_world_frame = false;
+  bool world_frame_mirror = false;
 };
+
+// The world-frame start alone: ICP of source onto target in host coordinates, then the
+// area-weighted 2D Procrustes fit (rotation + translation, plain or mirrored, whichever leaves
+// the smaller residual) taking each source vertex's uv to the target uv of its closest point.
+RigidTransform2D world_frame_start(const Patch& source, const Patch& target, bool mirror_x);
 
 // Maps `source` onto `target` (both from extract_geodesic_disk, normalized to radius 1).
 // Throws what compute_surface_map throws (INVALID_ARGUMENT, NOT_A_DISK, NON_FINITE, CANCELLED,

@@ -106,6 +106,10 @@ void check_inputs(const MapDomain& source, const MapDomain& target, const Surfac
             "invalid map options: refinement sigma factors must be finite and > 0");
   require(options.refine_max_iterations >= 1, MCON_ERROR_INVALID_ARGUMENT,
           "invalid map options: refine_max_iterations must be >= 1");
+  require(!options.frame_start || (options.orientation == MapOrientation::automatic &&
+                                   std::isfinite(options.frame_start->angle) &&
+                                   options.frame_start->translation.allFinite()),
+          MCON_ERROR_INVALID_ARGUMENT, "invalid map options: a frame start needs automatic orientation and finite values");
 }
 
 // The target's single boundary loop in uv, which must lie on the unit circle counter-clockwise.
@@ -175,6 +179,19 @@ RigidAlignmentResult rigid_start(const MapDomain& source, const SourceDisk& plai
   if (options.orientation != MapOrientation::automatic) alignment_options.allow_reflection = true;  // both scored
   RigidAlignmentResult init = align_rigid(source.uv, plain.vertex_weight, levels.match, alignment_options,
                                           [&](double f) { report_progress(options, kAlignShare * f); return true; });
+  if (options.frame_start) {
+    // The world frame decides: its start, scored like the candidates (mean over levels).
+    init.transform = *options.frame_start;
+    std::vector<Vec2> moved(source.uv.size());
+    for (std::size_t v = 0; v < moved.size(); ++v) moved[v] = init.transform.apply(source.uv[v]);
+    double score = 0;
+    for (MatchLevel level : levels.match) {
+      if (init.transform.reflected && level.source_values_reflected) level.source_values = level.source_values_reflected;
+      score += matching_score_sum(moved, plain.vertex_weight, level);
+    }
+    init.score = score / static_cast<double>(levels.match.size());
+    return init;
+  }
   if (options.orientation != MapOrientation::automatic) {
     // A forced orientation takes that orientation's best refined candidate.
     const bool reverse = options.orientation == MapOrientation::reverse;
@@ -305,7 +322,7 @@ void collect_reports(const std::vector<NewtonReport>& reports, int L, SurfaceMap
 // Whether both orientations are optimized: automatic orientation, both scored, and their rigid
 // scores too close to tell.
 bool compare_orientations(const SurfaceMapOptions& options, const RigidAlignmentResult& init) {
-  return options.orientation == MapOrientation::automatic && init.score_unreflected >= 0 &&
+  return options.orientation == MapOrientation::automatic && !options.frame_start && init.score_unreflected >= 0 &&
          init.score_reflected >= 0 && options.alignment.allow_reflection &&
          std::abs(init.score_reflected - init.score_unreflected) < options.orientation_ambiguity;
 }
@@ -370,6 +387,7 @@ SurfaceMap compute_surface_map(const MapDomain& source, const MapDomain& target,
   const RigidAlignmentResult init = rigid_start(source, plain, levels, options);
   out.alignment_seconds = seconds_since(t0);
   out.alignment = init;
+  out.frame_decided = options.frame_start.has_value();
 
   // 2. Projected Newton, smoothest level first.
   const auto t1 = std::chrono::steady_clock::now();

@@ -14,6 +14,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -72,6 +73,10 @@ struct SurfaceMapOptions {
   // the first few (a cap of 8 or 12 gave the same eval-mapping means to within 0.05), and an
   // uncapped pass took 25 iterations on the 11.5k-vertex face (bench: about +4 s instead of +0.9 s).
   int refine_max_iterations = 10;
+  // A rigid start from a world frame the patches share (PatchMapOptions::use_world_frame): when
+  // set, it is the start and decides the orientation (no comparison, `orientation` must be
+  // automatic); the descriptor search still runs and its scores are reported.
+  std::optional<RigidTransform2D> frame_start;
   // Progress in [0, 1] on the calling thread; returning false throws MCON_ERROR_CANCELLED.
   std::function<bool(double)> progress;
 };
@@ -93,6 +98,9 @@ struct SurfaceMap {
   bool orientation_compared = false;              // both orientations were optimized at level 0
   double level0_energy_unreflected = -1;          // their level-0 energies (-1 if not compared)
   double level0_energy_reflected = -1;
+  // Which start decided the orientation and the rigid start: the world frame (frame_start given;
+  // alignment.transform is then that start and alignment.score its score) or the descriptors.
+  bool frame_decided = false;
   std::vector<SurfacePoint> source_to_target; // per source vertex: where Phi(v) lies on the target
   std::vector<SurfacePoint> target_to_source; // per target vertex: where Phi^-1(w) lies on the source
   double overlap_ratio = 0;                       // |S'| / |S|: source 3D area mapped into the target

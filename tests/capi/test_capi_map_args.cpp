@@ -667,3 +667,45 @@ TEST_F(CapiMapArgs, RefineSigmaFactorIsCheckedAndSwitchesThePass) {
   ASSERT_EQ(mcon_map_get_phi(k, phi.data(), phi.size()), MCON_OK);
   EXPECT_EQ(phi, reference);
 }
+
+TEST_F(CapiMapArgs, WorldFrameStartIsOptInAndReported) {
+  // Default off (frame_decided 0); on, the world-frame start decides (frame_decided 1); with a
+  // forced orientation it is refused with the field's name; a caller compiled before the fields
+  // (struct_size up to refine_sigma_factor's end) gets the frame-free default.
+  mcon_map_options o;
+  ASSERT_EQ(mcon_map_options_init(&o), MCON_OK);
+  EXPECT_EQ(o.use_world_frame, 0u);
+  EXPECT_EQ(o.world_frame_mirror, 0u);
+  auto info_of = [](mcon_map m) {
+    mcon_map_info info;
+    mcon_map_info_init(&info);
+    EXPECT_EQ(mcon_map_get_info(m, &info), MCON_OK);
+    return info;
+  };
+  EXPECT_EQ(info_of(map_).frame_decided, 0u);
+  mcon_map_options on = fast_options();
+  on.use_world_frame = 1;
+  mcon_map m = nullptr;
+  ASSERT_EQ(mcon_map_compute(source_, target_, &on, &m), MCON_OK) << last_message();
+  const MapPtr framed(m);
+  EXPECT_EQ(info_of(m).frame_decided, 1u);
+  mcon_map_options forced = on;
+  forced.orientation = MCON_MAP_ORIENTATION_PRESERVE;
+  mcon_map n = reinterpret_cast<mcon_map>(&n);
+  EXPECT_EQ(mcon_map_compute(source_, target_, &forced, &n), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(n, nullptr);
+  EXPECT_TRUE(mentions("use_world_frame")) << last_message();
+  mcon_map_options old = on;
+  old.struct_size = static_cast<uint32_t>(offsetof(mcon_map_options, use_world_frame));
+  mcon_map k = nullptr;
+  ASSERT_EQ(mcon_map_compute(source_, target_, &old, &k), MCON_OK) << last_message();
+  const MapPtr unframed(k);
+  EXPECT_EQ(info_of(k).frame_decided, 0u);
+  // An info struct from before the field: frame_decided is not written.
+  mcon_map_info short_info;
+  mcon_map_info_init(&short_info);
+  short_info.struct_size = static_cast<uint32_t>(offsetof(mcon_map_info, frame_decided));
+  short_info.frame_decided = 7;
+  ASSERT_EQ(mcon_map_get_info(m, &short_info), MCON_OK);
+  EXPECT_EQ(short_info.frame_decided, 7u);
+}

@@ -117,3 +117,52 @@ TEST(PatchMap, RejectsBadGuidance) {
   o.guidance_weight = 1;
   EXPECT_EQ(map_status(p, p, o), MCON_OK);
 }
+
+namespace {
+
+// The same patch with its disk parametrization rotated by `angle` (and mirrored (x, -y) first).
+Patch with_rotated_uv(Patch p, double angle, bool mirror) {
+  const double c = std::cos(angle), s = std::sin(angle);
+  for (Vec2& q : p.uv) {
+    const Vec2 m(q.x(), mirror ? -q.y() : q.y());
+    q = Vec2(c * m.x() - s * m.y(), s * m.x() + c * m.y());
+  }
+  return p;
+}
+
+double angle_difference(double a, double b) { return std::abs(std::remainder(a - b, 2 * M_PI)); }
+
+}  // namespace
+
+// The world-frame start: both patches sit on the same surface in 3D, so the ICP maps every vertex
+// onto itself, and the start is the motion between the two parametrizations, mirror included.
+TEST(PatchMap, WorldFrameStartIsTheMotionBetweenTheParametrizations) {
+  const Patch p = flat_patch();
+  for (const bool mirror : {false, true})
+    for (const double angle : {0.7, -2.5}) {
+      const RigidTransform2D T = world_frame_start(p, with_rotated_uv(p, angle, mirror), false);
+      EXPECT_EQ(T.reflected, mirror);
+      EXPECT_LT(angle_difference(T.angle, angle), 1e-9) << angle << " " << mirror;
+      EXPECT_LT(T.translation.norm(), 1e-9);
+    }
+}
+
+// With use_world_frame the frame start decides (frame_decided) and is the rigid start; the map of
+// a flat disk onto itself with the parametrization turned keeps that turn. Off, the descriptors
+// decide as before.
+TEST(PatchMap, WorldFrameStartDecidesWhenAsked) {
+  const Patch p = flat_patch();
+  const Patch q = with_rotated_uv(p, 1.2, false);
+  PatchMapOptions o = quick_options();
+  o.use_world_frame = true;
+  const SurfaceMap m = map_patches(p, q, o);
+  EXPECT_TRUE(m.frame_decided);
+  EXPECT_FALSE(m.reflected);
+  EXPECT_LT(angle_difference(m.alignment.transform.angle, 1.2), 1e-9);
+  double worst = 0;
+  for (std::size_t v = 0; v < p.uv.size(); ++v) worst = std::max(worst, (m.phi[v] - q.uv[v]).norm());
+  EXPECT_LT(worst, 0.05);
+  EXPECT_FALSE(map_patches(p, q, quick_options()).frame_decided);
+  o.map.orientation = MapOrientation::preserve;
+  EXPECT_EQ(map_status(p, q, o), MCON_ERROR_INVALID_ARGUMENT);
+}

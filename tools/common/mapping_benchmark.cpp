@@ -20,11 +20,12 @@
 #include "operators/heat_geodesics.h"
 #include "base/parallel_blocks.h"
 #include "map/patch_map.h"
+#include "map/similarity_icp.h"
 #include "mesh/point_location_2d.h"
 
 namespace mcon::tools {
 
-const char* const kMappingMethods[3] = {"macrocon", "rigid", "thesis"};
+const char* const kMappingMethods[4] = {"macrocon", "rigid", "thesis", "proximity"};
 // Weight of each ground-truth guidance column of the `oracle` method (3 channels, each std 1).
 constexpr double kOracleGuidanceWeight = 3.0;
 // The `landmarks` method: the weight of each distance column (4 landmarks: 1 and 0.5 measured
@@ -197,8 +198,9 @@ void validate_mapping_options(const MappingEvalOptions& options) {
               options.landmarks <= 64,
           MCON_ERROR_INVALID_ARGUMENT, "eval-mapping: invalid options");
   for (const std::string& m : options.methods)
-    require(m == "macrocon" || m == "rigid" || m == "thesis" || m == "oracle" || m == "landmarks", MCON_ERROR_INVALID_ARGUMENT,
-            "eval-mapping: unknown method '" + m + "'");
+    require(m == "macrocon" || m == "rigid" || m == "thesis" || m == "proximity" || m == "macrocon-frame" ||
+                m == "frame-rigid" || m == "oracle" || m == "landmarks",
+            MCON_ERROR_INVALID_ARGUMENT, "eval-mapping: unknown method '" + m + "'");
 }
 
 bool wants(const MappingEvalOptions& options, const char* m) {
@@ -346,6 +348,49 @@ PairMaps unguided_maps(const PairPatches& pp, const MappingEvalOptions& options,
   return maps;
 }
 
+// The proximity baseline (what a DCC user does today): similarity ICP of the source patch onto the
+// target patch in host coordinates (map/similarity_icp.h), then each source vertex's closest
+// target surface point, expressed in the target's disk coordinates. For a mirrored pair the user
+// knows the sides and mirrors the source (x -> -x, the models' left-right axis) first.
+void run_proximity(const PairPatches& pp, bool mirrored, PairMaps& maps, MappingPairResult& res) {
+  const auto t0 = std::chrono::steady_clock::now();
+  TriMesh source = host_mesh(pp.src.patch);
+  if (mirrored)
+    for (Vec3& p : source.positions) p.x() = -p.x();
+  const SimilarityIcpResult icp = similarity_icp(source, host_mesh(pp.dst.patch));
+  std::vector<Vec2> phi(icp.closest.size());
+  for (std::size_t v = 0; v < phi.size(); ++v) {
+    const Tri& t = pp.dst.patch.mesh.triangles[icp.closest[v].triangle];
+    const Vec3& b = icp.closest[v].barycentric;
+    phi[v] = b[0] * pp.dst.patch.uv[t[0]] + b[1] * pp.dst.patch.uv[t[1]] + b[2] * pp.dst.patch.uv[t[2]];
+  }
+  maps.phi["proximity"] = std::move(phi);
+  maps.reflected["proximity"] = mirrored;
+  res.methods["proximity"].seconds = seconds_since(t0);
+  res.methods["proximity"].iterations = icp.iterations;
+}
+
+// macrocon-frame: the SDK's map with the 3D-aligned start (PatchMapOptions::use_world_frame),
+// the source mirrored x -> -x first for a mirrored pair, as for proximity.
+void run_frame(const PairPatches& pp, bool mirrored, PairMaps& maps, std::map<std::string, MethodPairResult>& res) {
+  PatchMapOptions fo;
+  fo.map.alignment = maps.alignment;
+  fo.use_world_frame = true;
+  fo.world_frame_mirror = mirrored;
+  const auto t0 = std::chrono::steady_clock::now();
+  const SurfaceMap fm = map_patches(pp.src.patch, pp.dst.patch, fo);
+  maps.phi["macrocon-frame"] = fm.phi;
+  maps.reflected["macrocon-frame"] = fm.reflected;
+  res["macrocon-frame"].seconds = seconds_since(t0);
+  res["macrocon-frame"].iterations = fm.iterations;
+  // frame-rigid: that start alone (what `rigid` is to macrocon).
+  std::vector<Vec2> start(pp.src.patch.uv.size());
+  for (std::size_t v = 0; v < start.size(); ++v) start[v] = fm.alignment.transform.apply(pp.src.patch.uv[v]);
+  maps.phi["frame-rigid"] = std::move(start);
+  maps.reflected["frame-rigid"] = fm.alignment.transform.reflected;
+  res["frame-rigid"].seconds = fm.alignment_seconds;
+}
+
 // A guided method: the SDK's map with host guidance channels (PatchMapOptions).
 void run_guided(const char* name, const PairPatches& pp, const Eigen::MatrixXd& gs, const Eigen::MatrixXd& gt,
                 double weight, PairMaps& maps, MappingPairResult& res) {
@@ -483,6 +528,9 @@ void evaluate_pair(const Model& model, const MappingSlot& slot, int i, const Map
   const PairPatches pp = cut_pair_patches(model, options, slot, i, res);
   const GroundTruth truth = ground_truth(model, slot, pp, options, res);
   PairMaps maps = unguided_maps(pp, options, res);
+  if (wants(options, "proximity")) run_proximity(pp, slot.mirrored, maps, res);
+  if (wants(options, "macrocon-frame") || wants(options, "frame-rigid"))
+    run_frame(pp, slot.mirrored, maps, res.methods);
   if (wants(options, "oracle"))
     run_guided("oracle", pp, oracle_guidance(model, pp.src.host, slot.mirrored), oracle_guidance(model, pp.dst.host, false),
                kOracleGuidanceWeight, maps, res);
@@ -606,6 +654,294 @@ Json mapping_evaluation_json(const std::vector<MappingPairResult>& pairs, const 
     if (edges.count(part)) per.set(part, mean(edges[part]));
   resolution.set("per_class", per);
   out.set("target_edge_eps100", resolution);
+  return out;
+}
+
+// ---- Cross-family pairs (MakeHuman <-> ICT), scored on semantic landmarks ----
+
+namespace {
+
+// The semantic landmarks of bench/semantic-landmarks.json: per name, the vertex on each model.
+struct SemanticLandmarks {
+  std::vector<std::string> names;                             // file order
+  std::map<std::string, std::map<std::string, int>> vertex;  // model -> name -> base vertex
+};
+
+SemanticLandmarks read_semantic_landmarks(const std::string& shared) {
+  const Json json = read_json_file(shared + "/bench/semantic-landmarks.json");
+  SemanticLandmarks out;
+  const Json& mh = json.at("models").at("makehuman").at("vertices");
+  for (std::size_t k = 0; k < mh.size(); ++k) out.names.push_back(mh.key(k));
+  for (const char* model : {"makehuman", "ict"}) {
+    const Json& v = json.at("models").at(model).at("vertices");
+    for (const std::string& name : out.names) out.vertex[model][name] = static_cast<int>(v.at(name).as_int());
+  }
+  return out;
+}
+
+// The same landmark on the other side ("_r" <-> "_l"); unsided names stay.
+std::string other_side(const std::string& name) {
+  const std::size_t n = name.size();
+  if (n > 2 && name.compare(n - 2, 2, "_r") == 0) return name.substr(0, n - 2) + "_l";
+  if (n > 2 && name.compare(n - 2, 2, "_l") == 0) return name.substr(0, n - 2) + "_r";
+  return name;
+}
+
+int patch_vertex_of_host(const CutPatch& patch, int host) {
+  const auto it = std::find(patch.host.begin(), patch.host.end(), host);
+  return it == patch.host.end() ? -1 : static_cast<int>(it - patch.host.begin());
+}
+
+// The landmarks inside both patches: source patch vertex, true target patch vertex, and name.
+struct LandmarkPairs {
+  std::vector<int> sources, truths;
+  std::vector<std::string> names;
+};
+
+LandmarkPairs landmarks_in_both(const SemanticLandmarks& lm, const CrossFamilySlot& slot, const PairPatches& pp) {
+  LandmarkPairs out;
+  for (const std::string& name : lm.names) {
+    const int s = patch_vertex_of_host(pp.src, lm.vertex.at(slot.source_model).at(name));
+    const std::string truth_name = slot.mirrored ? other_side(name) : name;
+    const int t = patch_vertex_of_host(pp.dst, lm.vertex.at(slot.target_model).at(truth_name));
+    if (s < 0 || t < 0) continue;
+    out.sources.push_back(s);
+    out.truths.push_back(t);
+    out.names.push_back(name);
+  }
+  return out;
+}
+
+// Orientation check on the target, in its world frame (+x the subject's left, +y up): a landmark
+// pair whose true separation along x or y is at least kOrientationSeparation x the target's
+// geodesic radius and at least half of the pair's distance is "checked" on that axis; it is
+// inverted if the mapped landmarks' separation along the axis has the opposite sign.
+constexpr double kOrientationSeparation = 0.08;
+// A gross failure: a pair whose median landmark eps exceeds this (issue 14's definition).
+constexpr double kGrossFailureEps = 0.15;
+
+void check_orientation(const std::vector<Vec3>& mapped, const std::vector<Vec3>& truth, double radius,
+                       const std::vector<std::string>& names, CrossFamilyMethodResult& r) {
+  for (std::size_t a = 0; a < truth.size(); ++a)
+    for (std::size_t b = a + 1; b < truth.size(); ++b)
+      for (int axis = 0; axis < 2; ++axis) {
+        const Vec3 d = truth[b] - truth[a];
+        if (std::abs(d[axis]) < kOrientationSeparation * radius || std::abs(d[axis]) < 0.5 * d.norm()) continue;
+        ++r.checked_pairs;
+        if ((mapped[b][axis] - mapped[a][axis]) * d[axis] >= 0) continue;
+        ++r.inverted_pairs;
+        if (!r.inverted.empty()) r.inverted += ", ";
+        r.inverted += names[a] + "/" + names[b] + (axis == 0 ? " (x)" : " (y)");
+      }
+}
+
+// One method's landmark scores: eps = geodesic distance on the target between the mapped and the
+// true landmark / sqrt(target patch area); a landmark mapped outside the target is first moved
+// to the nearest target point (it still counts).
+void score_landmarks(const PairPatches& pp, const LandmarkPairs& lp, const std::vector<Vec2>& phi,
+                     const TriangleLocator2D& locator, const std::vector<Eigen::VectorXd>& distances,
+                     CrossFamilyMethodResult& r) {
+  const TriMesh host = host_mesh(pp.dst.patch);
+  const double scale = 1.0 / std::sqrt(patch_area(pp.dst.patch.mesh));
+  std::vector<Vec3> mapped, truth;
+  for (std::size_t k = 0; k < lp.sources.size(); ++k) {
+    const PointLocation l = locator.locate_nearest(phi[lp.sources[k]], 1e300);
+    const Tri& t = pp.dst.patch.mesh.triangles[l.triangle];
+    const Eigen::VectorXd& d = distances[k];
+    const Vec3& w = l.barycentric;
+    r.landmark_eps.push_back(scale * std::max(0.0, w[0] * d[t[0]] + w[1] * d[t[1]] + w[2] * d[t[2]]));
+    mapped.push_back(w[0] * host.positions[t[0]] + w[1] * host.positions[t[1]] + w[2] * host.positions[t[2]]);
+    truth.push_back(host.positions[lp.truths[k]]);
+  }
+  check_orientation(mapped, truth, pp.dst.patch.radius, lp.names, r);
+}
+
+PairPatches cut_cross_family(const Model& src_model, const Model& dst_model, const MappingEvalOptions& options,
+                             const CrossFamilySlot& slot, int i, CrossFamilyPairResult& res) {
+  PairPatches out;
+  for (int attempt = 0;; ++attempt) {
+    res.person_a = 2 * i + 1000 * attempt;
+    res.person_b = res.person_a + 1;
+    try {
+      const TriMesh a = src_model.instance(options.seed, res.person_a);
+      const TriMesh b = dst_model.instance(options.seed, res.person_b);
+      out.src = cut(src_model, src_model.bench.spec.find(slot.source_class), a, nullptr, nullptr);
+      out.dst = cut(dst_model, dst_model.bench.spec.find(slot.target_class), b, nullptr, nullptr);
+      return out;
+    } catch (const Error& e) {
+      if (e.status() != MCON_ERROR_NOT_A_DISK || attempt >= 4) throw;
+      if (options.log) options.log("cross-family pair " + std::to_string(i) + ": " + e.what() + "; next people");
+    }
+  }
+}
+
+void evaluate_cross_family_pair(const Model& src_model, const Model& dst_model, const SemanticLandmarks& lm,
+                                const MappingEvalOptions& options, int i, CrossFamilyPairResult& res) {
+  const PairPatches pp = cut_cross_family(src_model, dst_model, options, res.slot, i, res);
+  const LandmarkPairs lp = landmarks_in_both(lm, res.slot, pp);
+  res.landmarks = lp.names;
+  MappingPairResult scratch;
+  PairMaps maps = unguided_maps(pp, options, scratch);
+  if (wants(options, "proximity")) run_proximity(pp, res.slot.mirrored, maps, scratch);
+  if (wants(options, "macrocon-frame") || wants(options, "frame-rigid"))
+    run_frame(pp, res.slot.mirrored, maps, scratch.methods);
+  res.orientation_note = scratch.orientation_note;
+  const TriangleLocator2D locator(pp.dst.patch.uv, pp.dst.patch.mesh.triangles);
+  const HeatGeodesics heat(pp.dst.patch.mesh);
+  std::vector<Eigen::VectorXd> distances(lp.truths.size());
+  for_each_block(static_cast<int>(lp.truths.size()), 1, [&](int begin, int end, int) {
+    for (int k = begin; k < end; ++k) distances[k] = heat.from_vertices({lp.truths[k]});
+  });
+  for (const auto& [name, phi] : maps.phi) {
+    CrossFamilyMethodResult& r = res.methods[name];
+    r.reflected = maps.reflected.at(name);
+    r.seconds = scratch.methods[name].seconds;
+    score_landmarks(pp, lp, phi, locator, distances, r);
+  }
+}
+
+}  // namespace
+
+std::vector<CrossFamilySlot> cross_family_slots(const std::vector<std::string>& parts) {
+  std::vector<CrossFamilySlot> slots;
+  for (const char* part : {"eye", "nose", "mouth", "ear", "face"}) {
+    if (!parts.empty() && std::find(parts.begin(), parts.end(), part) == parts.end()) continue;
+    const std::string p(part);
+    const bool sided = p == "eye" || p == "ear";
+    for (const auto& [from, to] : {std::pair<const char*, const char*>{"makehuman", "ict"}, {"ict", "makehuman"}}) {
+      if (sided) {
+        slots.push_back({from, to, p, false, p + "_r", p + "_r"});
+        slots.push_back({from, to, p, true, p + "_r", p + "_l"});
+      } else {
+        slots.push_back({from, to, p, false, p, p});
+      }
+    }
+  }
+  return slots;
+}
+
+std::vector<CrossFamilyPairResult> run_cross_family_evaluation(const MappingEvalOptions& options) {
+  validate_mapping_options(options);
+  for (const std::string& m : options.methods)
+    require(m == "macrocon" || m == "rigid" || m == "thesis" || m == "proximity" || m == "macrocon-frame" ||
+                m == "frame-rigid",
+            MCON_ERROR_INVALID_ARGUMENT,
+            "eval-mapping --cross-family: method '" + m + "' needs in-family ground truth");
+  const std::vector<CrossFamilySlot> slots = cross_family_slots(options.parts);
+  const SemanticLandmarks lm = read_semantic_landmarks(options.shared_dir);
+  std::map<std::string, Model> models;
+  for (const char* name : {"makehuman", "ict"}) models.emplace(name, load_model(options.shared_dir, name));
+  tbb::task_arena arena(options.threads);
+  std::vector<CrossFamilyPairResult> results;
+  for (std::size_t i = 0; i < slots.size(); ++i) {
+    CrossFamilyPairResult res;
+    res.slot = slots[i];
+    arena.execute([&] {
+      evaluate_cross_family_pair(models.at(res.slot.source_model), models.at(res.slot.target_model), lm, options,
+                                 static_cast<int>(i), res);
+    });
+    if (options.log) {
+      std::ostringstream line;
+      line << "cross-family " << i << " " << res.slot.source_model << " " << res.slot.source_class << " -> "
+           << res.slot.target_model << " " << res.slot.target_class << " (" << res.landmarks.size() << " landmarks):";
+      for (const auto& [name, r] : res.methods) {
+        line << " " << name << (r.reflected ? " (mirrored)" : "") << " median eps100 "
+             << fmt(100 * median(r.landmark_eps)) << " inverted " << r.inverted_pairs << "/" << r.checked_pairs
+             << (r.inverted.empty() ? "" : " [" + r.inverted + "]") << " " << fmt(r.seconds) << "s;";
+      }
+      if (!res.orientation_note.empty()) line << " (" << res.orientation_note << ")";
+      options.log(line.str());
+    }
+    results.push_back(std::move(res));
+  }
+  return results;
+}
+
+namespace {
+
+Json cross_family_summary(const std::vector<const CrossFamilyMethodResult*>& rs) {
+  std::vector<double> all, pair_means, secs;
+  int gross = 0, wrong = 0;
+  for (const CrossFamilyMethodResult* r : rs) {
+    double sum = 0;
+    for (double e : r->landmark_eps) {
+      all.push_back(e);
+      sum += e;
+    }
+    pair_means.push_back(r->landmark_eps.empty() ? 0.0 : sum / static_cast<double>(r->landmark_eps.size()));
+    gross += !r->landmark_eps.empty() && median(r->landmark_eps) > kGrossFailureEps;
+    wrong += r->inverted_pairs > 0;
+    secs.push_back(r->seconds);
+  }
+  auto mean = [](const std::vector<double>& v) {
+    double s = 0;
+    for (double x : v) s += x;
+    return v.empty() ? 0.0 : s / static_cast<double>(v.size());
+  };
+  Json m = Json::object();
+  m.set("pairs", static_cast<int>(rs.size()));
+  m.set("mean_eps100", 100 * mean(pair_means));
+  m.set("landmark_mean_eps100", 100 * mean(all));
+  m.set("median_eps100", 100 * median(all));
+  m.set("gross_failures", rs.empty() ? 0.0 : static_cast<double>(gross) / static_cast<double>(rs.size()));
+  m.set("orientation_errors", wrong);
+  m.set("seconds_median", median(secs));
+  return m;
+}
+
+Json cross_family_case(const CrossFamilyPairResult& p, const std::vector<std::string>& methods) {
+  Json c = Json::object();
+  c.set("source", p.slot.source_model + " " + p.slot.source_class);
+  c.set("target", p.slot.target_model + " " + p.slot.target_class);
+  c.set("mirrored", p.slot.mirrored);
+  c.set("landmarks", static_cast<int>(p.landmarks.size()));
+  Json ms = Json::object();
+  for (const std::string& m : methods) {
+    const auto it = p.methods.find(m);
+    if (it == p.methods.end()) continue;
+    const CrossFamilyMethodResult& r = it->second;
+    double sum = 0;
+    for (double e : r.landmark_eps) sum += e;
+    Json e = Json::object();
+    e.set("mean_eps100", r.landmark_eps.empty() ? 0.0 : 100 * sum / static_cast<double>(r.landmark_eps.size()));
+    e.set("median_eps100", 100 * median(r.landmark_eps));
+    e.set("reflected", r.reflected);
+    e.set("checked_pairs", r.checked_pairs);
+    e.set("inverted_pairs", r.inverted_pairs);
+    e.set("inverted", r.inverted);
+    ms.set(m, e);
+  }
+  c.set("methods", ms);
+  return c;
+}
+
+}  // namespace
+
+Json cross_family_json(const std::vector<CrossFamilyPairResult>& pairs, const std::vector<std::string>& methods) {
+  Json out = Json::object();
+  out.set("pairs", static_cast<int>(pairs.size()));
+  Json ms = Json::object();
+  for (const std::string& m : methods) {
+    std::vector<const CrossFamilyMethodResult*> all;
+    std::map<std::string, std::vector<const CrossFamilyMethodResult*>> by_part;
+    for (const CrossFamilyPairResult& p : pairs) {
+      const auto it = p.methods.find(m);
+      if (it == p.methods.end()) continue;
+      all.push_back(&it->second);
+      by_part[p.slot.part].push_back(&it->second);
+    }
+    Json entry = Json::object();
+    entry.set("overall", cross_family_summary(all));
+    Json per = Json::object();
+    for (const char* part : kMappingParts)
+      if (by_part.count(part)) per.set(part, cross_family_summary(by_part[part]));
+    entry.set("per_class", per);
+    ms.set(m, entry);
+  }
+  out.set("methods", ms);
+  Json cases = Json::array();
+  for (const CrossFamilyPairResult& p : pairs) cases.push_back(cross_family_case(p, methods));
+  out.set("cases", cases);
   return out;
 }
 

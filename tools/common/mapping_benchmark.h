@@ -10,6 +10,9 @@
 //   rigid     its rigid initialization alone
 //   thesis    the thesis' fixed-step gradient descent from the same rigid start
 //             (common/thesis_gradient_descent.h)
+//   proximity what users have without the SDK: similarity ICP of the source onto the target in
+//             3D host coordinates (map/similarity_icp.h), then the closest target surface point
+//             of each source vertex (a mirrored pair's source is mirrored x -> -x first)
 #pragma once
 
 #include <cstdint>
@@ -22,7 +25,7 @@
 
 namespace mcon::tools {
 
-extern const char* const kMappingMethods[3];  // "macrocon", "rigid", "thesis"
+extern const char* const kMappingMethods[4];  // "macrocon", "rigid", "thesis", "proximity"
 extern const char* const kMappingParts[8];    // eye, nose, mouth, ear, face, hand, foot, arm
 
 // One kind of pair: model ("makehuman" or "ict"), body part, and whether the target is the
@@ -40,7 +43,7 @@ struct MappingEvalOptions {
   std::uint64_t seed = 1;
   int pairs = 0;                         // 0: one pair per MakeHuman slot (the default run)
   std::vector<std::string> parts;        // empty: all parts
-  std::vector<std::string> methods = {"macrocon", "rigid", "thesis"};
+  std::vector<std::string> methods = {"macrocon", "rigid", "thesis", "proximity"};
   int alignment_samples = 10000;         // rigid candidates (thesis: 10,000)
   int thesis_iterations = 15000;
   int max_evaluated_vertices = 300;      // per pair, deterministic stride subsample
@@ -87,5 +90,48 @@ std::vector<MappingPairResult> run_mapping_evaluation(const MappingEvalOptions& 
 // within_0_05, overlap and e (100 x MappingPairResult::target_edge_eps) are means over pairs (each
 // pair weighs the same).
 Json mapping_evaluation_json(const std::vector<MappingPairResult>& pairs, const std::vector<std::string>& methods);
+
+// Cross-family pairs (`eval-mapping --cross-family`): a MakeHuman patch mapped onto an ICT patch of
+// the same class or back (eye, nose, mouth, ear, face; eye and ear also mirrored), cut on random
+// instances (source 2i, target 2i + 1 of its model), scored on the semantic landmarks of
+// bench/semantic-landmarks.json that lie in both patches (the true correspondent of a mirrored
+// pair's landmark is its other-side twin): landmark eps = geodesic distance on the target (heat
+// method) between the mapped and the true landmark / sqrt(target patch area).
+struct CrossFamilySlot {
+  std::string source_model, target_model;  // "makehuman" / "ict"
+  std::string part;
+  bool mirrored = false;
+  std::string source_class, target_class;
+};
+
+struct CrossFamilyMethodResult {
+  std::vector<double> landmark_eps;  // per landmark of the pair, in CrossFamilyPairResult::landmarks order
+  bool reflected = false;
+  // Orientation (mapping_benchmark.cpp, check_orientation): landmark pairs checked for their
+  // left-right (x) or up-down (y) order on the target, those the map inverts, and their names.
+  int checked_pairs = 0, inverted_pairs = 0;
+  std::string inverted;
+  double seconds = 0;
+};
+
+struct CrossFamilyPairResult {
+  CrossFamilySlot slot;
+  int person_a = 0, person_b = 0;
+  std::vector<std::string> landmarks;  // names (source side) of the landmarks in both patches
+  std::string orientation_note;
+  std::map<std::string, CrossFamilyMethodResult> methods;
+};
+
+// The 14 slots (restricted to `parts` if non-empty; parts other than the five face parts are ignored).
+std::vector<CrossFamilySlot> cross_family_slots(const std::vector<std::string>& parts);
+
+// Runs every cross-family slot once with options.methods (macrocon, rigid, thesis, proximity only).
+std::vector<CrossFamilyPairResult> run_cross_family_evaluation(const MappingEvalOptions& options);
+
+// {"pairs": N, "methods": {m: {"overall": C, "per_class": {part: C}}}, "cases": [...]} with C =
+// {pairs, mean_eps100 (mean over pairs of the pair's mean landmark eps), landmark_mean_eps100 and
+// median_eps100 (over all landmarks), gross_failures (share of pairs whose median landmark eps >
+// 0.15), orientation_errors (pairs with an inverted landmark pair), seconds_median}.
+Json cross_family_json(const std::vector<CrossFamilyPairResult>& pairs, const std::vector<std::string>& methods);
 
 }  // namespace mcon::tools

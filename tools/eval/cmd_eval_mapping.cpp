@@ -13,13 +13,20 @@ namespace {
 const char* kUsage =
     "usage: macrocon-eval eval-mapping --shared DIR [--seed S] [--pairs N] [--classes a,b,...] [--method NAME]\n"
     "                             [--samples K] [--thesis-iterations I] [--eval-vertices V] [--threads T]\n"
-    "                             [--json] [--quiet]\n"
+    "                             [--cross-family] [--json] [--quiet]\n"
     "Maps patches of the same class between two random people (MakeHuman) or faces (ICT), the target\n"
     "re-tessellated by seeded random decimation, mirrored pairs included (a right eye onto a left\n"
     "eye), and measures eps = geodesic distance on the target between the mapped and the true point /\n"
     "sqrt(target patch area) over source vertices mapped inside the target (docs/design.md §3).\n"
     "Methods: macrocon (the SDK's map), rigid (its initialization only), thesis (the thesis' fixed-step\n"
-    "gradient descent, 15,000 iterations, from the same rigid start); --method restricts to a list.\n"
+    "gradient descent, 15,000 iterations, from the same rigid start), proximity (what a DCC user does\n"
+    "without the SDK: similarity ICP of the source onto the target in 3D world coordinates, start with\n"
+    "centroids matched, scale sqrt(area ratio), identity rotation; then the closest target surface point\n"
+    "of each source vertex; a mirrored pair's source is mirrored x -> -x first); --method restricts to a list.\n"
+    "Only when asked for: macrocon-frame = the SDK's map with the 3D-aligned start (use_world_frame: the\n"
+    "ICP alignment expressed in the two disk parametrizations is the rigid start and decides orientation\n"
+    "and reflection; a mirrored pair's source mirrored x -> -x first), beside the frame-free macrocon;\n"
+    "frame-rigid = that start alone (what rigid is to macrocon).\n"
     "Diagnostic method, only when asked for (--method macrocon,oracle): oracle = the SDK's map with\n"
     "the ground-truth correspondents' base-mesh positions as extra guidance channels, i.e. what the\n"
     "optimizer and its distortion prior reach when the descriptors are unambiguous; landmarks = the\n"
@@ -36,7 +43,17 @@ const char* kUsage =
     "--json prints {\"pairs\": N, \"methods\": {\"macrocon\": {\"overall\": M, \"per_class\": {\"eye\": M, ...}}, ...}}\n"
     "with M = {mean_eps100, within_0_05, flipped_triangles, overlap, seconds_median, iterations_median},\n"
     "and \"target_edge_eps100\": {\"overall\": e, \"per_class\": {...}}, the target's mean edge length in the\n"
-    "same units (100 x edge / sqrt(target patch area)): the scale of one target edge, to read mean_eps100 against.\n";
+    "same units (100 x edge / sqrt(target patch area)): the scale of one target edge, to read mean_eps100 against.\n"
+    "--cross-family: also maps across families, MakeHuman <-> ICT (eye, nose, mouth, ear, face; both\n"
+    "directions; eye and ear also mirrored: 14 pairs, restricted by --classes), scored on the semantic\n"
+    "landmarks of bench/semantic-landmarks.json inside both patches: landmark eps = geodesic distance on\n"
+    "the target between the mapped and the true landmark / sqrt(target patch area). Methods macrocon,\n"
+    "rigid, thesis, proximity, macrocon-frame, frame-rigid. Reported per method: mean landmark eps x 100\n"
+    "per class and overall (mean over pairs; also over all landmarks, and the median), gross_failures\n"
+    "(share of pairs whose median landmark eps > 0.15) and orientation_errors (pairs where a landmark\n"
+    "pair separated along x = left-right or y = up by >= 0.08 target radii comes out in the opposite\n"
+    "order); --json adds \"cross_family\": {\"pairs\", \"methods\": {m: {\"overall\": C, \"per_class\": {...}}},\n"
+    "\"cases\": [...]} beside the in-family numbers, which stay as without the flag.\n";
 
 std::vector<std::string> split(const std::string& s) {
   std::vector<std::string> out;
@@ -47,6 +64,23 @@ std::vector<std::string> split(const std::string& s) {
   return out;
 }
 
+void print_cross_family(const tools::Json& cross, const std::vector<std::string>& methods) {
+  std::printf("cross-family: %lld pairs\n%-9s %-6s %10s %10s %10s %6s %8s %9s\n", cross.at("pairs").as_int(), "method",
+              "class", "eps100", "lm.eps100", "median100", "gross", "orient.", "seconds");
+  for (const std::string& m : methods) {
+    const tools::Json& entry = cross.at("methods").at(m);
+    auto row = [&](const std::string& name, const tools::Json& s) {
+      std::printf("%-9s %-6s %10.3f %10.3f %10.3f %6.3f %8lld %9.3f\n", m.c_str(), name.c_str(),
+                  s.at("mean_eps100").as_number(), s.at("landmark_mean_eps100").as_number(),
+                  s.at("median_eps100").as_number(), s.at("gross_failures").as_number(),
+                  s.at("orientation_errors").as_int(), s.at("seconds_median").as_number());
+    };
+    const tools::Json& per = entry.at("per_class");
+    for (std::size_t k = 0; k < per.size(); ++k) row(per.key(k), per.value(k));
+    row("all", entry.at("overall"));
+  }
+}
+
 int run_eval_mapping(const Args& args) {
   if (!args.empty() && (args[0] == "--help" || args[0] == "-h")) {
     std::fputs(kUsage, stdout);
@@ -55,7 +89,7 @@ int run_eval_mapping(const Args& args) {
   const ArgParser p(args,
                     {"shared", "seed", "pairs", "classes", "method", "samples", "thesis-iterations", "eval-vertices",
                      "threads", "landmarks"},
-                    {"json", "quiet"});
+                    {"json", "quiet", "cross-family"});
   tools::MappingEvalOptions o;
   o.shared_dir = p.required("shared");
   const long seed = p.integer("seed", 1);
@@ -79,7 +113,9 @@ int run_eval_mapping(const Args& args) {
   if (!p.flag("quiet")) o.log = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
 
   const std::vector<tools::MappingPairResult> pairs = tools::run_mapping_evaluation(o);
-  const tools::Json json = tools::mapping_evaluation_json(pairs, o.methods);
+  tools::Json json = tools::mapping_evaluation_json(pairs, o.methods);
+  if (p.flag("cross-family"))
+    json.set("cross_family", tools::cross_family_json(tools::run_cross_family_evaluation(o), o.methods));
   if (p.flag("json")) {
     std::printf("%s\n", tools::write_json(json, true).c_str());
     return 0;
@@ -103,6 +139,7 @@ int run_eval_mapping(const Args& args) {
   const tools::Json& per = edge.at("per_class");
   for (std::size_t k = 0; k < per.size(); ++k) std::printf(" %s %.3f", per.key(k).c_str(), per.value(k).as_number());
   std::printf(" all %.3f\n", edge.at("overall").as_number());
+  if (json.contains("cross_family")) print_cross_family(json.at("cross_family"), o.methods);
   return 0;
 }
 

@@ -239,6 +239,8 @@ class MapOptions(Struct):
         ("guidance_dimension", ctypes.c_uint32),
         ("guidance_weight", ctypes.c_double),
         ("refine_sigma_factor", ctypes.c_double),
+        ("use_world_frame", ctypes.c_uint32),
+        ("world_frame_mirror", ctypes.c_uint32),
     ]
 
 
@@ -269,6 +271,7 @@ class MapInfo(Struct):
         ("orientation_compared", ctypes.c_uint32),
         ("level0_energy_unreflected", ctypes.c_double),
         ("level0_energy_reflected", ctypes.c_double),
+        ("frame_decided", ctypes.c_uint32),
     ]
 
 
