@@ -120,8 +120,21 @@ foreach(key nn_accuracy precision_at recall_at sigma_bof class_nn_accuracy confu
   check("a STREQUAL b" "${key} differs between thread counts: ${a} vs ${b}")
 endforeach()
 
+# --flip-winding: every host reversed, then repaired by the product's input path: the same ranks.
+run_checked(WHAT "eval-retrieval --flip-winding" OUTPUT_VARIABLE out_flip
+  COMMAND ${CLI} eval-retrieval --shared ${SHARED} --people 1 --faces 1 --seed 3 --json --flip-winding)
+foreach(key nn_accuracy precision_at recall_at class_nn_accuracy confusion misses)
+  string(JSON a GET "${out}" ${key})
+  string(JSON b GET "${out_flip}" ${key})
+  check("a STREQUAL b" "${key} differs with --flip-winding: ${a} vs ${b}")
+endforeach()
+string(JSON flipped GET "${out_flip}" perturbation reoriented_triangles)
+string(JSON clean_flipped GET "${out}" perturbation reoriented_triangles)
+check("flipped GREATER 0 AND clean_flipped EQUAL 0" "--flip-winding should reorient triangles (${flipped}), a clean run none (${clean_flipped})")
+
 # Bad options: a clear message and a non-zero exit, no crash.
-foreach(bad "--descriptor;sift" "--people;0;--faces;0" "--rings;0" "--people;x" "--shared;${OUT}/nowhere" "--bogus")
+foreach(bad "--descriptor;sift" "--people;0;--faces;0" "--rings;0" "--people;x" "--shared;${OUT}/nowhere" "--bogus"
+            "--noise;-1" "--noise;nan" "--density;0" "--density;20")
   set(cmd ${CLI} eval-retrieval --shared ${SHARED} ${bad})
   if(bad MATCHES "^--shared")
     set(cmd ${CLI} eval-retrieval ${bad})

@@ -32,6 +32,7 @@ const char* kUsage =
     "usage: macrocon-eval eval-retrieval --shared DIR [--seed S] [--people N] [--faces N]\n"
     "                               [--descriptor curv9|hks|wks] [--rings K] [--vocabulary K] [--sigma S]\n"
     "                               [--compare] [--threads T] [--json] [--plot DIR]\n"
+    "                               [--noise F] [--flip-winding] [--density S]\n"
     "Builds N random MakeHuman people and N random ICT faces from DIR (the shared folder, seeded by S),\n"
     "cuts a patch at every landmark class on its own random triangulation (quad diagonals + 20-40%\n"
     "decimation), and evaluates leave-one-out retrieval: each patch queries a library of all others;\n"
@@ -39,7 +40,11 @@ const char* kUsage =
     "Defaults: seed 1, 8 people and 8 faces (160 patches), curv9, 1 ring (plain), k 128, sigma by the median rule.\n"
     "--compare also evaluates curv9, hks and wks with 1, 2, 4 and 8 rings on the same patches.\n"
     "--json prints one JSON object; --plot DIR writes precision_recall.svg and mds.svg (and mds_zoom.svg, the\n"
-    "larger of two well-separated groups alone).\n";
+    "larger of two well-separated groups alone).\n"
+    "Perturbations of every host after its re-tessellation (tools/common/mesh_perturbation.h): --noise F\n"
+    "(Gaussian, std F x the mean edge length), --flip-winding (every triangle reversed), --density S\n"
+    "(decimated or subdivided to S x the vertex count); each host then goes through mcon_mesh_create's\n"
+    "orientation repair.\n";
 
 tools::Json number_array(const std::vector<double>& v) {
   tools::Json a = tools::Json::array();
@@ -77,8 +82,8 @@ struct EvalRetrievalCommand {
 
 EvalRetrievalCommand parse_eval_retrieval(const Args& args) {
   const ArgParser p(args, {"shared", "seed", "people", "faces", "descriptor", "rings", "vocabulary", "sigma",
-                           "threads", "plot"},
-                    {"json", "compare"});
+                           "threads", "plot", "noise", "density"},
+                    {"json", "compare", "flip-winding"});
   EvalRetrievalCommand cmd;
   tools::RetrievalBenchmarkOptions& options = cmd.options;
   options.shared_dir = p.required("shared");
@@ -108,6 +113,10 @@ EvalRetrievalCommand parse_eval_retrieval(const Args& args) {
           "--threads must be in 0..1024 (0 = all)");
   cmd.compare = p.flag("compare");
   cmd.json = p.flag("json");
+  options.perturbation.noise = p.number("noise", 0.0);
+  options.perturbation.density = p.number("density", 1.0);
+  options.perturbation.flip_winding = p.flag("flip-winding");
+  tools::check_perturbation(options.perturbation);
   cmd.plot_dir = p.get("plot");
   if (!cmd.plot_dir.empty()) {
     std::error_code ec;
@@ -267,6 +276,29 @@ tools::Json misses_json(const tools::RetrievalBenchmark& set, const tools::Retri
   return misses;
 }
 
+// What the perturbation options did: the options, the host vertex ratio (median over patches) and
+// the triangles the orientation repair reversed (all hosts together).
+tools::Json perturbation_json(const tools::RetrievalBenchmark& set, const tools::MeshPerturbation& perturbation) {
+  tools::Json j = tools::Json::object();
+  j.set("description", perturbation.describe());
+  j.set("noise", perturbation.noise);
+  j.set("density", perturbation.density);
+  j.set("flip_winding", perturbation.flip_winding);
+  std::vector<double> ratio;
+  long reoriented = 0;
+  for (const tools::BenchmarkPatch& p : set.patches) {
+    ratio.push_back(p.host_vertices_before ? static_cast<double>(p.host_vertices) / p.host_vertices_before : 0.0);
+    reoriented += p.reoriented_triangles;
+  }
+  j.set("host_vertex_ratio_median", tools::median_of(ratio));
+  j.set("reoriented_triangles", reoriented);
+  tools::Json failed = tools::Json::array();
+  for (const tools::BenchmarkPatch& p : set.failed_patches) failed.push_back(patch_name(p) + ": " + p.failure);
+  j.set("failed_patches", static_cast<unsigned long>(set.failed_patches.size()));
+  j.set("failures", failed);
+  return j;
+}
+
 // The --json object on stdout (called inside the command's task arena: it reports its threads).
 void print_json(const tools::RetrievalBenchmark& set, const std::vector<tools::RetrievalEvaluation>& table,
                 const PatchTotals& totals, const EvalRetrievalCommand& cmd) {
@@ -316,6 +348,7 @@ void print_json(const tools::RetrievalBenchmark& set, const std::vector<tools::R
         "instance removing 20-40% of its vertices (center kept), then the heat-method geodesic disk");
   j.set("mean_patch_vertices", n ? static_cast<double>(totals.vertices) / static_cast<double>(n) : 0.0);
   j.set("retessellation_retries", totals.attempts);
+  j.set("perturbation", perturbation_json(set, options.perturbation));
   if (cmd.compare) {
     tools::Json t = tools::Json::array();
     for (const auto& ev : table) t.push_back(evaluation_summary(ev));
