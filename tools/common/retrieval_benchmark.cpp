@@ -106,7 +106,7 @@ Patch prepare_patch(const PatchTask& task, std::uint64_t seed, std::size_t patch
             "retrieval benchmark: the decimation removed the center of '" + bc.name + "'");
     PatchOptions po;
     po.center.vertex = static_cast<int>(it - decimated.to_original.begin());
-    po.radius = ip.radius;
+    po.radius = ip.radius * options.radius_scale;
     po.fill_holes = true;
     try {
       const TriMesh host = user_host(decimated.mesh, options.perturbation, rng.bits(c + 3), po.center.vertex, out);
@@ -126,8 +126,9 @@ Patch prepare_patch(const PatchTask& task, std::uint64_t seed, std::size_t patch
 }
 
 // Prepares and describes one patch. A perturbed host on which no attempt gives a disk (noise can
-// tear the geodesic disk, or fold triangles until the heat solve fails) is not an error of the
-// evaluation but one of its results: the patch is marked failed (see drop_failed_patches).
+// tear the geodesic disk, or fold triangles until the heat solve fails), or a patch at a scaled
+// radius that is no disk (a face at x1.4 wraps around the head), is not an error of the evaluation
+// but one of its results: the patch is marked failed (see drop_failed_patches).
 void describe_patch(const PatchTask& task, std::size_t p, const RetrievalBenchmarkOptions& options,
                     BenchmarkPatch& out) {
   const auto tp = Clock::now();
@@ -135,7 +136,7 @@ void describe_patch(const PatchTask& task, std::size_t p, const RetrievalBenchma
   try {
     patch = prepare_patch(task, options.seed, p, options, out);
   } catch (const Error& e) {
-    if (!options.perturbation.active()) throw;
+    if (!options.perturbation.active() && options.radius_scale == 1.0) throw;
     out.failure = e.what();
     return;
   }
@@ -181,7 +182,8 @@ RetrievalBenchmark build_retrieval_benchmark(const RetrievalBenchmarkOptions& op
   require(options.min_decimation >= 0 && options.min_decimation <= options.max_decimation &&
               options.max_decimation < 1,
           MCON_ERROR_INVALID_ARGUMENT, "retrieval benchmark: decimation fractions must satisfy 0 <= min <= max < 1");
-  require(options.max_attempts >= 1, MCON_ERROR_INVALID_ARGUMENT, "retrieval benchmark: max_attempts must be >= 1");
+  require(options.max_attempts >= 1 && options.radius_scale > 0, MCON_ERROR_INVALID_ARGUMENT,
+          "retrieval benchmark: max_attempts must be >= 1 and radius_scale > 0");
   const auto log = [&](const std::string& s) {
     if (options.log) options.log(s);
   };
@@ -230,7 +232,9 @@ RetrievalBenchmark build_retrieval_benchmark(const RetrievalBenchmarkOptions& op
   std::vector<PatchTask> tasks;
   for (const ModelData& m : models)
     for (int i = 0; i < static_cast<int>(m.instances.size()); ++i)
-      for (const BenchClass& bc : m.bench.spec.classes) tasks.push_back({&m, i, &bc});
+      for (const BenchClass& bc : m.bench.spec.classes)
+        if (options.parts.empty() || std::count(options.parts.begin(), options.parts.end(), bc.part))
+          tasks.push_back({&m, i, &bc});
   set.patches.resize(tasks.size());
   const auto t1 = Clock::now();
   // One patch per task; each is a pure function of (seed, patch number), so the parallel loop gives

@@ -39,6 +39,10 @@ struct RetrievalBenchmarkOptions {
   // Applied to every host after the re-tessellation (each patch is a query and a library entry);
   // the perturbed host then goes through the product's input path (orient_and_validate).
   MeshPerturbation perturbation;
+  // Only these class parts (e.g. "eye", "nose"); empty = every class of the bench spec.
+  std::vector<std::string> parts;
+  // Patch radius x this (leave-family-out queries at 0.7, 1.0 and 1.4 of the class's radius).
+  double radius_scale = 1.0;
   // Progress lines (may be empty).
   std::function<void(const std::string&)> log;
 };
