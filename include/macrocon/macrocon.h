@@ -542,11 +542,12 @@ typedef struct mcon_patch_frame {
 } mcon_patch_frame;
 
 MCON_API mcon_status mcon_patch_frame_init(mcon_patch_frame* frame);
-/* Validates and copies the mesh (errors as mcon_mesh_create), requires one disk (else
- * MCON_ERROR_NOT_A_DISK naming the reason: several pieces, a closed surface, holes or a handle)
- * and computes its unit-disk parametrization. The patch's host is the mesh itself: host vertices
- * are the identity (t = 0), host triangles the identity. Center and scale: INVALID_ARGUMENT
- * (NON_FINITE for NaN). */
+/* Validates and copies the mesh (errors as mcon_mesh_create; triangles that disagree are reversed
+ * to agree with the majority, frame.center_barycentric stays in the caller's corner order),
+ * requires one disk (else MCON_ERROR_NOT_A_DISK naming the reason: several pieces, a closed
+ * surface, holes or a handle) and computes its unit-disk parametrization. The patch's host is the
+ * mesh itself: host vertices are the identity (t = 0), host triangles the identity. Center and
+ * scale: INVALID_ARGUMENT (NON_FINITE for NaN). */
 MCON_API mcon_status mcon_patch_create_from_arrays(mcon_context context, const mcon_mesh_desc* mesh,
                                                    const mcon_patch_frame* frame, mcon_patch* out_patch);
 
