@@ -35,6 +35,9 @@ struct MeshFileOptions {
   std::string obj_group;
   // Refuse files larger than this after decompression (MCON_ERROR_IO); 0 = max_input_bytes().
   std::size_t max_bytes = 0;
+  // How the mesh is oriented after reading (mesh/orientation.h): outward for hosts, majority for
+  // an already-cut patch (a disk has no inside; a concave one must not be turned).
+  OrientationRule orientation = OrientationRule::outward;
 };
 
 struct LoadedMesh {

@@ -729,3 +729,17 @@ TEST_F(MeshIo, ReversedFacesAreRepairedAndReported) {
   EXPECT_EQ(inward.orientation.components_turned_outward, 1);
   EXPECT_EQ(inward.orientation.closed_components, 1);
 }
+
+// An open, consistently wound bowl facing inward: hosts are turned outward, an already-cut patch
+// (the majority rule, as `macrocon embed` reads a patch file) is kept as given.
+TEST_F(MeshIo, PatchFilesKeepTheirConsistentOrientation) {
+  const std::string bowl = write_text("bowl.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 4 2\nf 1 3 4\n");
+  const LoadedMesh host = read_mesh(bowl);
+  EXPECT_EQ(host.orientation.components_turned_outward, 1);
+  EXPECT_EQ(host.orientation.reoriented_triangles, 3);
+  MeshFileOptions patch_file;
+  patch_file.orientation = OrientationRule::majority;
+  const LoadedMesh patch = read_mesh(bowl, patch_file);
+  EXPECT_EQ(patch.orientation.reoriented_triangles, 0);
+  EXPECT_EQ(patch.mesh.triangles[1], (Tri{0, 3, 1}));
+}
