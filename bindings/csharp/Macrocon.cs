@@ -16,7 +16,7 @@ namespace Macrocon
         Ok = 0, Unknown = 1, InvalidArgument = 2, NullPointer = 3, StructSize = 4, OutOfMemory = 5,
         BufferTooSmall = 6, Cancelled = 7, IO = 8, NonFinite = 10, IndexOutOfRange = 11, RepeatedIndex = 12,
         DegenerateTriangle = 13, NonManifoldEdge = 14, NonManifoldVertex = 15, IsolatedVertex = 16,
-        EmptyMesh = 17, NotADisk = 20, Numerical = 21, InvalidLibrary = 30, Unsupported = 31, NotFound = 32,
+        EmptyMesh = 17, NonOrientable = 18, NotADisk = 20, Numerical = 21, InvalidLibrary = 30, Unsupported = 31, NotFound = 32,
     }
 
     public enum Descriptor { Curv9 = 1, MeanCurvature = 2 }
@@ -206,6 +206,16 @@ namespace Macrocon
             public uint center_patch_triangle;
             public fixed double center_barycentric[3];
             public double max_geodesic_distance; public uint param_flipped_triangles;
+            public UIntPtr host_reoriented_triangles; public uint host_outward_turned_components;
+            public uint host_inconsistent_components; public UIntPtr reoriented_triangles;
+        }
+
+        [StructLayout(LayoutKind.Sequential)]
+        public struct MeshOrientationInfo
+        {
+            public uint struct_size; public UIntPtr reoriented_triangles; public uint component_count;
+            public uint closed_component_count; public uint inconsistent_component_count;
+            public uint outward_turned_component_count;
         }
 
         [DllImport(Lib)] internal static extern Status mcon_get_version(out uint major, out uint minor, out uint patch);
@@ -219,6 +229,10 @@ namespace Macrocon
         [DllImport(Lib)] internal static extern Status mcon_mesh_create(ContextHandle context, ref MeshDesc desc, out MeshHandle mesh);
         [DllImport(Lib)] internal static extern Status mcon_mesh_release(IntPtr mesh);
         [DllImport(Lib)] internal static extern Status mcon_mesh_get_counts(MeshHandle mesh, out UIntPtr vertices, out UIntPtr triangles);
+        [DllImport(Lib)] internal static extern Status mcon_mesh_orientation_info_init(ref MeshOrientationInfo info);
+        [DllImport(Lib)] internal static extern Status mcon_mesh_get_orientation(MeshHandle mesh, ref MeshOrientationInfo info);
+        [DllImport(Lib)] internal static extern Status mcon_mesh_get_reoriented_triangles(MeshHandle mesh, [Out] byte[] flags, UIntPtr capacity);
+        [DllImport(Lib)] internal static extern Status mcon_mesh_get_triangles(MeshHandle mesh, [Out] uint[] indices, UIntPtr capacity);
         [DllImport(Lib)] internal static extern Status mcon_patch_options_init(ref PatchOptions options);
         [DllImport(Lib)] internal static extern Status mcon_patch_extract(MeshHandle mesh, ref PatchOptions options, out PatchHandle patch);
         [DllImport(Lib)] internal static extern Status mcon_patch_release(IntPtr patch);
@@ -374,6 +388,7 @@ namespace Macrocon
                 case Status.NotFound: throw new NotFoundException(text);
                 case Status.NonFinite: case Status.IndexOutOfRange: case Status.RepeatedIndex: case Status.DegenerateTriangle:
                 case Status.NonManifoldEdge: case Status.NonManifoldVertex: case Status.IsolatedVertex: case Status.EmptyMesh:
+                case Status.NonOrientable:
                     throw new InvalidMeshException(status, text);
                 default: throw new MacroconException(status, text);
             }
@@ -664,6 +679,22 @@ namespace Macrocon
         public void Dispose() => Handle.Dispose();
     }
 
+    /// <summary>mcon_mesh_orientation_info: what the orientation repair of a mesh changed.</summary>
+    public readonly struct MeshOrientation
+    {
+        public MeshOrientation(long reorientedTriangles, int components, int closedComponents, int inconsistentComponents,
+                               int outwardTurnedComponents)
+        {
+            ReorientedTriangles = reorientedTriangles; Components = components; ClosedComponents = closedComponents;
+            InconsistentComponents = inconsistentComponents; OutwardTurnedComponents = outwardTurnedComponents;
+        }
+        public long ReorientedTriangles { get; }
+        public int Components { get; }
+        public int ClosedComponents { get; }
+        public int InconsistentComponents { get; }
+        public int OutwardTurnedComponents { get; }
+    }
+
     public sealed class Mesh : IDisposable
     {
         internal readonly MeshHandle Handle;
@@ -731,6 +762,36 @@ namespace Macrocon
                 Native.Check(Native.mcon_mesh_get_counts(Handle, out UIntPtr v, out UIntPtr t));
                 return ((int)v, (int)t);
             }
+        }
+
+        /// <summary>What creating the mesh changed to orient it consistently and outward.</summary>
+        public MeshOrientation Orientation
+        {
+            get
+            {
+                var info = new Native.MeshOrientationInfo();
+                Native.Check(Native.mcon_mesh_orientation_info_init(ref info));
+                Native.Check(Native.mcon_mesh_get_orientation(Handle, ref info));
+                return new MeshOrientation((long)info.reoriented_triangles, (int)info.component_count,
+                                           (int)info.closed_component_count, (int)info.inconsistent_component_count,
+                                           (int)info.outward_turned_component_count);
+            }
+        }
+
+        /// <summary>Per input triangle: 1 if its corners 1 and 2 were swapped.</summary>
+        public byte[] ReorientedTriangles()
+        {
+            var flags = new byte[Counts.Triangles];
+            Native.Check(Native.mcon_mesh_get_reoriented_triangles(Handle, flags, (UIntPtr)flags.Length));
+            return flags;
+        }
+
+        /// <summary>The oriented triangles, 3 indices each.</summary>
+        public uint[] Triangles()
+        {
+            var indices = new uint[3 * Counts.Triangles];
+            Native.Check(Native.mcon_mesh_get_triangles(Handle, indices, (UIntPtr)indices.Length));
+            return indices;
         }
 
         public void Dispose() => Handle.Dispose();
@@ -842,6 +903,11 @@ namespace Macrocon
         public int BoundaryLoops => (int)info.boundary_loops;
         public int EulerCharacteristic => info.euler_characteristic;
         public int ParamFlippedTriangles => (int)info.param_flipped_triangles;
+        /// <summary>Host triangles the orientation repair reversed, and how many of this patch's lie in one.</summary>
+        public long HostReorientedTriangles => (long)info.host_reoriented_triangles;
+        public long ReorientedTriangles => (long)info.reoriented_triangles;
+        public int HostOutwardTurnedComponents => (int)info.host_outward_turned_components;
+        public int HostInconsistentComponents => (int)info.host_inconsistent_components;
         public double MaxGeodesicDistance => info.max_geodesic_distance;
         public double Radius => info.radius;
         public unsafe double[] Center { get { fixed (double* c = info.center) return new[] { c[0], c[1], c[2] }; } }

@@ -65,10 +65,11 @@ typedef enum mcon_status {
   MCON_ERROR_INDEX_OUT_OF_RANGE = 11,  /* a triangle index is >= vertex count */
   MCON_ERROR_REPEATED_INDEX = 12,      /* a triangle uses the same vertex twice */
   MCON_ERROR_DEGENERATE_TRIANGLE = 13, /* a triangle has zero area */
-  MCON_ERROR_NON_MANIFOLD_EDGE = 14,   /* an edge has more than two triangles, or they disagree in orientation */
+  MCON_ERROR_NON_MANIFOLD_EDGE = 14,   /* an edge has more than two triangles */
   MCON_ERROR_NON_MANIFOLD_VERTEX = 15, /* a vertex whose triangles do not form one fan */
   MCON_ERROR_ISOLATED_VERTEX = 16,     /* a vertex used by no triangle */
   MCON_ERROR_EMPTY_MESH = 17,          /* no vertices or no triangles */
+  MCON_ERROR_NON_ORIENTABLE = 18,      /* a component has no consistent orientation (a Moebius strip) */
   MCON_ERROR_NOT_A_DISK = 20,          /* a patch is not a topological disk (handle, annulus...) */
   MCON_ERROR_NUMERICAL = 21,           /* a linear solve or an optimization failed numerically */
   MCON_ERROR_INVALID_LIBRARY = 30,     /* a constraint library file or buffer failed validation */
@@ -156,13 +157,35 @@ typedef struct mcon_mesh_desc {
 
 MCON_API mcon_status mcon_mesh_desc_init(mcon_mesh_desc* desc);
 
-/* Validates and copies. Errors: NON_FINITE, INDEX_OUT_OF_RANGE, REPEATED_INDEX,
- * DEGENERATE_TRIANGLE, NON_MANIFOLD_EDGE, NON_MANIFOLD_VERTEX, ISOLATED_VERTEX, EMPTY_MESH, each
- * with a message naming the first offending vertex or triangle. */
+/* Validates, copies and orients: each connected component is made consistent and outward
+ * (docs/api.md "Input orientation"; mcon_mesh_get_orientation reports what changed). Errors:
+ * NON_FINITE, INDEX_OUT_OF_RANGE, REPEATED_INDEX, DEGENERATE_TRIANGLE, NON_MANIFOLD_EDGE,
+ * NON_ORIENTABLE, NON_MANIFOLD_VERTEX, ISOLATED_VERTEX, EMPTY_MESH, each with a message naming the
+ * first offending vertex or triangle. */
 MCON_API mcon_status mcon_mesh_create(mcon_context context, const mcon_mesh_desc* desc, mcon_mesh* out_mesh);
 MCON_API mcon_status mcon_mesh_retain(mcon_mesh mesh);
 MCON_API mcon_status mcon_mesh_release(mcon_mesh mesh);
 MCON_API mcon_status mcon_mesh_get_counts(mcon_mesh mesh, size_t* vertex_count, size_t* triangle_count);
+
+/* What mcon_mesh_create changed to orient the input consistently and outward. */
+typedef struct mcon_mesh_orientation_info {
+  uint32_t struct_size;
+  size_t reoriented_triangles;         /* triangles whose corners 1 and 2 were swapped */
+  uint32_t component_count;            /* connected components (through shared edges) */
+  uint32_t closed_component_count;     /* of which without boundary */
+  uint32_t inconsistent_component_count; /* components whose triangles disagreed (repaired) */
+  uint32_t outward_turned_component_count; /* components that faced inward and were turned */
+} mcon_mesh_orientation_info;
+
+MCON_API mcon_status mcon_mesh_orientation_info_init(mcon_mesh_orientation_info* info);
+MCON_API mcon_status mcon_mesh_get_orientation(mcon_mesh mesh, mcon_mesh_orientation_info* info);
+/* Per input triangle: 1 if its corners 1 and 2 were swapped (its normal reversed), else 0; the
+ * mesh's barycentric inputs (mcon_patch_options.center_barycentric) stay in the caller's corner
+ * order. capacity in triangles. */
+MCON_API mcon_status mcon_mesh_get_reoriented_triangles(mcon_mesh mesh, uint8_t* out_flags, size_t capacity);
+/* The oriented triangles, 3 indices each (the input with reoriented triangles' corners 1 and 2
+ * swapped). capacity in indices. */
+MCON_API mcon_status mcon_mesh_get_triangles(mcon_mesh mesh, uint32_t* out_indices, size_t capacity);
 
 /* ---------------------------------------------------------------------------------------------
  * Patches: geodesic disks cut out of a host mesh, normalized to geodesic radius 1.
@@ -217,6 +240,13 @@ typedef struct mcon_patch_info {
   double center_barycentric[3];
   double max_geodesic_distance;   /* measured again on the normalized patch: about 1 */
   uint32_t param_flipped_triangles; /* inverted triangles of the disk parametrization: 0 */
+  /* The host's orientation repair (mcon_mesh_get_orientation): the host triangles reoriented, the
+   * host components turned outward and made consistent, and how many of this patch's triangles lie
+   * in a reoriented host triangle. */
+  size_t host_reoriented_triangles;
+  uint32_t host_outward_turned_components;
+  uint32_t host_inconsistent_components;
+  size_t reoriented_triangles;
 } mcon_patch_info;
 
 MCON_API mcon_status mcon_patch_info_init(mcon_patch_info* info);
@@ -517,11 +547,12 @@ typedef struct mcon_patch_frame {
 } mcon_patch_frame;
 
 MCON_API mcon_status mcon_patch_frame_init(mcon_patch_frame* frame);
-/* Validates and copies the mesh (errors as mcon_mesh_create), requires one disk (else
- * MCON_ERROR_NOT_A_DISK naming the reason: several pieces, a closed surface, holes or a handle)
- * and computes its unit-disk parametrization. The patch's host is the mesh itself: host vertices
- * are the identity (t = 0), host triangles the identity. Center and scale: INVALID_ARGUMENT
- * (NON_FINITE for NaN). */
+/* Validates and copies the mesh (errors as mcon_mesh_create; triangles that disagree are reversed
+ * to agree with the majority, frame.center_barycentric stays in the caller's corner order),
+ * requires one disk (else MCON_ERROR_NOT_A_DISK naming the reason: several pieces, a closed
+ * surface, holes or a handle) and computes its unit-disk parametrization. The patch's host is the
+ * mesh itself: host vertices are the identity (t = 0), host triangles the identity. Center and
+ * scale: INVALID_ARGUMENT (NON_FINITE for NaN). */
 MCON_API mcon_status mcon_patch_create_from_arrays(mcon_context context, const mcon_mesh_desc* mesh,
                                                    const mcon_patch_frame* frame, mcon_patch* out_patch);
 

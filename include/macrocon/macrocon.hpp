@@ -217,6 +217,26 @@ class Mesh {
   std::size_t vertex_count() const { return counts().first; }
   std::size_t triangle_count() const { return counts().second; }
 
+  // What creating the mesh changed to orient it consistently and outward.
+  mcon_mesh_orientation_info orientation() const {
+    mcon_mesh_orientation_info i;
+    check(mcon_mesh_orientation_info_init(&i));
+    check(mcon_mesh_get_orientation(detail::require(get(), "Mesh"), &i));
+    return i;
+  }
+  // Per input triangle: 1 if its corners 1 and 2 were swapped.
+  std::vector<std::uint8_t> reoriented_triangles() const {
+    std::vector<std::uint8_t> out(triangle_count());
+    check(mcon_mesh_get_reoriented_triangles(detail::require(get(), "Mesh"), out.data(), out.size()));
+    return out;
+  }
+  // The oriented triangles, 3 indices each.
+  std::vector<std::uint32_t> triangles() const {
+    std::vector<std::uint32_t> out(3 * triangle_count());
+    check(mcon_mesh_get_triangles(detail::require(get(), "Mesh"), out.data(), out.size()));
+    return out;
+  }
+
   mcon_mesh get() const noexcept { return ref_.get(); }
   mcon_mesh detach() noexcept { return ref_.detach(); }
   explicit operator bool() const noexcept { return ref_.get() != nullptr; }

@@ -9,6 +9,7 @@
 #include "capi/capi_common.h"
 #include "patch/geodesic_disk_patch.h"
 #include "mesh/mesh.h"
+#include "mesh/orientation.h"
 
 struct mcon_context_t {
   static constexpr std::uint32_t kMagic = 0x4d43430a;  // "MCC"
@@ -26,6 +27,7 @@ struct mcon_mesh_t {
   mcon::capi::HandleHeader header{kMagic};
   mcon_context context = nullptr;  // retained
   mcon::TriMesh mesh;
+  mcon::OrientationReport orientation;  // what the input needed to be consistent and outward
   ~mcon_mesh_t();
 };
 
@@ -37,10 +39,24 @@ struct mcon_patch_t {
   // Measured once on the finished patch (mcon_patch_info), not assumed.
   std::uint32_t boundary_loops = 0;
   std::int32_t euler_characteristic = 0;
+  // The host's orientation repair (mcon_patch_info), and the patch triangles in reoriented ones.
+  std::size_t host_reoriented_triangles = 0;
+  std::uint32_t host_outward_turned_components = 0;
+  std::uint32_t host_inconsistent_components = 0;
+  std::size_t reoriented_triangles = 0;
   ~mcon_patch_t();
 };
 
 namespace mcon::capi {
+
+// mcon_mesh_create's work (copy, orient with `rule`, validate) for the calls that build a mesh
+// themselves; throws mcon::Error.
+std::unique_ptr<mcon_mesh_t> make_mesh(mcon_context context, const mcon_mesh_desc* desc, OrientationRule rule);
+
+// Barycentric weights in the caller's corner order -> the oriented triangle's corner order.
+inline Vec3 oriented_barycentric(const OrientationReport& report, std::size_t triangle, const Vec3& b) {
+  return report.reoriented.size() > triangle && report.reoriented[triangle] ? Vec3(b[0], b[2], b[1]) : b;
+}
 
 // Runs `f` inside the context's arena, isolated from any outer work of the calling thread
 // (docs/design.md §5: hosts with their own TBB must never see our tasks). Exceptions propagate.

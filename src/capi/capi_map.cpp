@@ -71,12 +71,16 @@ mcon_status mcon_patch_create_from_arrays(mcon_context context, const mcon_mesh_
     require_pointer(mesh, "mesh");
     require_pointer(frame, "frame");
     const auto f = read_options(frame, sizeof(mcon_patch_frame), "mcon_patch_frame", default_frame());
-    // The mesh goes through mcon_mesh_create: the same copy and validation, the same errors.
-    mcon_mesh m = nullptr;
-    const mcon_status s = mcon_mesh_create(context, mesh, &m);
-    if (s != MCON_OK) throw Error(s, thread_last_error().message);
+    // The mesh's copy and validation are mcon_mesh_create's (same errors, named after it); a disk
+    // has no inside, so its orientation only follows the majority of its triangles.
+    std::unique_ptr<mcon_mesh_t> m;
+    try {
+      m = make_mesh(context, mesh, OrientationRule::majority);
+    } catch (const Error& e) {
+      throw Error(e.status(), std::string("mcon_mesh_create: ") + e.what());
+    }
     TriMesh tri = std::move(m->mesh);
-    mcon_mesh_release(m);
+    const OrientationReport orientation = std::move(m->orientation);
 
     require(f.center_triangle != MCON_INVALID_INDEX, MCON_ERROR_INVALID_ARGUMENT,
             "frame.center_triangle is not set (the center is required)");
@@ -85,7 +89,9 @@ mcon_status mcon_patch_create_from_arrays(mcon_context context, const mcon_mesh_
                 std::to_string(tri.triangles.size()) + " triangles)");
     PatchFrame pf;
     pf.center.triangle = static_cast<int>(f.center_triangle);
-    pf.center.barycentric = Vec3(f.center_barycentric[0], f.center_barycentric[1], f.center_barycentric[2]);
+    pf.center.barycentric =
+        oriented_barycentric(orientation, f.center_triangle,
+                             Vec3(f.center_barycentric[0], f.center_barycentric[1], f.center_barycentric[2]));
     pf.origin = Vec3(f.origin[0], f.origin[1], f.origin[2]);
     pf.scale = f.scale;
 
@@ -94,6 +100,9 @@ mcon_status mcon_patch_create_from_arrays(mcon_context context, const mcon_mesh_
     const MeshTopology topology = build_topology(patch->patch.mesh);
     patch->boundary_loops = static_cast<std::uint32_t>(topology.boundary_loops.size());
     patch->euler_characteristic = euler_characteristic(patch->patch.mesh, topology);
+    patch->host_reoriented_triangles = patch->reoriented_triangles =
+        static_cast<std::size_t>(orientation.reoriented_triangles);
+    patch->host_inconsistent_components = static_cast<std::uint32_t>(orientation.inconsistent_components);
     retain_owned(context);
     patch->context = context;
     *out_patch = patch.release();

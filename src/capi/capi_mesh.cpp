@@ -1,4 +1,5 @@
-// Meshes: strided caller arrays -> a validated, copied mcon::TriMesh (mesh_from_arrays).
+// Meshes: strided caller arrays -> a copied, oriented, validated mcon::TriMesh (orient_and_validate).
+#include <algorithm>
 #include <limits>
 
 #include "capi/capi_handles.h"
@@ -20,6 +21,35 @@ void require_addressable(std::size_t count, std::size_t stride, std::size_t elem
 
 }  // namespace
 
+std::unique_ptr<mcon_mesh_t> mcon::capi::make_mesh(mcon_context context, const mcon_mesh_desc* desc,
+                                                   OrientationRule rule) {
+  require_pointer(desc, "desc");
+  auto defaults = zeroed_struct<mcon_mesh_desc>();
+  const auto d = read_options(desc, sizeof(mcon_mesh_desc), "mcon_mesh_desc", defaults);
+  require(d.position_type == MCON_SCALAR_FLOAT32 || d.position_type == MCON_SCALAR_FLOAT64, MCON_ERROR_INVALID_ARGUMENT,
+          "position_type " + std::to_string(d.position_type) +
+              " is not an mcon_scalar_type (set MCON_SCALAR_FLOAT32 = 1 or MCON_SCALAR_FLOAT64 = 2)");
+
+  MeshArrays arrays;
+  arrays.positions = d.positions;
+  arrays.positions_are_double = d.position_type == MCON_SCALAR_FLOAT64;
+  arrays.position_stride = d.position_stride;
+  arrays.vertex_count = d.vertex_count;
+  arrays.indices = d.indices;
+  arrays.index_stride = d.index_stride;
+  arrays.triangle_count = d.triangle_count;
+  const std::size_t scalar = arrays.positions_are_double ? sizeof(double) : sizeof(float);
+  require_addressable(d.vertex_count, d.position_stride ? d.position_stride : 3 * scalar, 3 * scalar, "positions");
+  require_addressable(d.triangle_count, d.index_stride ? d.index_stride : 12, 12, "indices");
+
+  auto mesh = std::make_unique<mcon_mesh_t>();
+  run_in_arena(context, [&] {
+    mesh->mesh = copy_mesh_arrays(arrays);
+    mesh->orientation = orient_and_validate(mesh->mesh, rule);
+  });
+  return mesh;
+}
+
 extern "C" {
 
 mcon_status mcon_mesh_desc_init(mcon_mesh_desc* desc) {
@@ -29,29 +59,7 @@ mcon_status mcon_mesh_desc_init(mcon_mesh_desc* desc) {
 
 mcon_status mcon_mesh_create(mcon_context context, const mcon_mesh_desc* desc, mcon_mesh* out_mesh) {
   return guard_create("mcon_mesh_create", out_mesh, "out_mesh", context, "context", [&] {
-    require_pointer(desc, "desc");
-    auto defaults = zeroed_struct<mcon_mesh_desc>();
-    const auto d = read_options(desc, sizeof(mcon_mesh_desc), "mcon_mesh_desc", defaults);
-    require(d.position_type == MCON_SCALAR_FLOAT32 || d.position_type == MCON_SCALAR_FLOAT64,
-            MCON_ERROR_INVALID_ARGUMENT,
-            "position_type " + std::to_string(d.position_type) +
-                " is not an mcon_scalar_type (set MCON_SCALAR_FLOAT32 = 1 or MCON_SCALAR_FLOAT64 = 2)");
-
-    MeshArrays arrays;
-    arrays.positions = d.positions;
-    arrays.positions_are_double = d.position_type == MCON_SCALAR_FLOAT64;
-    arrays.position_stride = d.position_stride;
-    arrays.vertex_count = d.vertex_count;
-    arrays.indices = d.indices;
-    arrays.index_stride = d.index_stride;
-    arrays.triangle_count = d.triangle_count;
-    const std::size_t scalar = arrays.positions_are_double ? sizeof(double) : sizeof(float);
-    require_addressable(d.vertex_count, d.position_stride ? d.position_stride : 3 * scalar, 3 * scalar,
-                        "positions");
-    require_addressable(d.triangle_count, d.index_stride ? d.index_stride : 12, 12, "indices");
-
-    auto mesh = std::make_unique<mcon_mesh_t>();
-    mesh->mesh = run_in_arena(context, [&] { return mesh_from_arrays(arrays); });
+    auto mesh = make_mesh(context, desc, OrientationRule::outward);
     retain_owned(context);
     mesh->context = context;
     *out_mesh = mesh.release();
@@ -72,6 +80,39 @@ mcon_status mcon_mesh_get_counts(mcon_mesh mesh, size_t* vertex_count, size_t* t
     require_pointer(triangle_count, "triangle_count");
     *vertex_count = mesh->mesh.positions.size();
     *triangle_count = mesh->mesh.triangles.size();
+  });
+}
+
+mcon_status mcon_mesh_orientation_info_init(mcon_mesh_orientation_info* info) {
+  return init_struct("mcon_mesh_orientation_info_init", info, "info", zeroed_struct<mcon_mesh_orientation_info>());
+}
+
+mcon_status mcon_mesh_get_orientation(mcon_mesh mesh, mcon_mesh_orientation_info* info) {
+  return guard_object("mcon_mesh_get_orientation", mesh, "mesh", [&] {
+    const OrientationReport& r = mesh->orientation;
+    auto v = zeroed_struct<mcon_mesh_orientation_info>();
+    v.reoriented_triangles = static_cast<std::size_t>(r.reoriented_triangles);
+    v.component_count = static_cast<std::uint32_t>(r.components);
+    v.closed_component_count = static_cast<std::uint32_t>(r.closed_components);
+    v.inconsistent_component_count = static_cast<std::uint32_t>(r.inconsistent_components);
+    v.outward_turned_component_count = static_cast<std::uint32_t>(r.components_turned_outward);
+    write_info(info, sizeof(mcon_mesh_orientation_info), "mcon_mesh_orientation_info", v);
+  });
+}
+
+mcon_status mcon_mesh_get_reoriented_triangles(mcon_mesh mesh, uint8_t* out_flags, size_t capacity) {
+  return guard_object("mcon_mesh_get_reoriented_triangles", mesh, "mesh", [&] {
+    const auto& flags = mesh->orientation.reoriented;
+    require_pointer(out_flags, "out_flags");
+    require(capacity >= flags.size(), MCON_ERROR_BUFFER_TOO_SMALL,
+            "out_flags: capacity " + std::to_string(capacity) + " < " + std::to_string(flags.size()) + " triangles");
+    std::copy(flags.begin(), flags.end(), out_flags);
+  });
+}
+
+mcon_status mcon_mesh_get_triangles(mcon_mesh mesh, uint32_t* out_indices, size_t capacity) {
+  return guard_object("mcon_mesh_get_triangles", mesh, "mesh", [&] {
+    write_rows<3>(mesh->mesh.triangles, out_indices, capacity, "out_indices", "out_indices (capacity in indices)");
   });
 }
 

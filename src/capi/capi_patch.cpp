@@ -1,5 +1,6 @@
 // Patches: geodesic disks cut out of a host mesh (extract_geodesic_disk) and their arrays.
 #include <cmath>
+#include <cstddef>
 #include <cstdio>
 
 #include "capi/capi_handles.h"
@@ -30,7 +31,7 @@ std::string number(double x) {
 }
 
 // The C options -> the core's options, with every field checked against the host.
-PatchOptions to_core_options(const mcon_patch_options& o, const TriMesh& host) {
+PatchOptions to_core_options(const mcon_patch_options& o, const TriMesh& host, const OrientationReport& orientation) {
   PatchOptions po;
   if (o.center_vertex != MCON_INVALID_INDEX) {
     require(o.center_vertex < host.positions.size(), MCON_ERROR_INVALID_ARGUMENT,
@@ -52,7 +53,10 @@ PatchOptions to_core_options(const mcon_patch_options& o, const TriMesh& host) {
             "center_barycentric (" + number(b[0]) + ", " + number(b[1]) + ", " + number(b[2]) +
                 ") is not a point of the triangle (each >= 0, sum 1)");
     po.center.triangle = static_cast<int>(o.center_triangle);
-    po.center.barycentric = Vec3(b[0], b[1], b[2]) / sum;
+    // Into the oriented triangle's corner order first, then normalized in that order: the same point
+    // of a reversed and a consistent input gives the same weights bit for bit.
+    const Vec3 w = oriented_barycentric(orientation, o.center_triangle, Vec3(b[0], b[1], b[2]));
+    po.center.barycentric = w / (w[0] + w[1] + w[2]);
   }
   require(std::isfinite(o.radius), MCON_ERROR_NON_FINITE, "radius is not finite (" + number(o.radius) + ")");
   require(o.radius > 0, MCON_ERROR_INVALID_ARGUMENT, "radius must be > 0 (got " + number(o.radius) + ")");
@@ -70,6 +74,19 @@ PatchOptions to_core_options(const mcon_patch_options& o, const TriMesh& host) {
 
 std::uint32_t to_index(int i) { return i < 0 ? MCON_INVALID_INDEX : static_cast<std::uint32_t>(i); }
 
+// The patch info's part of the host's orientation report.
+void record_host_orientation(mcon_patch_t& patch, const OrientationReport& host) {
+  patch.host_reoriented_triangles = static_cast<std::size_t>(host.reoriented_triangles);
+  patch.host_outward_turned_components = static_cast<std::uint32_t>(host.components_turned_outward);
+  patch.host_inconsistent_components = static_cast<std::uint32_t>(host.inconsistent_components);
+  patch.reoriented_triangles = 0;
+  for (int t : patch.patch.host_triangle)
+    patch.reoriented_triangles += t >= 0 && static_cast<std::size_t>(t) < host.reoriented.size() && host.reoriented[t];
+}
+
+// The first version of mcon_patch_info ends before the orientation fields.
+constexpr std::size_t kPatchInfoMinSize = offsetof(mcon_patch_info, host_reoriented_triangles);
+
 }  // namespace
 
 extern "C" {
@@ -82,7 +99,7 @@ mcon_status mcon_patch_extract(mcon_mesh host, const mcon_patch_options* options
   return guard_create("mcon_patch_extract", out_patch, "out_patch", host, "mesh", [&] {
     require_pointer(options, "options");
     const auto o = read_options(options, sizeof(mcon_patch_options), "mcon_patch_options", default_patch_options());
-    PatchOptions po = to_core_options(o, host->mesh);
+    PatchOptions po = to_core_options(o, host->mesh, host->orientation);
     std::shared_ptr<const std::atomic<bool>> cancelled;
     po.progress = make_progress(o.progress, o.progress_user_data, &cancelled);
 
@@ -100,6 +117,7 @@ mcon_status mcon_patch_extract(mcon_mesh host, const mcon_patch_options* options
                 " boundary loops and Euler characteristic " + std::to_string(patch->euler_characteristic) +
                 " (a disk has 1 and 1)");
 
+    record_host_orientation(*patch, host->orientation);
     retain_owned(host->context);
     patch->context = host->context;
     *out_patch = patch.release();
@@ -135,7 +153,11 @@ mcon_status mcon_patch_get_info(mcon_patch patch, mcon_patch_info* info) {
     v.center_patch_triangle = to_index(p.center.triangle);
     v.max_geodesic_distance = p.max_geodesic_distance;
     v.param_flipped_triangles = static_cast<std::uint32_t>(p.param_flipped_triangles);
-    write_info(info, sizeof(mcon_patch_info), "mcon_patch_info", v);
+    v.host_reoriented_triangles = patch->host_reoriented_triangles;
+    v.host_outward_turned_components = patch->host_outward_turned_components;
+    v.host_inconsistent_components = patch->host_inconsistent_components;
+    v.reoriented_triangles = patch->reoriented_triangles;
+    write_info(info, kPatchInfoMinSize, "mcon_patch_info", v);
   });
 }
 

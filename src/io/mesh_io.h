@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "mesh/mesh.h"
+#include "mesh/orientation.h"
 
 namespace mcon::io {
 
@@ -34,17 +35,21 @@ struct MeshFileOptions {
   std::string obj_group;
   // Refuse files larger than this after decompression (MCON_ERROR_IO); 0 = max_input_bytes().
   std::size_t max_bytes = 0;
+  // How the mesh is oriented after reading (mesh/orientation.h): outward for hosts, majority for
+  // an already-cut patch (a disk has no inside; a concave one must not be turned).
+  OrientationRule orientation = OrientationRule::outward;
 };
 
 struct LoadedMesh {
-  TriMesh mesh;                       // unreferenced vertices removed, validated
+  TriMesh mesh;                       // unreferenced vertices removed, oriented, validated
   std::vector<int> file_to_mesh;      // file vertex index -> mesh vertex index or -1
   std::vector<int> mesh_to_file;      // mesh vertex index -> file vertex index
   std::vector<int> triangle_to_face;  // mesh triangle -> file face index
+  OrientationReport orientation;      // what orient_mesh changed (per mesh triangle)
 };
 
-// Throws mcon::Error(MCON_ERROR_IO) on unreadable or malformed files, and the validation errors
-// of validate_mesh on bad geometry.
+// Throws mcon::Error(MCON_ERROR_IO) on unreadable or malformed files, and the errors of
+// orient_and_validate on bad geometry.
 LoadedMesh read_mesh(const std::string& path, const MeshFileOptions& options = {});
 
 // Reads a whole file, transparently gunzipping `.gz` (any case); a truncated archive is an error.

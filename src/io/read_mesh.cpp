@@ -81,7 +81,7 @@ LoadedMesh read_mesh(const std::string& path, const MeshFileOptions& options) {
   for (int v = 0; v < static_cast<int>(loaded.file_to_mesh.size()); ++v)
     if (loaded.file_to_mesh[v] >= 0) loaded.mesh_to_file[loaded.file_to_mesh[v]] = v;
   try {
-    validate_mesh(mesh);
+    loaded.orientation = orient_and_validate(mesh, options.orientation);
   } catch (const Error& e) {
     // Same status; the message says which file, in mesh (not file) numbering.
     throw Error(e.status(), "'" + path + "' (after reading, in mesh numbering): " + e.what());

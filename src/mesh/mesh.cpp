@@ -94,7 +94,7 @@ void check_directed_edges(const TriMesh& mesh) {
                                                ") is used by triangles " + std::to_string(it->second) + " and " +
                                                std::to_string(t) +
                                                " in the same direction (more than two triangles, or inconsistent "
-                                               "orientation)");
+                                               "orientation: orient_mesh repairs that)");
       }
     }
   }
@@ -138,13 +138,17 @@ void check_vertex_fans(const TriMesh& mesh, bool allow_isolated) {
   }
 }
 
-void validate_impl(const TriMesh& mesh, bool allow_isolated) {
+void check_elements(const TriMesh& mesh) {
   const int nv = mesh.num_vertices();
   const int nt = mesh.num_triangles();
   require(nv > 0 && nt > 0, MCON_ERROR_EMPTY_MESH,
           "mesh is empty (" + std::to_string(nv) + " vertices, " + std::to_string(nt) + " triangles)");
   check_positions_and_indices(mesh);
   check_triangle_areas(mesh);
+}
+
+void validate_impl(const TriMesh& mesh, bool allow_isolated) {
+  check_elements(mesh);
   check_directed_edges(mesh);
   check_vertex_fans(mesh, allow_isolated);
 }
@@ -160,8 +164,15 @@ Vec3 read_position(const unsigned char* base, std::size_t stride, std::size_t i)
 
 void validate_mesh(const TriMesh& mesh) { validate_impl(mesh, false); }
 void validate_mesh_allow_isolated(const TriMesh& mesh) { validate_impl(mesh, true); }
+void validate_mesh_elements(const TriMesh& mesh) { check_elements(mesh); }
 
 TriMesh mesh_from_arrays(const MeshArrays& in) {
+  TriMesh mesh = copy_mesh_arrays(in);
+  validate_mesh(mesh);
+  return mesh;
+}
+
+TriMesh copy_mesh_arrays(const MeshArrays& in) {
   require(in.vertex_count > 0 && in.triangle_count > 0, MCON_ERROR_EMPTY_MESH,
           "mesh is empty (" + std::to_string(in.vertex_count) + " vertices, " + std::to_string(in.triangle_count) +
               " triangles)");
@@ -196,7 +207,6 @@ TriMesh mesh_from_arrays(const MeshArrays& in) {
       mesh.triangles[t][k] = static_cast<int>(idx[k]);
     }
   }
-  validate_mesh(mesh);
   return mesh;
 }
 

@@ -1,5 +1,6 @@
 // The core's triangle mesh: plain positions and CCW triangles, validated on construction so
-// every algorithm downstream can assume a finite, manifold, oriented mesh without isolated vertices.
+// every algorithm downstream can assume a finite, manifold, oriented mesh without isolated vertices
+// (user meshes are oriented first: mesh/orientation.h).
 #pragma once
 
 #include <array>
@@ -47,6 +48,10 @@ inline constexpr double kMinExtent = 1e-15;
 // Copies strided arrays into a TriMesh and validates it (throws mcon::Error).
 TriMesh mesh_from_arrays(const MeshArrays& arrays);
 
+// Copies strided arrays into a TriMesh, checking only the array sizes, pointers and index range
+// (user meshes then go through orient_and_validate, mesh/orientation.h).
+TriMesh copy_mesh_arrays(const MeshArrays& arrays);
+
 // Throws mcon::Error with a distinct status and a message naming the first offending element:
 // EMPTY_MESH, NON_FINITE, INDEX_OUT_OF_RANGE, REPEATED_INDEX, DEGENERATE_TRIANGLE,
 // NON_MANIFOLD_EDGE, NON_MANIFOLD_VERTEX, ISOLATED_VERTEX.
@@ -54,6 +59,10 @@ void validate_mesh(const TriMesh& mesh);
 
 // Same as validate_mesh but without the isolated-vertex rule (used by readers before compaction).
 void validate_mesh_allow_isolated(const TriMesh& mesh);
+
+// The per-element part of validate_mesh (EMPTY_MESH, NON_FINITE, INDEX_OUT_OF_RANGE,
+// REPEATED_INDEX, DEGENERATE_TRIANGLE): what orient_mesh needs before it can look at edges.
+void validate_mesh_elements(const TriMesh& mesh);
 
 double triangle_area(const TriMesh& mesh, int t);
 Vec3 triangle_normal(const TriMesh& mesh, int t);  // unit normal (zero for a degenerate triangle)

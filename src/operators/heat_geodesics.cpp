@@ -20,6 +20,7 @@
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
 #include <tbb/parallel_invoke.h>
+#include <tbb/task_group.h>
 
 #include "operators/cotan_laplacian.h"
 #include "base/error.h"
@@ -130,7 +131,13 @@ struct HeatGeodesics::Impl {
                                Eigen::VectorXd& areas);
   void factor_all(const SparseMatrix& heat, const SparseMatrix& dirichlet, const SparseMatrix& poisson);
   Eigen::VectorXd solve_with(const Solver& solver, const Eigen::VectorXd& rhs) const {
-    return inverse_order * solver.solve(order * rhs);
+    // Eigen's solve leaves the result empty when the factorization is not usable: a clear error
+    // instead of an empty vector that the caller would read out of bounds.
+    Eigen::VectorXd x;
+    if (solver.info() == Eigen::Success) x = inverse_order * solver.solve(order * rhs);
+    require(x.size() == rhs.size() && x.allFinite(), MCON_ERROR_NUMERICAL,
+            "heat geodesics: the linear solve failed (degenerate or folded triangles; smooth or remesh the input)");
+    return x;
   }
 
   // Initial heat as (vertex, amount) pairs, all vertices valid. Returns phi before shifting.
@@ -180,13 +187,18 @@ SparseMatrix HeatGeodesics::Impl::build_operators(const TriMesh& mesh, const Mes
   return L;
 }
 
-// The factorizations are independent: run them side by side (in the caller's task arena).
+// The factorizations are independent: run them side by side (in the caller's task arena). The two
+// parallel_invoke calls run in their own isolated task_group_context: inside a caller's parallel
+// loop whose group was cancelled (a sibling iteration threw), a nested parallel_invoke of the
+// cancelled group skips its functions and returns normally, which left the solvers unfactored
+// and the heat solution empty, read out of bounds (a crash found by eval-retrieval --noise).
 void HeatGeodesics::Impl::factor_all(const SparseMatrix& heat, const SparseMatrix& dirichlet,
                                      const SparseMatrix& poisson_matrix) {
   Eigen::ComputationInfo info[3] = {Eigen::Success, Eigen::Success, Eigen::Success};
+  tbb::task_group_context own(tbb::task_group_context::isolated);
   tbb::parallel_invoke([&] { info[0] = factor(heat_neumann, heat); },
                        [&] { info[1] = average_boundary ? factor(heat_dirichlet, dirichlet) : Eigen::Success; },
-                       [&] { info[2] = factor(poisson, poisson_matrix); });
+                       [&] { info[2] = factor(poisson, poisson_matrix); }, own);
   const char* what[3] = {"the heat operator", "the Dirichlet heat operator", "the cotan Laplacian"};
   for (int k = 0; k < 3; ++k)
     if (info[k] != Eigen::Success)
@@ -249,8 +261,9 @@ Eigen::VectorXd HeatGeodesics::Impl::solve(const std::vector<std::pair<int, doub
     Eigen::VectorXd rhs_dirichlet = rhs, u_dirichlet;
     for (int v = 0; v < n; ++v)
       if (on_boundary[v]) rhs_dirichlet[v] = 0.0;
+    tbb::task_group_context own(tbb::task_group_context::isolated);
     tbb::parallel_invoke([&] { u = solve_with(heat_neumann, rhs); },
-                         [&] { u_dirichlet = solve_with(heat_dirichlet, rhs_dirichlet); });
+                         [&] { u_dirichlet = solve_with(heat_dirichlet, rhs_dirichlet); }, own);
     u = 0.5 * (u + u_dirichlet);
   }
 

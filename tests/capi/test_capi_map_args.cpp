@@ -709,3 +709,44 @@ TEST_F(CapiMapArgs, WorldFrameStartIsOptInAndReported) {
   ASSERT_EQ(mcon_map_get_info(m, &short_info), MCON_OK);
   EXPECT_EQ(short_info.frame_decided, 7u);
 }
+
+// A disk from arrays whose triangles disagree is repaired to the majority (a disk has no inside:
+// an all-reversed disk stays as given), the center stays the caller's point, and the patch info
+// reports the repair.
+TEST(CapiPatchFromArrays, InconsistentTrianglesFollowTheMajority) {
+  ContextPtr ctx = make_context();
+  const Arrays a = arrays_of(bumpy_disk(7, 0.0));
+  Arrays b = a, all = a;
+  size_t reversed = 0;
+  for (size_t t = 1; t < b.triangle_count(); t += 3, ++reversed) std::swap(b.indices[3 * t + 1], b.indices[3 * t + 2]);
+  for (size_t t = 0; t < all.triangle_count(); ++t) std::swap(all.indices[3 * t + 1], all.indices[3 * t + 2]);
+  mcon_patch_frame f = center_frame();
+  f.center_triangle = 1;  // one of the reversed triangles of b
+  f.center_barycentric[0] = 0.2;
+  f.center_barycentric[1] = 0.7;
+  f.center_barycentric[2] = 0.1;
+  mcon_patch pa = nullptr, pb = nullptr, pall = nullptr;
+  mcon_mesh_desc d = desc_of(a);
+  ASSERT_EQ(mcon_patch_create_from_arrays(ctx.get(), &d, &f, &pa), MCON_OK) << last_message();
+  std::swap(f.center_barycentric[1], f.center_barycentric[2]);  // the same point in b's corner order
+  d = desc_of(b);
+  ASSERT_EQ(mcon_patch_create_from_arrays(ctx.get(), &d, &f, &pb), MCON_OK) << last_message();
+  d = desc_of(all);
+  ASSERT_EQ(mcon_patch_create_from_arrays(ctx.get(), &d, &f, &pall), MCON_OK) << last_message();
+  mcon_patch_info ia, ib, iall;
+  for (mcon_patch_info* i : {&ia, &ib, &iall}) ASSERT_EQ(mcon_patch_info_init(i), MCON_OK);
+  ASSERT_EQ(mcon_patch_get_info(pa, &ia), MCON_OK);
+  ASSERT_EQ(mcon_patch_get_info(pb, &ib), MCON_OK);
+  ASSERT_EQ(mcon_patch_get_info(pall, &iall), MCON_OK);
+  EXPECT_EQ(ia.host_reoriented_triangles, 0u);
+  EXPECT_EQ(ib.host_reoriented_triangles, reversed);
+  EXPECT_EQ(ib.reoriented_triangles, reversed);
+  EXPECT_EQ(ib.host_inconsistent_components, 1u);
+  EXPECT_EQ(iall.host_reoriented_triangles, 0u);  // consistent, so never turned
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(ia.center_barycentric[k], ib.center_barycentric[k]) << k;
+  std::vector<uint32_t> ta(3 * ia.triangle_count), tb(3 * ib.triangle_count);
+  ASSERT_EQ(mcon_patch_get_triangles(pa, ta.data(), ta.size()), MCON_OK);
+  ASSERT_EQ(mcon_patch_get_triangles(pb, tb.data(), tb.size()), MCON_OK);
+  EXPECT_EQ(ta, tb);
+  for (mcon_patch p : {pa, pb, pall}) mcon_patch_release(p);
+}

@@ -110,6 +110,30 @@ void expect_error(mcon_context ctx, const Arrays& a, mcon_status expected, const
   EXPECT_NE(last_message().find("mcon_mesh_create"), std::string::npos) << last_message();
 }
 
+// n quads around a circle, the last one joined with a half twist.
+Arrays moebius_strip(int n) {
+  Arrays a;
+  for (int i = 0; i < n; ++i) {
+    const double u = 2 * M_PI * i / n;
+    for (const double s : {-0.3, 0.3})
+      a.positions.insert(a.positions.end(), {(1 + s * std::cos(u / 2)) * std::cos(u),
+                                             (1 + s * std::cos(u / 2)) * std::sin(u), s * std::sin(u / 2)});
+  }
+  for (uint32_t i = 0; i < static_cast<uint32_t>(n); ++i) {
+    const uint32_t b = 2 * i, c = i + 1 < static_cast<uint32_t>(n) ? 2 * (i + 1) : 1,
+                   d = i + 1 < static_cast<uint32_t>(n) ? 2 * (i + 1) + 1 : 0;
+    a.indices.insert(a.indices.end(), {b, c, d, b, d, b + 1});
+  }
+  return a;
+}
+
+mcon_mesh_orientation_info orientation_of(mcon_mesh mesh) {
+  mcon_mesh_orientation_info info;
+  EXPECT_EQ(mcon_mesh_orientation_info_init(&info), MCON_OK);
+  EXPECT_EQ(mcon_mesh_get_orientation(mesh, &info), MCON_OK) << last_message();
+  return info;
+}
+
 }  // namespace
 
 TEST(CapiMesh, FromStridedFloatArrays) { check_strided<float>(MCON_SCALAR_FLOAT32); }
@@ -197,10 +221,10 @@ TEST(CapiMesh, EachValidationErrorNamesTheFirstOffendingElement) {
   a.positions.insert(a.positions.end(), {0.5, 0.5, 1});
   a.indices.insert(a.indices.end(), {0, 2, 4});
   expect_error(ctx.get(), a, MCON_ERROR_NON_MANIFOLD_EDGE, "edge (0, 2)");
-  // Inconsistent orientation: the second triangle of the square flipped.
-  a = square();
-  a.indices = {0, 1, 2, 0, 3, 2};
-  expect_error(ctx.get(), a, MCON_ERROR_NON_MANIFOLD_EDGE, "triangles 0 and 1");
+  // A Moebius strip (a strip of 12 quads closed with a half twist) has no consistent orientation.
+  a = moebius_strip(12);
+  expect_error(ctx.get(), a, MCON_ERROR_NON_ORIENTABLE, "not orientable");
+  EXPECT_NE(last_message().find("cut the surface"), std::string::npos) << last_message();
 
   // Bowtie: two triangles sharing only vertex 2.
   a.positions = {0, 0, 0, 1, 0, 0, 1, 1, 0, 2, 1, 0, 2, 2, 0};
@@ -309,4 +333,57 @@ TEST(CapiMesh, GetCountsRetainReleaseRejectBadArguments) {
   EXPECT_EQ(mcon_mesh_get_counts(mesh.get(), &nv, &nt), MCON_OK);
   EXPECT_EQ(nv, 4u);
   EXPECT_EQ(nt, 2u);
+}
+
+// Inconsistent winding used to be rejected as NON_MANIFOLD_EDGE; it is repaired and reported.
+TEST(CapiMesh, InconsistentAndInwardWindingIsRepairedAndReported) {
+  ContextPtr ctx = make_context();
+  Arrays a = square();
+  a.indices = {0, 1, 2, 0, 3, 2};  // the second triangle of the square reversed
+  MeshPtr mesh = make_mesh(ctx.get(), a);
+  ASSERT_TRUE(mesh) << last_message();
+  mcon_mesh_orientation_info info = orientation_of(mesh.get());
+  EXPECT_EQ(info.reoriented_triangles, 1u);
+  EXPECT_EQ(info.component_count, 1u);
+  EXPECT_EQ(info.inconsistent_component_count, 1u);
+  EXPECT_EQ(info.outward_turned_component_count, 0u);  // a plane has no outside: the first triangle wins
+  uint8_t flags[2] = {9, 9};
+  ASSERT_EQ(mcon_mesh_get_reoriented_triangles(mesh.get(), flags, 2), MCON_OK);
+  EXPECT_EQ(flags[0], 0);
+  EXPECT_EQ(flags[1], 1);
+  uint32_t tri[6] = {};
+  ASSERT_EQ(mcon_mesh_get_triangles(mesh.get(), tri, 6), MCON_OK);
+  EXPECT_EQ(std::vector<uint32_t>(tri, tri + 6), (std::vector<uint32_t>{0, 1, 2, 0, 2, 3}));
+
+  // An inward sphere is turned outward as a whole.
+  mcon::TriMesh sphere = mcon::test_meshes::make_icosphere(2);
+  for (mcon::Tri& t : sphere.triangles) std::swap(t[1], t[2]);
+  MeshPtr inward = make_mesh(ctx.get(), arrays_of(sphere));
+  ASSERT_TRUE(inward) << last_message();
+  info = orientation_of(inward.get());
+  EXPECT_EQ(info.reoriented_triangles, sphere.triangles.size());
+  EXPECT_EQ(info.closed_component_count, 1u);
+  EXPECT_EQ(info.outward_turned_component_count, 1u);
+  EXPECT_EQ(info.inconsistent_component_count, 0u);
+}
+
+TEST(CapiMesh, OrientationGettersRejectBadArguments) {
+  ContextPtr ctx = make_context();
+  MeshPtr mesh = make_mesh(ctx.get(), square());
+  ASSERT_TRUE(mesh);
+  mcon_mesh_orientation_info info;
+  EXPECT_EQ(mcon_mesh_orientation_info_init(nullptr), MCON_ERROR_NULL_POINTER);
+  ASSERT_EQ(mcon_mesh_orientation_info_init(&info), MCON_OK);
+  EXPECT_EQ(mcon_mesh_get_orientation(nullptr, &info), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_mesh_get_orientation(mesh.get(), nullptr), MCON_ERROR_NULL_POINTER);
+  info.struct_size = 3;
+  EXPECT_EQ(mcon_mesh_get_orientation(mesh.get(), &info), MCON_ERROR_STRUCT_SIZE);
+  uint8_t flags[2];
+  EXPECT_EQ(mcon_mesh_get_reoriented_triangles(nullptr, flags, 2), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_mesh_get_reoriented_triangles(mesh.get(), nullptr, 2), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_mesh_get_reoriented_triangles(mesh.get(), flags, 1), MCON_ERROR_BUFFER_TOO_SMALL);
+  uint32_t tri[6];
+  EXPECT_EQ(mcon_mesh_get_triangles(nullptr, tri, 6), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_mesh_get_triangles(mesh.get(), nullptr, 6), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_mesh_get_triangles(mesh.get(), tri, 5), MCON_ERROR_BUFFER_TOO_SMALL);
 }

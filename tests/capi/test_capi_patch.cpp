@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <limits>
 #include <map>
@@ -230,11 +231,19 @@ TEST_F(CapiPatch, InfoStructSizeOlderRejectedNewerAccepted) {
   ASSERT_EQ(extract(grid_mesh_.get(), at_vertex(kGridCenter, 0.3), patch), MCON_OK) << last_message();
   mcon_patch_info info;
   std::memset(&info, 0xCD, sizeof(info));
-  info.struct_size = sizeof(mcon_patch_info) - 8;
+  // The first version ends before the orientation fields; anything smaller is rejected.
+  const size_t v1 = offsetof(mcon_patch_info, host_reoriented_triangles);
+  info.struct_size = static_cast<uint32_t>(v1 - 8);
   EXPECT_EQ(mcon_patch_get_info(patch.get(), &info), MCON_ERROR_STRUCT_SIZE);
   EXPECT_NE(last_message().find("mcon_patch_info.struct_size"), std::string::npos) << last_message();
-  EXPECT_EQ(info.struct_size, sizeof(mcon_patch_info) - 8);  // nothing written
+  EXPECT_EQ(info.struct_size, v1 - 8);  // nothing written
   EXPECT_EQ(info.vertex_count, static_cast<size_t>(0xCDCDCDCDCDCDCDCDull));
+  // A caller built against the first version gets its fields and nothing beyond them.
+  info.struct_size = static_cast<uint32_t>(v1);
+  ASSERT_EQ(mcon_patch_get_info(patch.get(), &info), MCON_OK) << last_message();
+  EXPECT_EQ(info.boundary_loops, 1u);
+  EXPECT_EQ(info.host_reoriented_triangles, static_cast<size_t>(0xCDCDCDCDCDCDCDCDull));
+  EXPECT_EQ(info.reoriented_triangles, static_cast<size_t>(0xCDCDCDCDCDCDCDCDull));
   info.struct_size = 0;
   EXPECT_EQ(mcon_patch_get_info(patch.get(), &info), MCON_ERROR_STRUCT_SIZE);
   EXPECT_EQ(mcon_patch_get_info(patch.get(), nullptr), MCON_ERROR_NULL_POINTER);
@@ -503,4 +512,41 @@ TEST_F(CapiPatch, PatchOutlivesItsMeshAndContextAndCountsReferences) {
   EXPECT_EQ(mcon_mesh_get_counts(reinterpret_cast<mcon_mesh>(patch.get()), &nv, &nt), MCON_ERROR_INVALID_ARGUMENT);
   PatchPtr none;
   EXPECT_EQ(extract(reinterpret_cast<mcon_mesh>(patch.get()), at_vertex(0, 0.4), none), MCON_ERROR_INVALID_ARGUMENT);
+}
+
+// A host with reversed triangles, one under the center: the caller's barycentric weights are in
+// the caller's corner order, so the same point gives the same patch as on the consistent host, and
+// the patch info reports the host's repair.
+TEST(CapiPatchOrientation, ReversedHostGivesTheSamePatchAndReportsTheRepair) {
+  ContextPtr ctx = make_context();
+  const mcon::TriMesh host = mcon::test_meshes::make_bumpy_grid(21);
+  Arrays a = arrays_of(host), b = a;
+  const uint32_t center = 421;  // a triangle in the middle of the 800, one of the reversed ones
+  for (uint32_t t = 1; t < b.triangle_count(); t += 3) std::swap(b.indices[3 * t + 1], b.indices[3 * t + 2]);
+  MeshPtr ma = make_mesh(ctx.get(), a), mb = make_mesh(ctx.get(), b);
+  ASSERT_TRUE(ma && mb) << last_message();
+  mcon_patch_options o;
+  ASSERT_EQ(mcon_patch_options_init(&o), MCON_OK);
+  o.center_triangle = center;
+  o.center_barycentric[0] = 0.2;
+  o.center_barycentric[1] = 0.7;
+  o.center_barycentric[2] = 0.1;
+  o.radius = 0.5;
+  PatchPtr pa, pb;
+  ASSERT_EQ(extract(ma.get(), o, pa), MCON_OK) << last_message();
+  // The same point in b's corner order (its triangle 421 lists corners 1 and 2 the other way).
+  std::swap(o.center_barycentric[1], o.center_barycentric[2]);
+  ASSERT_EQ(extract(mb.get(), o, pb), MCON_OK) << last_message();
+  const PatchData da = read_patch(pa.get()), db = read_patch(pb.get());
+  EXPECT_EQ(da.xyz, db.xyz);
+  EXPECT_EQ(da.tris, db.tris);
+  EXPECT_EQ(da.info.center[0], db.info.center[0]);
+  EXPECT_EQ(da.info.center[1], db.info.center[1]);
+  EXPECT_EQ(da.info.center[2], db.info.center[2]);
+  EXPECT_EQ(da.info.host_reoriented_triangles, 0u);
+  EXPECT_EQ(db.info.host_reoriented_triangles, 267u);
+  EXPECT_EQ(db.info.host_inconsistent_components, 1u);
+  EXPECT_EQ(db.info.host_outward_turned_components, 0u);
+  EXPECT_GT(db.info.reoriented_triangles, 0u);
+  EXPECT_LT(db.info.reoriented_triangles, db.info.triangle_count);
 }

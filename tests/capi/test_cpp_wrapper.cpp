@@ -330,3 +330,21 @@ TEST(CppWrapper, ShutdownRefusesWhileAContextLivesThenSucceeds) {
   macrocon::Context again;                // and the library works afterwards
   EXPECT_TRUE(again);
 }
+
+TEST(CppWrapper, MeshReportsItsOrientationRepair) {
+  macrocon::Context ctx;
+  const Flat g = flat(mcon::test_meshes::make_icosphere(1));
+  Flat inward = g;
+  for (std::size_t t = 0; t < inward.tris.size(); t += 3) std::swap(inward.tris[t + 1], inward.tris[t + 2]);
+  const macrocon::Mesh a = macrocon::Mesh::from_arrays(ctx, g.xyz, g.tris);
+  const macrocon::Mesh b = macrocon::Mesh::from_arrays(ctx, g.xyz, inward.tris);
+  EXPECT_EQ(a.orientation().reoriented_triangles, 0u);
+  const mcon_mesh_orientation_info o = b.orientation();
+  EXPECT_EQ(o.reoriented_triangles, 80u);
+  EXPECT_EQ(o.outward_turned_component_count, 1u);
+  EXPECT_EQ(o.closed_component_count, 1u);
+  EXPECT_EQ(b.reoriented_triangles(), std::vector<std::uint8_t>(80, 1));
+  EXPECT_EQ(b.triangles(), g.tris);
+  EXPECT_EQ(a.triangles(), g.tris);
+  EXPECT_EQ(error_of([] { macrocon::Mesh().orientation(); }).status(), MCON_ERROR_NULL_POINTER);
+}

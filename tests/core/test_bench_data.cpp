@@ -15,11 +15,13 @@
 #include "common/ict_faces.h"
 #include "json/json_file.h"
 #include "common/makehuman_people.h"
+#include "common/mesh_perturbation.h"
 #include "common/morph_target.h"
 #include "common/patch_instances.h"
 #include "common/retessellate.h"
 #include "base/error.h"
 #include "mesh/mesh_topology.h"
+#include "mesh/orientation.h"
 #include "test_meshes.h"
 
 using namespace mcon;
@@ -601,4 +603,70 @@ TEST(BenchRng, DrawsDependOnlyOnSeedStreamAndCounter) {
   EXPECT_NEAR(sum / 10000, 0.0, 0.01);
   EXPECT_EQ(a.uniform("gender"), a.uniform(stable_hash("gender")));
   EXPECT_EQ(stable_hash("a"), 0xAF63DC4C8601EC8Cull);  // FNV-1a reference value
+}
+
+TEST(MeshPerturbation, FlipWindingReversesEveryTriangleAndTheRepairUndoesIt) {
+  const TriMesh sphere = test_meshes::make_icosphere(3);
+  MeshPerturbation flip;
+  flip.flip_winding = true;
+  EXPECT_EQ(flip.describe(), "flip-winding");
+  PerturbedMesh p = perturb_mesh(sphere, flip, 1);
+  ASSERT_EQ(p.mesh.triangles.size(), sphere.triangles.size());
+  for (std::size_t t = 0; t < sphere.triangles.size(); ++t)
+    EXPECT_EQ(p.mesh.triangles[t], (Tri{sphere.triangles[t][0], sphere.triangles[t][2], sphere.triangles[t][1]}));
+  EXPECT_EQ(p.mesh.positions, sphere.positions);
+  EXPECT_EQ(orient_and_validate(p.mesh).components_turned_outward, 1);
+  EXPECT_EQ(p.mesh.triangles, sphere.triangles);
+}
+
+TEST(MeshPerturbation, NoiseIsSeededAndScaledByTheMeanEdgeLength) {
+  const TriMesh sphere = test_meshes::make_icosphere(4);
+  MeshPerturbation noise;
+  noise.noise = 0.25;
+  const PerturbedMesh a = perturb_mesh(sphere, noise, 7), b = perturb_mesh(sphere, noise, 7),
+                      c = perturb_mesh(sphere, noise, 8);
+  EXPECT_EQ(a.mesh.positions, b.mesh.positions);
+  EXPECT_NE(a.mesh.positions, c.mesh.positions);
+  EXPECT_EQ(a.mesh.triangles, sphere.triangles);
+  double sum2 = 0;
+  for (int v = 0; v < sphere.num_vertices(); ++v) sum2 += (a.mesh.positions[v] - sphere.positions[v]).squaredNorm();
+  const double std_per_coordinate = std::sqrt(sum2 / (3.0 * sphere.num_vertices()));
+  EXPECT_NEAR(std_per_coordinate / mean_edge_length(sphere), 0.25, 0.02);  // 7686 draws
+}
+
+TEST(MeshPerturbation, DensityResamplesTheSameSurface) {
+  const TriMesh sphere = test_meshes::make_icosphere(3);  // 642 vertices
+  MeshPerturbation dense;
+  dense.density = 4;
+  const PerturbedMesh up = perturb_mesh(sphere, dense, 3);
+  EXPECT_NEAR(up.mesh.num_vertices(), 4 * 642, 0.01 * 4 * 642);
+  for (int v = 0; v < up.mesh.num_vertices(); ++v)
+    if (up.to_original[v] >= 0) {
+      EXPECT_EQ(up.mesh.positions[v], sphere.positions[up.to_original[v]]);
+    }
+  TriMesh checked = up.mesh;
+  EXPECT_EQ(orient_and_validate(checked).reoriented_triangles, 0);
+  EXPECT_NEAR(total_area(up.mesh), total_area(sphere), 1e-9);  // midpoints lie on the old faces
+
+  MeshPerturbation sparse;
+  sparse.density = 0.5;
+  const PerturbedMesh down = perturb_mesh(sphere, sparse, 3, {17});
+  EXPECT_LE(down.mesh.num_vertices(), 0.55 * 642);
+  EXPECT_GE(perturbed_vertex(down, 17), 0);  // kept
+  EXPECT_EQ(down.mesh.positions[perturbed_vertex(down, 17)], sphere.positions[17]);
+  EXPECT_EQ(sparse.describe(), "density 0.5");
+}
+
+TEST(MeshPerturbation, BadOptionsAreRejected) {
+  for (const double noise : {-0.1, 11.0, std::numeric_limits<double>::quiet_NaN()}) {
+    MeshPerturbation p;
+    p.noise = noise;
+    EXPECT_THROW(check_perturbation(p), Error);
+  }
+  for (const double density : {0.0, 0.01, 17.0, std::numeric_limits<double>::infinity()}) {
+    MeshPerturbation p;
+    p.density = density;
+    EXPECT_THROW(check_perturbation(p), Error);
+  }
+  EXPECT_EQ(MeshPerturbation{}.describe(), "clean");
 }

@@ -8,6 +8,9 @@
 #include <thread>
 #include <vector>
 
+#include <tbb/parallel_for.h>
+#include <tbb/task.h>
+
 #include "base/error.h"
 #include "operators/heat_geodesics.h"
 #include "mesh/mesh.h"
@@ -348,4 +351,22 @@ TEST(HeatGeodesics, BadArgumentsThrow) {
   TriMesh isolated = grid;
   isolated.positions.emplace_back(5, 5, 5);
   EXPECT_EQ(status_of([&] { HeatGeodesics{isolated}; }), MCON_ERROR_ISOLATED_VERTEX);
+}
+
+// Inside a parallel loop whose task group is cancelled (a sibling iteration threw), a nested
+// parallel_invoke of that group skips its functions: the solvers stayed unfactored and the heat
+// solution empty, and the solve read it out of bounds (a crash under eval-retrieval --noise). The
+// heat method runs its own parallel work in an isolated group and computes as usual.
+TEST(HeatGeodesics, ComputesInsideACancelledParallelLoop) {
+  const TriMesh grid = test_meshes::make_grid(30);
+  Eigen::VectorXd d;
+  tbb::parallel_for(0, 1, [&](int) {
+    tbb::task::current_context()->cancel_group_execution();
+    const HeatGeodesics heat(grid);
+    d = heat.from_vertices({0});
+  });
+  ASSERT_EQ(d.size(), grid.num_vertices());
+  EXPECT_TRUE(d.allFinite());
+  EXPECT_EQ(d[0], 0.0);
+  EXPECT_NEAR(d[grid.num_vertices() - 1], std::sqrt(2.0), 0.1);
 }

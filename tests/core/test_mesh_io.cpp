@@ -604,11 +604,12 @@ TEST_F(MeshIo, MalformedFilesGiveIoErrors) {
 
 TEST_F(MeshIo, ValidationErrorsPropagateWithTheFileName) {
   std::string message;
-  // Two triangles sharing an edge in the same direction.
-  EXPECT_EQ(read_status(write_text("flip.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\nf 1 2 4\n"), {},
-                        &message),
-            MCON_ERROR_NON_MANIFOLD_EDGE);
-  EXPECT_NE(message.find("flip.obj"), std::string::npos) << message;
+  // Three triangles on one edge.
+  EXPECT_EQ(
+      read_status(write_text("fin.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n"),
+                  {}, &message),
+      MCON_ERROR_NON_MANIFOLD_EDGE);
+  EXPECT_NE(message.find("fin.obj"), std::string::npos) << message;
   EXPECT_EQ(read_status(write_text("rep.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 2 3\n")), MCON_ERROR_REPEATED_INDEX);
   EXPECT_EQ(read_status(write_text("nan.obj", "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n")), MCON_ERROR_NON_FINITE);
   EXPECT_EQ(read_status(write_text("empty.obj", "# nothing\n")), MCON_ERROR_EMPTY_MESH);
@@ -712,4 +713,33 @@ TEST(MeshIoRealData, CgalOffMeshesReadAndValidate) {
     EXPECT_EQ(m.mesh.num_vertices(), counts[0]) << name;
     EXPECT_EQ(m.mesh.num_triangles(), counts[1]) << name;
   }
+}
+
+// A file with one face wound the wrong way (and one with every face inward) is repaired on reading
+// and the repair is reported; before, the first was rejected as NON_MANIFOLD_EDGE.
+TEST_F(MeshIo, ReversedFacesAreRepairedAndReported) {
+  const std::string v = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n";
+  const LoadedMesh one = read_mesh(write_text("one.obj", v + "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 4 3\n"));
+  EXPECT_EQ(one.orientation.reoriented_triangles, 1);
+  EXPECT_EQ(one.orientation.inconsistent_components, 1);
+  EXPECT_EQ(one.orientation.components_turned_outward, 0);
+  EXPECT_EQ(one.mesh.triangles[3], (Tri{1, 2, 3}));
+  const LoadedMesh inward = read_mesh(write_text("in.obj", v + "f 1 2 3\nf 1 4 2\nf 1 3 4\nf 2 4 3\n"));
+  EXPECT_EQ(inward.orientation.reoriented_triangles, 4);
+  EXPECT_EQ(inward.orientation.components_turned_outward, 1);
+  EXPECT_EQ(inward.orientation.closed_components, 1);
+}
+
+// An open, consistently wound bowl facing inward: hosts are turned outward, an already-cut patch
+// (the majority rule, as `macrocon embed` reads a patch file) is kept as given.
+TEST_F(MeshIo, PatchFilesKeepTheirConsistentOrientation) {
+  const std::string bowl = write_text("bowl.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 4 2\nf 1 3 4\n");
+  const LoadedMesh host = read_mesh(bowl);
+  EXPECT_EQ(host.orientation.components_turned_outward, 1);
+  EXPECT_EQ(host.orientation.reoriented_triangles, 3);
+  MeshFileOptions patch_file;
+  patch_file.orientation = OrientationRule::majority;
+  const LoadedMesh patch = read_mesh(bowl, patch_file);
+  EXPECT_EQ(patch.orientation.reoriented_triangles, 0);
+  EXPECT_EQ(patch.mesh.triangles[1], (Tri{0, 3, 1}));
 }

@@ -120,8 +120,41 @@ foreach(key nn_accuracy precision_at recall_at sigma_bof class_nn_accuracy confu
   check("a STREQUAL b" "${key} differs between thread counts: ${a} vs ${b}")
 endforeach()
 
+# --flip-winding: every host reversed, then repaired by the product's input path: the same ranks.
+run_checked(WHAT "eval-retrieval --flip-winding" OUTPUT_VARIABLE out_flip
+  COMMAND ${CLI} eval-retrieval --shared ${SHARED} --people 1 --faces 1 --seed 3 --json --flip-winding)
+foreach(key nn_accuracy precision_at recall_at class_nn_accuracy confusion misses)
+  string(JSON a GET "${out}" ${key})
+  string(JSON b GET "${out_flip}" ${key})
+  check("a STREQUAL b" "${key} differs with --flip-winding: ${a} vs ${b}")
+endforeach()
+string(JSON flipped GET "${out_flip}" perturbation reoriented_triangles)
+string(JSON clean_flipped GET "${out}" perturbation reoriented_triangles)
+check("flipped GREATER 0 AND clean_flipped EQUAL 0" "--flip-winding should reorient triangles (${flipped}), a clean run none (${clean_flipped})")
+
+# --leave-family-out: six (library family, query radius) results with rates in [0, 1] and queries.
+run_checked(WHAT "eval-retrieval --leave-family-out" OUTPUT_VARIABLE out_lfo
+  COMMAND ${CLI} eval-retrieval --shared ${SHARED} --people 1 --faces 1 --seed 3 --json --leave-family-out)
+string(JSON runs LENGTH "${out_lfo}" leave_family_out)
+check("runs EQUAL 6" "--leave-family-out should give 6 results, got ${runs}")
+math(EXPR last "${runs} - 1")
+foreach(i RANGE ${last})
+  string(JSON lib GET "${out_lfo}" leave_family_out ${i} library)
+  string(JSON que GET "${out_lfo}" leave_family_out ${i} queries)
+  string(JSON nq GET "${out_lfo}" leave_family_out ${i} query_count)
+  string(JSON t1 GET "${out_lfo}" leave_family_out ${i} top1)
+  string(JSON t3 GET "${out_lfo}" leave_family_out ${i} top3)
+  check("NOT lib STREQUAL que AND nq GREATER 0" "run ${i}: library ${lib} must differ from queries ${que} (${nq} queries)")
+  check_range("run ${i} top1" "${t1}" 0 1)
+  check_range("run ${i} top3" "${t3}" 0 1)
+  check("NOT t1 GREATER t3" "run ${i}: top-1 ${t1} cannot exceed top-3 ${t3}")
+endforeach()
+string(JSON overall GET "${out_lfo}" overall x1.0 top3)
+check_range("overall x1.0 top3" "${overall}" 0 1)
+
 # Bad options: a clear message and a non-zero exit, no crash.
-foreach(bad "--descriptor;sift" "--people;0;--faces;0" "--rings;0" "--people;x" "--shared;${OUT}/nowhere" "--bogus")
+foreach(bad "--descriptor;sift" "--people;0;--faces;0" "--rings;0" "--people;x" "--shared;${OUT}/nowhere" "--bogus"
+            "--noise;-1" "--noise;nan" "--density;0" "--density;20" "--leave-family-out;--faces;0")
   set(cmd ${CLI} eval-retrieval --shared ${SHARED} ${bad})
   if(bad MATCHES "^--shared")
     set(cmd ${CLI} eval-retrieval ${bad})

@@ -65,8 +65,10 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-io::LoadedMesh load(const ArgParser& p, const std::string& file_key, const std::string& range_key) {
+io::LoadedMesh load(const ArgParser& p, const std::string& file_key, const std::string& range_key,
+                    OrientationRule orientation = OrientationRule::outward) {
   io::MeshFileOptions options;
+  options.orientation = orientation;
   if (p.has(range_key)) parse_range(range_key, p.get(range_key), options.face_begin, options.face_end);
   return io::read_mesh(p.required(file_key), options);
 }
@@ -268,8 +270,10 @@ EmbedPatches cut_embed_patches(const ArgParser& p) {
   EmbedPatches e;
   e.target_mesh = load(p, "target", "face-range");
   e.target = cut(e.target_mesh, p.integer("center-vertex", -1), p.number("radius", 0), "--center-vertex");
-  e.source_mesh = load(p, "source", "source-face-range");
   const bool cut_source = p.has("source-center-vertex");
+  // A source that is already a patch is oriented like mcon_patch_create_from_arrays (majority).
+  e.source_mesh =
+      load(p, "source", "source-face-range", cut_source ? OrientationRule::outward : OrientationRule::majority);
   require(cut_source || !p.has("source-radius"), MCON_ERROR_INVALID_ARGUMENT,
           "--source-radius needs --source-center-vertex");
   e.source = cut_source ? cut(e.source_mesh, p.integer("source-center-vertex", -1),

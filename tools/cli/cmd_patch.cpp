@@ -29,6 +29,32 @@ void parse_range(const std::string& s, long& begin, long& end) {
   require(begin >= 0 && end > begin, MCON_ERROR_INVALID_ARGUMENT, "--face-range needs 0 <= BEGIN < END");
 }
 
+// The summary on stdout: one JSON object with --json, else two or three lines.
+void print_summary(const Patch& patch, const MeshTopology& topo, const OrientationReport& o, double seconds,
+                   bool json) {
+  if (json) {
+    std::printf(
+        "{\"vertices\": %d, \"faces\": %d, \"filled_faces\": %d, \"boundary_loops\": %zu, "
+        "\"euler_characteristic\": %d, \"max_geodesic_distance\": %.6g, \"param_flipped_triangles\": %d, "
+        "\"radius\": %.9g, \"orientation\": {\"reoriented_triangles\": %d, \"components\": %d, "
+        "\"closed_components\": %d, \"inconsistent_components\": %d, \"outward_turned_components\": %d}, "
+        "\"seconds\": %.6g}\n",
+        patch.mesh.num_vertices(), patch.mesh.num_triangles(), patch.filled_triangles(), topo.boundary_loops.size(),
+        euler_characteristic(patch.mesh, topo), patch.max_geodesic_distance, patch.param_flipped_triangles,
+        patch.radius, o.reoriented_triangles, o.components, o.closed_components, o.inconsistent_components,
+        o.components_turned_outward, seconds);
+  } else {
+    if (o.reoriented_triangles > 0)
+      std::printf("input orientation repaired: %d triangles reversed (%d inconsistent components, %d turned outward)\n",
+                  o.reoriented_triangles, o.inconsistent_components, o.components_turned_outward);
+    std::printf("patch: %d vertices, %d faces (%d filled), %zu boundary loop(s), Euler characteristic %d\n",
+                patch.mesh.num_vertices(), patch.mesh.num_triangles(), patch.filled_triangles(),
+                topo.boundary_loops.size(), euler_characteristic(patch.mesh, topo));
+    std::printf("max geodesic distance %.4f (normalized), %d flipped triangles in the parametrization, %.3f s\n",
+                patch.max_geodesic_distance, patch.param_flipped_triangles, seconds);
+  }
+}
+
 int run_patch(const Args& args) {
   if (!args.empty() && (args[0] == "--help" || args[0] == "-h")) {
     std::fputs(kUsage, stdout);
@@ -68,6 +94,9 @@ int run_patch(const Args& args) {
       options.center.barycentric = Vec3(ArgParser::parse_number("barycentric", s.substr(0, c1)),
                                         ArgParser::parse_number("barycentric", s.substr(c1 + 1, c2 - c1 - 1)),
                                         ArgParser::parse_number("barycentric", s.substr(c2 + 1)));
+      // The weights follow the file's corner order; a reoriented triangle has corners 1 and 2 swapped.
+      if (loaded.orientation.reoriented[static_cast<std::size_t>(triangle)])
+        std::swap(options.center.barycentric[1], options.center.barycentric[2]);
     }
   }
 
@@ -88,21 +117,7 @@ int run_patch(const Args& args) {
     io::write_ply(p.get("out"), patch.mesh, {uv, mean, host}, {filled});
   }
 
-  if (p.flag("json")) {
-    std::printf(
-        "{\"vertices\": %d, \"faces\": %d, \"filled_faces\": %d, \"boundary_loops\": %zu, "
-        "\"euler_characteristic\": %d, \"max_geodesic_distance\": %.6g, \"param_flipped_triangles\": %d, "
-        "\"radius\": %.9g, \"seconds\": %.6g}\n",
-        patch.mesh.num_vertices(), patch.mesh.num_triangles(), patch.filled_triangles(), topo.boundary_loops.size(),
-        euler_characteristic(patch.mesh, topo), patch.max_geodesic_distance, patch.param_flipped_triangles,
-        patch.radius, seconds);
-  } else {
-    std::printf("patch: %d vertices, %d faces (%d filled), %zu boundary loop(s), Euler characteristic %d\n",
-                patch.mesh.num_vertices(), patch.mesh.num_triangles(), patch.filled_triangles(),
-                topo.boundary_loops.size(), euler_characteristic(patch.mesh, topo));
-    std::printf("max geodesic distance %.4f (normalized), %d flipped triangles in the parametrization, %.3f s\n",
-                patch.max_geodesic_distance, patch.param_flipped_triangles, seconds);
-  }
+  print_summary(patch, topo, loaded.orientation, seconds, p.flag("json"));
   return 0;
 }
 

@@ -17,6 +17,7 @@
 #include "common/patch_instances.h"
 #include "common/retessellate.h"
 #include "base/error.h"
+#include "mesh/orientation.h"
 #include "patch/geodesic_disk_patch.h"
 #include "retrieval/retrieval_descriptors.h"
 #include "retrieval/retrieval_index.h"
@@ -53,6 +54,25 @@ int mesh_vertex(const io::LoadedMesh& base, int file_vertex, const std::string& 
   return base.file_to_mesh[static_cast<std::size_t>(file_vertex)];
 }
 
+// The host as a user hands it to the product: perturbed by the evaluation's options, then oriented
+// and validated as mcon_mesh_create does. `center` is renumbered to the host's vertices.
+TriMesh user_host(const TriMesh& mesh, const MeshPerturbation& perturbation, std::uint64_t seed, int& center,
+                  BenchmarkPatch& out) {
+  TriMesh host;
+  if (perturbation.active()) {
+    PerturbedMesh p = perturb_mesh(mesh, perturbation, seed, {center});
+    center = perturbed_vertex(p, center);
+    require(center >= 0, MCON_ERROR_UNKNOWN, "retrieval benchmark: the perturbation removed a patch center");
+    host = std::move(p.mesh);
+  } else {
+    host = mesh;
+  }
+  out.host_vertices_before = mesh.num_vertices();
+  out.host_vertices = host.num_vertices();
+  out.reoriented_triangles = orient_and_validate(host).reoriented_triangles;
+  return host;
+}
+
 // Re-tessellates the instance (quad diagonals, then a seeded decimation that keeps the center) and
 // cuts the class's disk with the instance-scaled radius. A triangulation on which the heat-method
 // disk is no disk (a decimated fingertip can open the hand) is redrawn with the next attempt's seed.
@@ -86,20 +106,68 @@ Patch prepare_patch(const PatchTask& task, std::uint64_t seed, std::size_t patch
             "retrieval benchmark: the decimation removed the center of '" + bc.name + "'");
     PatchOptions po;
     po.center.vertex = static_cast<int>(it - decimated.to_original.begin());
-    po.radius = ip.radius;
+    po.radius = ip.radius * options.radius_scale;
     po.fill_holes = true;
     try {
-      Patch patch = extract_geodesic_disk(decimated.mesh, po);
+      const TriMesh host = user_host(decimated.mesh, options.perturbation, rng.bits(c + 3), po.center.vertex, out);
+      Patch patch = extract_geodesic_disk(host, po);
       out.diagonals = alternate ? "alternate" : "random";
       out.removed_vertices = decimated.changed;
       out.attempts = attempt + 1;
       return patch;
     } catch (const Error& e) {
-      if (e.status() != MCON_ERROR_NOT_A_DISK || attempt + 1 >= options.max_attempts)
+      // A perturbed host may also fail numerically or as a mesh; another draw may not.
+      const bool retry = e.status() == MCON_ERROR_NOT_A_DISK || options.perturbation.active();
+      if (!retry || attempt + 1 >= options.max_attempts)
         fail(e.status(), "retrieval benchmark: " + m.name + " instance " + std::to_string(task.instance) + " class " +
                              bc.name + " (attempt " + std::to_string(attempt + 1) + "): " + e.what());
     }
   }
+}
+
+// Prepares and describes one patch. A perturbed host on which no attempt gives a disk (noise can
+// tear the geodesic disk, or fold triangles until the heat solve fails), or a patch at a scaled
+// radius that is no disk (a face at x1.4 wraps around the head), is not an error of the evaluation
+// but one of its results: the patch is marked failed (see drop_failed_patches).
+void describe_patch(const PatchTask& task, std::size_t p, const RetrievalBenchmarkOptions& options,
+                    BenchmarkPatch& out) {
+  const auto tp = Clock::now();
+  Patch patch;
+  try {
+    patch = prepare_patch(task, options.seed, p, options, out);
+  } catch (const Error& e) {
+    if (!options.perturbation.active() && options.radius_scale == 1.0) throw;
+    out.failure = e.what();
+    return;
+  }
+  out.prepare_seconds = seconds_since(tp);
+  out.vertices = patch.mesh.num_vertices();
+  out.triangles = patch.mesh.num_triangles();
+  const auto ta = Clock::now();
+  const PatchDescriptors common = patch_areas_and_center_distance(patch.mesh, patch.center);
+  const double common_seconds = seconds_since(ta);
+  for (const std::string& d : options.descriptors) {
+    const auto td = Clock::now();
+    PatchDescriptors pd = common;
+    pd.values = compute_retrieval_descriptor(patch.mesh, d, options.boundary);
+    out.describe_seconds.push_back(common_seconds + seconds_since(td));
+    out.descriptors.push_back(std::move(pd));
+  }
+}
+
+// Moves the failed patches (perturbed runs only) out of the set, in patch order.
+template <typename Log>
+void drop_failed_patches(RetrievalBenchmark& set, const Log& log) {
+  std::vector<BenchmarkPatch> kept;
+  for (BenchmarkPatch& p : set.patches) {
+    if (p.failure.empty()) {
+      kept.push_back(std::move(p));
+    } else {
+      log("dropped " + p.model + "/" + std::to_string(p.instance) + "/" + p.bench_class + ": " + p.failure);
+      set.failed_patches.push_back(std::move(p));
+    }
+  }
+  set.patches = std::move(kept);
 }
 
 }  // namespace
@@ -114,7 +182,8 @@ RetrievalBenchmark build_retrieval_benchmark(const RetrievalBenchmarkOptions& op
   require(options.min_decimation >= 0 && options.min_decimation <= options.max_decimation &&
               options.max_decimation < 1,
           MCON_ERROR_INVALID_ARGUMENT, "retrieval benchmark: decimation fractions must satisfy 0 <= min <= max < 1");
-  require(options.max_attempts >= 1, MCON_ERROR_INVALID_ARGUMENT, "retrieval benchmark: max_attempts must be >= 1");
+  require(options.max_attempts >= 1 && options.radius_scale > 0, MCON_ERROR_INVALID_ARGUMENT,
+          "retrieval benchmark: max_attempts must be >= 1 and radius_scale > 0");
   const auto log = [&](const std::string& s) {
     if (options.log) options.log(s);
   };
@@ -163,7 +232,9 @@ RetrievalBenchmark build_retrieval_benchmark(const RetrievalBenchmarkOptions& op
   std::vector<PatchTask> tasks;
   for (const ModelData& m : models)
     for (int i = 0; i < static_cast<int>(m.instances.size()); ++i)
-      for (const BenchClass& bc : m.bench.spec.classes) tasks.push_back({&m, i, &bc});
+      for (const BenchClass& bc : m.bench.spec.classes)
+        if (options.parts.empty() || std::count(options.parts.begin(), options.parts.end(), bc.part))
+          tasks.push_back({&m, i, &bc});
   set.patches.resize(tasks.size());
   const auto t1 = Clock::now();
   // One patch per task; each is a pure function of (seed, patch number), so the parallel loop gives
@@ -176,23 +247,9 @@ RetrievalBenchmark build_retrieval_benchmark(const RetrievalBenchmarkOptions& op
     out.bench_class = task.bench_class->name;
     out.label = task.bench_class->part;
     out.fold = subjects >= 2 ? task.instance % set.folds : static_cast<int>(p % 2);
-    const auto tp = Clock::now();
-    const Patch patch = prepare_patch(task, options.seed, p, options, out);
-    out.prepare_seconds = seconds_since(tp);
-    out.vertices = patch.mesh.num_vertices();
-    out.triangles = patch.mesh.num_triangles();
-    const auto ta = Clock::now();
-    const PatchDescriptors common =
-        patch_areas_and_center_distance(patch.mesh, patch.center);
-    const double common_seconds = seconds_since(ta);
-    for (const std::string& d : options.descriptors) {
-      const auto td = Clock::now();
-      PatchDescriptors pd = common;
-      pd.values = compute_retrieval_descriptor(patch.mesh, d, options.boundary);
-      out.describe_seconds.push_back(common_seconds + seconds_since(td));
-      out.descriptors.push_back(std::move(pd));
-    }
+    describe_patch(task, p, options, out);
   });
+  drop_failed_patches(set, log);
   set.patches_seconds = seconds_since(t1);
   std::set<std::string> labels;
   for (const BenchmarkPatch& p : set.patches) labels.insert(p.label);

@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "common/mesh_perturbation.h"
 #include "retrieval/bag_of_features.h"
 #include "descriptors/curvature_descriptors.h"
 
@@ -35,6 +36,13 @@ struct RetrievalBenchmarkOptions {
   PatchBoundary boundary = PatchBoundary::kCutThroughTriangles;  // CURV9 boundary rule
   double min_decimation = 0.2, max_decimation = 0.4;  // fraction of the instance's vertices removed
   int max_attempts = 4;  // re-tessellations tried per patch before a patch that is no disk is an error
+  // Applied to every host after the re-tessellation (each patch is a query and a library entry);
+  // the perturbed host then goes through the product's input path (orient_and_validate).
+  MeshPerturbation perturbation;
+  // Only these class parts (e.g. "eye", "nose"); empty = every class of the bench spec.
+  std::vector<std::string> parts;
+  // Patch radius x this (leave-family-out queries at 0.7, 1.0 and 1.4 of the class's radius).
+  double radius_scale = 1.0;
   // Progress lines (may be empty).
   std::function<void(const std::string&)> log;
 };
@@ -49,6 +57,9 @@ struct BenchmarkPatch {
   int removed_vertices = 0; // by the decimation of the instance
   int attempts = 1;
   int vertices = 0, triangles = 0;
+  int host_vertices_before = 0, host_vertices = 0;  // around the perturbation
+  int reoriented_triangles = 0;                     // by the orientation repair of the host
+  std::string failure;  // perturbed runs: why no attempt gave a patch (then the patch is dropped)
   double prepare_seconds = 0;               // re-tessellation + patch extraction
   std::vector<double> describe_seconds;     // per descriptor
   std::vector<PatchDescriptors> descriptors;  // per descriptor (areas and center distances in each)
@@ -58,6 +69,8 @@ struct RetrievalBenchmark {
   std::vector<std::string> descriptors;
   std::vector<BenchmarkPatch> patches;
   std::vector<std::string> classes;  // sorted labels
+  // Perturbed runs: patches no attempt could cut (evaluated as missing, not as queries or entries).
+  std::vector<BenchmarkPatch> failed_patches;
   int folds = 1;
   double instances_seconds = 0;  // building the people and faces
   double patches_seconds = 0;    // preparing and describing all patches (wall clock, parallel)

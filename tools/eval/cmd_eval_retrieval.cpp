@@ -3,8 +3,10 @@
 // retrieval with library-only vocabularies, precision/recall at n = 1..10, timings, and optionally
 // the plots of thesis figures 3.5/3.6 as SVG.
 #include <algorithm>
+#include <array>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -12,6 +14,7 @@
 #include <tbb/task_arena.h>
 
 #include "command/args.h"
+#include "common/leave_family_out.h"
 #include "json/json_file.h"
 #include "common/retrieval_benchmark.h"
 #include "common/svg_plots.h"
@@ -32,6 +35,7 @@ const char* kUsage =
     "usage: macrocon-eval eval-retrieval --shared DIR [--seed S] [--people N] [--faces N]\n"
     "                               [--descriptor curv9|hks|wks] [--rings K] [--vocabulary K] [--sigma S]\n"
     "                               [--compare] [--threads T] [--json] [--plot DIR]\n"
+    "                               [--noise F] [--flip-winding] [--density S] [--leave-family-out]\n"
     "Builds N random MakeHuman people and N random ICT faces from DIR (the shared folder, seeded by S),\n"
     "cuts a patch at every landmark class on its own random triangulation (quad diagonals + 20-40%\n"
     "decimation), and evaluates leave-one-out retrieval: each patch queries a library of all others;\n"
@@ -39,7 +43,13 @@ const char* kUsage =
     "Defaults: seed 1, 8 people and 8 faces (160 patches), curv9, 1 ring (plain), k 128, sigma by the median rule.\n"
     "--compare also evaluates curv9, hks and wks with 1, 2, 4 and 8 rings on the same patches.\n"
     "--json prints one JSON object; --plot DIR writes precision_recall.svg and mds.svg (and mds_zoom.svg, the\n"
-    "larger of two well-separated groups alone).\n";
+    "larger of two well-separated groups alone).\n"
+    "Perturbations of every host after its re-tessellation (tools/common/mesh_perturbation.h): --noise F\n"
+    "(Gaussian, std F x the mean edge length), --flip-winding (every triangle reversed), --density S\n"
+    "(decimated or subdivided to S x the vertex count); each host then goes through mcon_mesh_create's\n"
+    "orientation repair.\n"
+    "--leave-family-out: eye, nose, mouth, ear and face only; a library of one family (MakeHuman or ICT, radius\n"
+    "x1.0) queried by the other family's patches at radius x0.7, x1.0 and x1.4; top-1 and top-3 per class.\n";
 
 tools::Json number_array(const std::vector<double>& v) {
   tools::Json a = tools::Json::array();
@@ -71,14 +81,14 @@ struct EvalRetrievalCommand {
   tools::RetrievalBenchmarkOptions options;
   long rings = kDefaultRings, vocabulary = 128, threads = 0;
   double sigma = 0.0;
-  bool compare = false, json = false;
+  bool compare = false, json = false, leave_family_out = false;
   std::string plot_dir;
 };
 
 EvalRetrievalCommand parse_eval_retrieval(const Args& args) {
   const ArgParser p(args, {"shared", "seed", "people", "faces", "descriptor", "rings", "vocabulary", "sigma",
-                           "threads", "plot"},
-                    {"json", "compare"});
+                           "threads", "plot", "noise", "density"},
+                    {"json", "compare", "flip-winding", "leave-family-out"});
   EvalRetrievalCommand cmd;
   tools::RetrievalBenchmarkOptions& options = cmd.options;
   options.shared_dir = p.required("shared");
@@ -108,6 +118,11 @@ EvalRetrievalCommand parse_eval_retrieval(const Args& args) {
           "--threads must be in 0..1024 (0 = all)");
   cmd.compare = p.flag("compare");
   cmd.json = p.flag("json");
+  cmd.leave_family_out = p.flag("leave-family-out");
+  options.perturbation.noise = p.number("noise", 0.0);
+  options.perturbation.density = p.number("density", 1.0);
+  options.perturbation.flip_winding = p.flag("flip-winding");
+  tools::check_perturbation(options.perturbation);
   cmd.plot_dir = p.get("plot");
   if (!cmd.plot_dir.empty()) {
     std::error_code ec;
@@ -267,6 +282,29 @@ tools::Json misses_json(const tools::RetrievalBenchmark& set, const tools::Retri
   return misses;
 }
 
+// What the perturbation options did: the options, the host vertex ratio (median over patches) and
+// the triangles the orientation repair reversed (all hosts together).
+tools::Json perturbation_json(const tools::RetrievalBenchmark& set, const tools::MeshPerturbation& perturbation) {
+  tools::Json j = tools::Json::object();
+  j.set("description", perturbation.describe());
+  j.set("noise", perturbation.noise);
+  j.set("density", perturbation.density);
+  j.set("flip_winding", perturbation.flip_winding);
+  std::vector<double> ratio;
+  long reoriented = 0;
+  for (const tools::BenchmarkPatch& p : set.patches) {
+    ratio.push_back(p.host_vertices_before ? static_cast<double>(p.host_vertices) / p.host_vertices_before : 0.0);
+    reoriented += p.reoriented_triangles;
+  }
+  j.set("host_vertex_ratio_median", tools::median_of(ratio));
+  j.set("reoriented_triangles", reoriented);
+  tools::Json failed = tools::Json::array();
+  for (const tools::BenchmarkPatch& p : set.failed_patches) failed.push_back(patch_name(p) + ": " + p.failure);
+  j.set("failed_patches", static_cast<unsigned long>(set.failed_patches.size()));
+  j.set("failures", failed);
+  return j;
+}
+
 // The --json object on stdout (called inside the command's task arena: it reports its threads).
 void print_json(const tools::RetrievalBenchmark& set, const std::vector<tools::RetrievalEvaluation>& table,
                 const PatchTotals& totals, const EvalRetrievalCommand& cmd) {
@@ -316,6 +354,7 @@ void print_json(const tools::RetrievalBenchmark& set, const std::vector<tools::R
         "instance removing 20-40% of its vertices (center kept), then the heat-method geodesic disk");
   j.set("mean_patch_vertices", n ? static_cast<double>(totals.vertices) / static_cast<double>(n) : 0.0);
   j.set("retessellation_retries", totals.attempts);
+  j.set("perturbation", perturbation_json(set, options.perturbation));
   if (cmd.compare) {
     tools::Json t = tools::Json::array();
     for (const auto& ev : table) t.push_back(evaluation_summary(ev));
@@ -341,6 +380,65 @@ void print_text(const tools::RetrievalBenchmark& set, const std::vector<tools::R
     std::printf("  %d x %s -> %s\n", count, pair.first.c_str(), pair.second.c_str());
 }
 
+tools::Json class_rates(const std::map<std::string, double>& rates) {
+  tools::Json j = tools::Json::object();
+  for (const auto& [c, v] : rates) j.set(c, v);
+  return j;
+}
+
+// --leave-family-out: the six (library family, query scale) results, as JSON or one line each.
+void run_leave_family_out(const EvalRetrievalCommand& cmd) {
+  tools::RetrievalEvalOptions eo;
+  eo.vocabulary_size = static_cast<int>(cmd.vocabulary);
+  eo.sigma_bof = cmd.sigma;
+  eo.seed = cmd.options.seed;
+  eo.rings = {static_cast<std::uint32_t>(cmd.rings)};
+  const std::vector<tools::LeaveFamilyOutResult> results = tools::leave_family_out(cmd.options, eo);
+  tools::Json runs = tools::Json::array(), overall = tools::Json::object();
+  std::map<double, std::array<double, 3>> by_scale;  // top-1 hits, top-3 hits, queries
+  for (const tools::LeaveFamilyOutResult& r : results) {
+    tools::Json j = tools::Json::object();
+    j.set("library", r.library_model);
+    j.set("queries", r.query_model);
+    j.set("radius_scale", r.radius_scale);
+    j.set("query_count", r.queries);
+    j.set("library_entries", r.library_entries);
+    j.set("failed_queries", r.failed_queries);
+    j.set("top1", r.top1);
+    j.set("top3", r.top3);
+    j.set("class_top1", class_rates(r.class_top1));
+    j.set("class_top3", class_rates(r.class_top3));
+    runs.push_back(j);
+    auto& s = by_scale[r.radius_scale];
+    s[0] += r.top1 * r.queries;
+    s[1] += r.top3 * r.queries;
+    s[2] += r.queries;
+    if (!cmd.json)
+      std::printf("library %s, queries %s at radius x%.1f: top-1 %.3f, top-3 %.3f (%d queries, %d not cut)\n",
+                  r.library_model.c_str(), r.query_model.c_str(), r.radius_scale, r.top1, r.top3, r.queries,
+                  r.failed_queries);
+  }
+  for (const auto& [scale, s] : by_scale) {
+    tools::Json j = tools::Json::object();
+    j.set("top1", s[0] / s[2]);
+    j.set("top3", s[1] / s[2]);
+    char key[16];
+    std::snprintf(key, sizeof key, "x%.1f", scale);
+    overall.set(key, j);
+  }
+  if (cmd.json) {
+    tools::Json j = tools::Json::object();
+    j.set("seed", static_cast<unsigned long>(cmd.options.seed));
+    j.set("people", cmd.options.people);
+    j.set("faces", cmd.options.faces);
+    j.set("descriptor", cmd.options.descriptors.front());
+    j.set("leave_family_out", runs);
+    j.set("overall", overall);
+    std::fputs(tools::write_json(j).c_str(), stdout);
+    std::fputc('\n', stdout);
+  }
+}
+
 int run_eval_retrieval(const Args& args) {
   if (!args.empty() && (args[0] == "--help" || args[0] == "-h")) {
     std::fputs(kUsage, stdout);
@@ -351,6 +449,10 @@ int run_eval_retrieval(const Args& args) {
   tbb::task_arena arena(cmd.threads > 0 ? static_cast<int>(cmd.threads) : tbb::task_arena::automatic);
   int status = 0;
   arena.execute([&] {
+    if (cmd.leave_family_out) {
+      run_leave_family_out(cmd);
+      return;
+    }
     const tools::RetrievalBenchmark set = tools::build_retrieval_benchmark(cmd.options);
     const std::vector<tools::RetrievalEvaluation> table = evaluate_table(set, cmd);
     const PatchTotals totals = patch_totals(set);

@@ -625,6 +625,41 @@ static class Tests
                 using (var patch = Patch.Extract(m, 40 * 81 + 40, 0.2 + 0.1 * i)) patch.Descriptors(Descriptor.Curv9);
     }
 
+    // winding: a host with reversed triangles is repaired, reported, and gives the same patch
+    static void TestWinding()
+    {
+        var r = Bumpy(31); var p = r.P; var t = r.T;
+        var flipped = (uint[])t.Clone();
+        int reversed = 0;
+        for (int f = 0; f < flipped.Length / 3; f += 3)
+        {
+            uint corner1 = flipped[3 * f + 1];
+            flipped[3 * f + 1] = flipped[3 * f + 2];
+            flipped[3 * f + 2] = corner1;
+            ++reversed;
+        }
+        using (var ctx = new Context())
+        using (var a = new Mesh(ctx, p, t))
+        using (var b = new Mesh(ctx, p, flipped))
+        using (var pa = Patch.Extract(a, 15 * 31 + 15, 0.3))
+        using (var pb = Patch.Extract(b, 15 * 31 + 15, 0.3))
+        {
+            var oa = a.Orientation; var ob = b.Orientation;
+            Check(oa.Components == 1 && ob.Components == 1, "one component");
+            Check(ob.InconsistentComponents == 1, "inconsistent input reported");
+            Check(ob.ReorientedTriangles == reversed || ob.ReorientedTriangles == t.Length / 3 - reversed, "reoriented count " + ob.ReorientedTriangles);
+            Check(System.Linq.Enumerable.SequenceEqual(a.Triangles(), b.Triangles()), "same oriented triangles");
+            var flags = b.ReorientedTriangles();
+            Check(flags.Length == t.Length / 3, "one flag per triangle");
+            Check(pb.HostReorientedTriangles == ob.ReorientedTriangles && pb.HostInconsistentComponents == 1, "patch info reports the host repair");
+            Check(System.Linq.Enumerable.SequenceEqual(pa.Descriptors(Descriptor.Curv9), pb.Descriptors(Descriptor.Curv9)), "same descriptors");
+            var disagree = new uint[] { 0, 1, 2, 1, 2, 3 };
+            var quad = new double[] { 0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0 };
+            // Two triangles that share edge (1, 2) in the same direction are repaired, not rejected.
+            using (var two = new Mesh(ctx, quad, disagree)) Check(two.Orientation.ReorientedTriangles == 1, "two-triangle repair");
+        }
+    }
+
     // Every struct handed to the C ABI against macrocon.h: its size and the offset of each field whose
     // snake_case name exists in C, measured by a C probe compiled with `cc` (MACROCON_INCLUDE_DIR).
     static void TestLayout()
@@ -642,6 +677,7 @@ static class Tests
             { "mcon_cross_field_options", typeof(Native.CrossFieldOptions) }, { "mcon_surface_point", typeof(SurfacePoint) },
             { "mcon_singularity", typeof(Singularity) }, { "mcon_library_info", typeof(LibraryInfo) },
             { "mcon_library_entry_info", typeof(EntryInfo) }, { "mcon_map_info", typeof(MapInfo) },
+            { "mcon_mesh_orientation_info", typeof(Native.MeshOrientationInfo) },
         };
         var probe = new System.Text.StringBuilder("#include <stddef.h>\n#include <stdio.h>\n#include \"macrocon/macrocon.h\"\nint main(void) {\n");
         var expected = new List<string>();
@@ -689,7 +725,7 @@ static class Tests
     // No tuple deconstruction (`var (a, b) = ...`) anywhere here: mcs 6.8 silently drops a lambda that
     // contains one (which hid most of this runner's tests before) or crashes when a lambda captures
     // a deconstructed variable. The runner also checks how many tests ran.
-    const int ExpectedTests = 18;
+    const int ExpectedTests = 19;
 
     // The log callback receives the status and the message of the exception (mesh and patch
     // errors of the context); other contexts do not log; a disposed context drops late messages.
@@ -962,6 +998,7 @@ static class Tests
         Run("map: from arrays, compute, correspondences, transfer, cross field", Test9);
         Run("map: forced orientation and the evidence of the automatic call", TestOrientation);
         Run("map: guidance channels decide what the geometry cannot", TestGuidance);
+        Run("winding: reversed host triangles are repaired and reported", TestWinding);
         Run("struct layouts match macrocon.h", TestLayout);
         Run("log callback gets status and message of errors", TestLog);
         Run("throwing log callback: error surfaces, nothing crosses into native code", TestLogThrows);

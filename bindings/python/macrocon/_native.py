@@ -109,6 +109,21 @@ class PatchInfo(Struct):
         ("center_barycentric", ctypes.c_double * 3),
         ("max_geodesic_distance", ctypes.c_double),
         ("param_flipped_triangles", ctypes.c_uint32),
+        ("host_reoriented_triangles", c_size),
+        ("host_outward_turned_components", ctypes.c_uint32),
+        ("host_inconsistent_components", ctypes.c_uint32),
+        ("reoriented_triangles", c_size),
+    ]
+
+
+class MeshOrientationInfo(Struct):
+    _fields_ = [
+        ("struct_size", ctypes.c_uint32),
+        ("reoriented_triangles", c_size),
+        ("component_count", ctypes.c_uint32),
+        ("closed_component_count", ctypes.c_uint32),
+        ("inconsistent_component_count", ctypes.c_uint32),
+        ("outward_turned_component_count", ctypes.c_uint32),
     ]
 
 
@@ -327,6 +342,10 @@ _SIGNATURES = {
     "mcon_mesh_retain": [ctypes.c_void_p],
     "mcon_mesh_release": [ctypes.c_void_p],
     "mcon_mesh_get_counts": [ctypes.c_void_p, ctypes.POINTER(c_size), ctypes.POINTER(c_size)],
+    "mcon_mesh_orientation_info_init": [ctypes.POINTER(MeshOrientationInfo)],
+    "mcon_mesh_get_orientation": [ctypes.c_void_p, ctypes.POINTER(MeshOrientationInfo)],
+    "mcon_mesh_get_reoriented_triangles": [ctypes.c_void_p, ctypes.POINTER(ctypes.c_uint8), c_size],
+    "mcon_mesh_get_triangles": [ctypes.c_void_p, c_uint32_p, c_size],
     "mcon_patch_options_init": [ctypes.POINTER(PatchOptions)],
     "mcon_patch_extract": [ctypes.c_void_p, ctypes.POINTER(PatchOptions), ctypes.POINTER(ctypes.c_void_p)],
     "mcon_patch_retain": [ctypes.c_void_p],

@@ -275,6 +275,29 @@ class Mesh(_Handle):
         check(_native.lib.mcon_mesh_get_counts(self.handle, ctypes.byref(nv), ctypes.byref(nt)))
         return nv.value, nt.value
 
+    @property
+    def orientation(self) -> _native.MeshOrientationInfo:
+        """What creating the mesh changed to orient it consistently and outward."""
+        info = _native.MeshOrientationInfo()
+        check(_native.lib.mcon_mesh_orientation_info_init(ctypes.byref(info)))
+        check(_native.lib.mcon_mesh_get_orientation(self.handle, ctypes.byref(info)))
+        return info
+
+    @property
+    def reoriented_triangles(self) -> np.ndarray:
+        """(m,) uint8: 1 where a triangle's corners 1 and 2 were swapped."""
+        out = np.zeros(self.counts[1], dtype=np.uint8)
+        check(_native.lib.mcon_mesh_get_reoriented_triangles(
+            self.handle, out.ctypes.data_as(ctypes.POINTER(ctypes.c_uint8)), out.size))
+        return out
+
+    @property
+    def triangles(self) -> np.ndarray:
+        """(m, 3) uint32: the oriented triangles."""
+        out = np.zeros((self.counts[1], 3), dtype=np.uint32)
+        check(_native.lib.mcon_mesh_get_triangles(self.handle, out.ctypes.data_as(_native.c_uint32_p), out.size))
+        return out
+
 
 class Patch(_Handle):
     """A geodesic disk cut out of a host mesh, normalized to geodesic radius 1."""

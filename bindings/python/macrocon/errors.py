@@ -46,7 +46,8 @@ class IOError_(Error, OSError):
 
 
 class InvalidMeshError(Error, ValueError):
-    """Bad geometry: non-finite, out-of-range/repeated indices, degenerate, non-manifold, isolated."""
+    """Bad geometry: non-finite, out-of-range/repeated indices, degenerate, non-manifold, isolated,
+    non-orientable."""
 
 
 class NotADiskError(Error):
@@ -85,6 +86,7 @@ _BY_STATUS = {
     15: InvalidMeshError,
     16: InvalidMeshError,
     17: InvalidMeshError,
+    18: InvalidMeshError,
     20: NotADiskError,
     21: NumericalError,
     30: InvalidLibraryError,

@@ -153,3 +153,23 @@ def test_shutdown_refuses_while_a_context_lives_and_close_all_fixes_it():
     proc = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=300)
     assert proc.returncode == 0, proc.stderr
     assert proc.stdout.split() == ["refused", "True", "ok", "True"]
+
+
+def test_reversed_triangles_are_repaired_and_reported(context):
+    p, t = grid(31)
+    x, y = p[:, 0], p[:, 1]
+    p[:, 2] = 0.15 * np.sin(5 * x + 1) * np.cos(3 * y) + 0.1 * x * x * y
+    flipped = t.copy()
+    flipped[::3, [1, 2]] = flipped[::3, [2, 1]]
+    with macrocon.Mesh(context, p, t) as a, macrocon.Mesh(context, p, flipped) as b:
+        assert b.orientation.inconsistent_component_count == 1
+        assert b.orientation.component_count == 1
+        assert b.orientation.reoriented_triangles in (len(t[::3]), len(t) - len(t[::3]))
+        assert b.reoriented_triangles.shape == (len(t),)
+        assert int(b.reoriented_triangles.sum()) == b.orientation.reoriented_triangles
+        np.testing.assert_array_equal(a.triangles, b.triangles)
+        pa = macrocon.Patch.extract(a, radius=0.3, center_vertex=15 * 31 + 15)
+        pb = macrocon.Patch.extract(b, radius=0.3, center_vertex=15 * 31 + 15)
+        assert pb.info.host_reoriented_triangles == b.orientation.reoriented_triangles
+        assert pb.info.host_inconsistent_components == 1
+        np.testing.assert_array_equal(pa.descriptors("curv9"), pb.descriptors("curv9"))
