@@ -53,10 +53,33 @@ endif()
 message(STATUS "eval-mapping: ${out}")
 
 # Bad options: a clear message and a non-zero status.
-foreach(bad "--classes;elbow" "--method;newton" "--pairs;0" "--samples;-3" "--landmarks;0")
+foreach(bad "--classes;elbow" "--method;newton" "--pairs;0" "--samples;-3" "--landmarks;0" "--noise;-1" "--density;0")
   run_checked(WHAT "eval-mapping ${bad}" EXPECT_FAILURE "error"
     COMMAND ${CLI} eval-mapping --shared ${SHARED} ${bad} --quiet)
 endforeach()
+
+# --flip-winding: the reversed target is repaired before anything is computed, so every number is
+# the clean run's; --density 2 changes the target (and the numbers) but keeps the map flip-free.
+set(options_clean "")
+set(options_flip "--flip-winding")
+set(options_dense "--density;2")
+foreach(variant clean flip dense)
+  run_checked(WHAT "eval-mapping ${options_${variant}}" OUTPUT_VARIABLE pert_out
+    COMMAND ${CLI} eval-mapping --shared ${SHARED} --classes nose --pairs 1 --method macrocon --samples 300
+            --eval-vertices 40 ${options_${variant}} --json --quiet)
+  string(JSON eps_${variant} GET "${pert_out}" methods macrocon overall mean_eps100)
+  string(JSON flips GET "${pert_out}" methods macrocon overall flipped_triangles)
+  string(JSON described_${variant} GET "${pert_out}" perturbation)
+  if(NOT flips EQUAL 0)
+    message(FATAL_ERROR "eval-mapping ${variant}: ${flips} flipped triangles")
+  endif()
+endforeach()
+if(NOT eps_clean STREQUAL eps_flip OR NOT described_flip STREQUAL "flip-winding")
+  message(FATAL_ERROR "--flip-winding changed the map: ${eps_clean} vs ${eps_flip} (${described_flip})")
+endif()
+if(eps_clean STREQUAL eps_dense OR NOT described_dense STREQUAL "density 2")
+  message(FATAL_ERROR "--density 2 did not change the target: ${eps_clean} vs ${eps_dense} (${described_dense})")
+endif()
 
 # The oracle diagnostic (ground-truth guidance channels): asked for explicitly, it must run, keep
 # the map flip-free, and on the featureless forearm strip, where the descriptors leave the map

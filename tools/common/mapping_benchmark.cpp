@@ -13,6 +13,7 @@
 #include "common/makehuman_people.h"
 #include "common/patch_instances.h"
 #include "common/retessellate.h"
+#include "mesh/orientation.h"
 #include "common/thesis_gradient_descent.h"
 #include "descriptors/curvature_descriptors.h"
 #include "base/error.h"
@@ -224,6 +225,29 @@ struct PairPatches {
   CutPatch src, dst;
 };
 
+struct PerturbedTarget {
+  TriMesh mesh;
+  std::vector<int> to_original;  // perturbed vertex -> instance vertex, -1 for a subdivision vertex
+};
+
+// The decimated target as a user's scan or export would hand it over: perturbed, then oriented and
+// validated as mcon_mesh_create does. The vertex identities go through both steps, so the ground
+// truth (same instance vertex) still holds; noise moves a vertex off the clean surface by design.
+PerturbedTarget perturbed_target(const Retessellation& re, const MappingEvalOptions& options, int center_vertex, int i,
+                                 int attempt) {
+  const auto it = std::find(re.to_original.begin(), re.to_original.end(), center_vertex);
+  require(it != re.to_original.end(), MCON_ERROR_NUMERICAL, "eval-mapping: decimation removed the patch center");
+  const int center = static_cast<int>(it - re.to_original.begin());
+  PerturbedMesh p = perturb_mesh(re.mesh, options.perturbation,
+                                 options.seed * 2000003ull + static_cast<std::uint64_t>(i) + 104729ull * attempt, {center});
+  orient_and_validate(p.mesh);
+  PerturbedTarget out{std::move(p.mesh), {}};
+  out.to_original.resize(p.to_original.size());
+  for (std::size_t v = 0; v < p.to_original.size(); ++v)
+    out.to_original[v] = p.to_original[v] >= 0 ? re.to_original[static_cast<std::size_t>(p.to_original[v])] : -1;
+  return out;
+}
+
 PairPatches cut_pair_patches(const Model& model, const MappingEvalOptions& options, const MappingSlot& slot, int i,
                              MappingPairResult& res) {
   const BenchClass& src_cls = model.bench.spec.find(slot.source_class);
@@ -243,10 +267,17 @@ PairPatches cut_pair_patches(const Model& model, const MappingEvalOptions& optio
       const Retessellation re =
           decimate(b, options.seed * 1000003ull + static_cast<std::uint64_t>(i) + 7919ull * attempt, dec);
       out.src = cut(model, src_cls, a, nullptr, nullptr);
-      out.dst = cut(model, dst_cls, b, &re.mesh, &re.to_original);
+      if (options.perturbation.active()) {
+        const PerturbedTarget t = perturbed_target(re, options, dst_cls.center_vertex, i, attempt);
+        out.dst = cut(model, dst_cls, b, &t.mesh, &t.to_original);
+      } else {
+        out.dst = cut(model, dst_cls, b, &re.mesh, &re.to_original);
+      }
       break;
     } catch (const Error& e) {
-      if (e.status() != MCON_ERROR_NOT_A_DISK || attempt >= 4) throw;
+      // A perturbed target may also fail numerically or as a mesh; the next people may not.
+      const bool retry = e.status() == MCON_ERROR_NOT_A_DISK || options.perturbation.active();
+      if (!retry || attempt >= 4) throw;
       if (options.log) options.log("pair " + std::to_string(i) + ": " + e.what() + "; next people");
     }
   }
@@ -556,7 +587,8 @@ void log_pair(const MappingEvalOptions& options, int i, const MappingSlot& slot,
 
 }  // namespace
 
-std::vector<MappingPairResult> run_mapping_evaluation(const MappingEvalOptions& options) {
+std::vector<MappingPairResult> run_mapping_evaluation(const MappingEvalOptions& options,
+                                                      std::vector<std::string>* uncut_pairs) {
   validate_mapping_options(options);
   const std::vector<MappingSlot> slots = mapping_slots(options.shared_dir, options.parts);
   require(!slots.empty(), MCON_ERROR_INVALID_ARGUMENT, "eval-mapping: no class selected");
@@ -574,7 +606,17 @@ std::vector<MappingPairResult> run_mapping_evaluation(const MappingEvalOptions& 
     res.slot = slot;
     res.person_a = 2 * i;
     res.person_b = 2 * i + 1;
-    arena.execute([&] { evaluate_pair(model, slot, i, options, res); });
+    try {
+      arena.execute([&] { evaluate_pair(model, slot, i, options, res); });
+    } catch (const Error& e) {
+      // Under a perturbation a target can stay uncuttable on every retry (noise of a fraction of
+      // an edge opens pockets): that pair is reported, not averaged.
+      if (!options.perturbation.active() || uncut_pairs == nullptr) throw;
+      uncut_pairs->push_back("pair " + std::to_string(i) + " " + slot.source_class + " -> " + slot.target_class + ": " +
+                             e.what());
+      if (options.log) options.log(uncut_pairs->back());
+      continue;
+    }
     if (options.log) log_pair(options, i, slot, res);
     results.push_back(std::move(res));
   }

@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "common/mesh_perturbation.h"
 #include "json/json_file.h"
 
 namespace mcon::tools {
@@ -44,6 +45,9 @@ struct MappingEvalOptions {
   int pairs = 0;                         // 0: one pair per MakeHuman slot (the default run)
   std::vector<std::string> parts;        // empty: all parts
   std::vector<std::string> methods = {"macrocon", "rigid", "thesis", "proximity"};
+  // Applied to every target host after its decimation, then oriented and validated as
+  // mcon_mesh_create does (common/mesh_perturbation.h); the source stays clean.
+  MeshPerturbation perturbation;
   int alignment_samples = 10000;         // rigid candidates (thesis: 10,000)
   int thesis_iterations = 15000;
   int max_evaluated_vertices = 300;      // per pair, deterministic stride subsample
@@ -82,7 +86,10 @@ std::vector<MappingSlot> mapping_slots(const std::string& shared_dir, const std:
 
 // Runs the evaluation (pair i uses slot i mod #slots and people/faces 2i, 2i+1 of the seed).
 // Throws mcon::Error (IO for missing data, INVALID_ARGUMENT for bad options).
-std::vector<MappingPairResult> run_mapping_evaluation(const MappingEvalOptions& options);
+// With a perturbation and `uncut_pairs`, a pair whose target no retry can cut is listed there and
+// left out of the results instead of ending the run.
+std::vector<MappingPairResult> run_mapping_evaluation(const MappingEvalOptions& options,
+                                                      std::vector<std::string>* uncut_pairs = nullptr);
 
 // {"pairs": N, "methods": {m: {"overall": M, "per_class": {part: M}}},
 //  "target_edge_eps100": {"overall": e, "per_class": {part: e}}} with M = {mean_eps100,

@@ -13,7 +13,7 @@ namespace {
 const char* kUsage =
     "usage: macrocon-eval eval-mapping --shared DIR [--seed S] [--pairs N] [--classes a,b,...] [--method NAME]\n"
     "                             [--samples K] [--thesis-iterations I] [--eval-vertices V] [--threads T]\n"
-    "                             [--cross-family] [--json] [--quiet]\n"
+    "                             [--cross-family] [--noise F] [--density S] [--flip-winding] [--json] [--quiet]\n"
     "Maps patches of the same class between two random people (MakeHuman) or faces (ICT), the target\n"
     "re-tessellated by seeded random decimation, mirrored pairs included (a right eye onto a left\n"
     "eye), and measures eps = geodesic distance on the target between the mapped and the true point /\n"
@@ -44,6 +44,10 @@ const char* kUsage =
     "with M = {mean_eps100, within_0_05, flipped_triangles, overlap, seconds_median, iterations_median},\n"
     "and \"target_edge_eps100\": {\"overall\": e, \"per_class\": {...}}, the target's mean edge length in the\n"
     "same units (100 x edge / sqrt(target patch area)): the scale of one target edge, to read mean_eps100 against.\n"
+    "--noise F, --density S, --flip-winding: the in-family target host, after its decimation, is perturbed\n"
+    "(Gaussian noise of std F x its mean edge length, decimated or subdivided to S x its vertex count, every\n"
+    "triangle reversed; tools/common/mesh_perturbation.h) and then oriented as mcon_mesh_create does; the\n"
+    "ground truth follows the vertex identities; the JSON's \"perturbation\" names what was applied.\n"
     "--cross-family: also maps across families, MakeHuman <-> ICT (eye, nose, mouth, ear, face; both\n"
     "directions; eye and ear also mirrored: 14 pairs, restricted by --classes), scored on the semantic\n"
     "landmarks of bench/semantic-landmarks.json inside both patches: landmark eps = geodesic distance on\n"
@@ -88,8 +92,8 @@ int run_eval_mapping(const Args& args) {
   }
   const ArgParser p(args,
                     {"shared", "seed", "pairs", "classes", "method", "samples", "thesis-iterations", "eval-vertices",
-                     "threads", "landmarks"},
-                    {"json", "quiet", "cross-family"});
+                     "threads", "landmarks", "noise", "density"},
+                    {"json", "quiet", "cross-family", "flip-winding"});
   tools::MappingEvalOptions o;
   o.shared_dir = p.required("shared");
   const long seed = p.integer("seed", 1);
@@ -110,10 +114,19 @@ int run_eval_mapping(const Args& args) {
               o.threads <= 256,
           MCON_ERROR_INVALID_ARGUMENT,
           "--samples, --eval-vertices and --threads must be positive, --thesis-iterations >= 0");
+  o.perturbation.noise = p.number("noise", 0.0);
+  o.perturbation.density = p.number("density", 1.0);
+  o.perturbation.flip_winding = p.flag("flip-winding");
+  tools::check_perturbation(o.perturbation);
   if (!p.flag("quiet")) o.log = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
 
-  const std::vector<tools::MappingPairResult> pairs = tools::run_mapping_evaluation(o);
+  std::vector<std::string> uncut;
+  const std::vector<tools::MappingPairResult> pairs = tools::run_mapping_evaluation(o, &uncut);
   tools::Json json = tools::mapping_evaluation_json(pairs, o.methods);
+  json.set("perturbation", o.perturbation.describe());
+  tools::Json uncut_json = tools::Json::array();
+  for (const std::string& u : uncut) uncut_json.push_back(u);
+  json.set("uncut_pairs", uncut_json);
   if (p.flag("cross-family"))
     json.set("cross_family", tools::cross_family_json(tools::run_cross_family_evaluation(o), o.methods));
   if (p.flag("json")) {
