@@ -30,6 +30,10 @@ namespace Macrocon
         /// <summary>Gaussian width factor of the refinement pass after the finest level: 0 turns it
         /// off, otherwise in (0, 1].</summary>
         public double? RefineSigmaFactor;
+        /// <summary>Both patches sit in one world frame: the similarity-ICP alignment of their host
+        /// positions is the rigid start and decides orientation (Info.FrameDecided); needs Automatic.
+        /// WorldFrameMirror mirrors the source x -> -x first (a left part onto a right one).</summary>
+        public bool UseWorldFrame, WorldFrameMirror;
     }
 
     /// <summary>Polylines re-traced on a target patch (every segment inside one target triangle).</summary>
@@ -95,6 +99,8 @@ namespace Macrocon
             if (settings.MaxIterations.HasValue) o.max_iterations = settings.MaxIterations.Value;
             o.allow_reflection = settings.AllowReflection ? 1u : 0u;
             o.orientation = (uint)settings.Orientation;
+            o.use_world_frame = settings.UseWorldFrame ? 1u : 0u;
+            o.world_frame_mirror = settings.WorldFrameMirror ? 1u : 0u;
             if (settings.RefineSigmaFactor.HasValue) o.refine_sigma_factor = settings.RefineSigmaFactor.Value;
             if ((settings.SourceGuidance == null) != (settings.TargetGuidance == null))
                 throw new ArgumentException("SourceGuidance and TargetGuidance must be given together");

@@ -525,6 +525,9 @@ static class Tests
             var settings = new MapSettings { Seed = 3, AlignmentSamples = 400, MaxIterations = 30 };
             MapInfo a;
             using (var map = Map.Compute(source, target, settings)) a = map.Info;
+            Check(a.FrameDecided == 0, "frame-free by default");
+            using (var framed = Map.Compute(source, target, new MapSettings { Seed = 3, AlignmentSamples = 400, MaxIterations = 30, UseWorldFrame = true }))
+                Check(framed.Info.FrameDecided == 1 && framed.Info.Reflected == 0, "the world frame decides when asked");
             Check(a.AlignmentScoreUnreflected >= 0 && a.AlignmentScoreReflected >= 0, "both rigid scores");
             Check(a.AlignmentScore == (a.Reflected != 0 ? a.AlignmentScoreReflected : a.AlignmentScoreUnreflected), "winner's score");
             Check(a.OrientationCompared != 0

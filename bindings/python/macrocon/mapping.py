@@ -67,6 +67,7 @@ class MapInfo:
     orientation_compared: bool
     level0_energy_unreflected: float
     level0_energy_reflected: float
+    frame_decided: bool = False  # the world-frame start decided (use_world_frame)
 
 
 class PolylineSet(_Handle):
@@ -153,6 +154,8 @@ class Map(_Handle):
         target_guidance=None,
         guidance_weight: Optional[float] = None,
         refine_sigma_factor: Optional[float] = None,
+        use_world_frame: bool = False,
+        world_frame_mirror: bool = False,
     ) -> "Map":
         """orientation: "automatic" (the descriptors decide; allow_reflection restricts it),
         "preserve" or "reverse" (forced, e.g. a "flip" that recomputes with the orientation
@@ -166,6 +169,11 @@ class Map(_Handle):
 
         refine_sigma_factor: Gaussian width factor of the refinement pass after the finest level
         (0 turns the pass off; else in (0, 1]).
+
+        use_world_frame: both patches sit in one world frame (two meshes in the same DCC scene): the
+        similarity-ICP alignment of their host positions becomes the rigid start and decides
+        orientation and reflection (info.frame_decided); needs orientation "automatic".
+        world_frame_mirror: mirror the source x -> -x first (a left part onto a right one).
 
         Options left at None keep mcon_map_options_init's defaults."""
         require_type(source, Patch, "source")
@@ -181,6 +189,8 @@ class Map(_Handle):
         if max_iterations is not None:
             o.max_iterations = int(max_iterations)
         o.orientation = int(_ORIENTATIONS[orientation])
+        o.use_world_frame = 1 if use_world_frame else 0
+        o.world_frame_mirror = 1 if world_frame_mirror else 0
         if refine_sigma_factor is not None:
             o.refine_sigma_factor = float(refine_sigma_factor)
         if (source_guidance is None) != (target_guidance is None):
@@ -216,7 +226,7 @@ class Map(_Handle):
                        i.energy_area, i.energy_injectivity, i.iterations, StopReason(i.stop_reason), bool(i.reflected),
                        i.levels, i.flipped_triangles, i.alignment_score, i.alignment_seconds, i.optimization_seconds,
                        i.alignment_score_unreflected, i.alignment_score_reflected, bool(i.orientation_compared),
-                       i.level0_energy_unreflected, i.level0_energy_reflected)
+                       i.level0_energy_unreflected, i.level0_energy_reflected, bool(i.frame_decided))
 
     @property
     def energy_terms(self) -> Dict[str, float]:

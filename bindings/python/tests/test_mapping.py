@@ -393,3 +393,17 @@ def test_guidance_decides_what_the_geometry_cannot(context):
             macrocon.Map.compute(disk, disk, source_guidance=target_g, target_guidance=bad)
         assert e.value.status == 10  # MCON_ERROR_NON_FINITE
         assert "target_guidance" in e.value.message
+
+
+def test_world_frame_start_is_opt_in_and_reported(host):
+    """Two patches of one mesh share the world frame: use_world_frame lets it decide."""
+    mesh, _, _ = host
+    with macrocon.Patch.extract(mesh, radius=0.25, center_vertex=center(41, 20, 21)) as a, \
+            macrocon.Patch.extract(mesh, radius=0.25, center_vertex=center(41, 21, 21)) as b:
+        with macrocon.Map.compute(a, b, seed=3, **FAST) as plain:
+            assert plain.info.frame_decided is False
+        with macrocon.Map.compute(a, b, seed=3, use_world_frame=True, **FAST) as framed:
+            assert framed.info.frame_decided is True
+            assert framed.info.reflected is False  # the same surface: no mirror in the world frame
+        with pytest.raises(macrocon.InvalidArgumentError):
+            macrocon.Map.compute(a, b, use_world_frame=True, orientation="preserve", **FAST)
