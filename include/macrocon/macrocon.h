@@ -461,6 +461,14 @@ MCON_API mcon_status mcon_library_build_retrieval(mcon_library library, const mc
 MCON_API mcon_status mcon_library_query(mcon_library library, mcon_patch patch, size_t n, uint64_t* out_ids,
                                         uint32_t* out_indices, double* out_distances, size_t capacity,
                                         size_t* out_count);
+/* Up to n distinct suggestions: the ranking of mcon_library_query with entries of one class
+ * (class_label, case and a side suffix _l/_r/_left/_right ignored; unlabelled entries each their
+ * own) counted once. Per suggestion: its best entry's index, distance, a confidence in [0, 1]
+ * (summing to 1 over the suggestions written) and how many other entries of its class follow it
+ * (mcon_library_query lists them). Any output may be NULL; capacity in suggestions >= min(n, count). */
+MCON_API mcon_status mcon_library_query_distinct(mcon_library library, mcon_patch patch, size_t n,
+                                                 uint32_t* out_indices, double* out_distances, double* out_confidence,
+                                                 uint32_t* out_alternative_counts, size_t capacity, size_t* out_count);
 /* The same with the caller's per-vertex descriptors of the patch (vertex count rows of `dimension`
  * doubles, `stride` bytes apart, 0 = packed); dimension must be the library's. */
 MCON_API mcon_status mcon_library_query_descriptors(mcon_library library, mcon_patch patch, const double* descriptors,

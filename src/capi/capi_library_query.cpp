@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "capi/capi_library.h"
+#include "library/distinct_suggestions.h"
 
 using namespace mcon;
 using namespace mcon::capi;
@@ -36,6 +37,30 @@ void query(mcon_library library, mcon_patch patch, const Eigen::MatrixXd* custom
 }  // namespace
 
 extern "C" {
+
+mcon_status mcon_library_query_distinct(mcon_library library, mcon_patch patch, size_t n, uint32_t* out_indices,
+                                        double* out_distances, double* out_confidence,
+                                        uint32_t* out_alternative_counts, size_t capacity, size_t* out_count) {
+  return guard_object("mcon_library_query_distinct", library, "library", [&] {
+    require_pointer(out_count, "out_count");
+    *out_count = 0;
+    check_handle(patch, "patch");
+    require(n >= 1, MCON_ERROR_INVALID_ARGUMENT, "n must be at least 1");
+    const ConstraintLibrary& lib = library->library;
+    require_capacity(capacity, std::min(n, lib.size()), "output arrays (capacity in suggestions)");
+    const std::vector<DistinctSuggestion> s = run_in_arena(library->context, [&] {
+      const std::vector<float> histogram = query_histogram(lib.retrieval(), patch->patch, nullptr);
+      return distinct_suggestions(query_top_n(lib.retrieval(), library->flat, histogram, lib.size()), lib.entries(), n);
+    });
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      if (out_indices) out_indices[i] = static_cast<std::uint32_t>(s[i].entry);
+      if (out_distances) out_distances[i] = s[i].distance;
+      if (out_confidence) out_confidence[i] = s[i].confidence;
+      if (out_alternative_counts) out_alternative_counts[i] = static_cast<std::uint32_t>(s[i].alternatives.size());
+    }
+    *out_count = s.size();
+  });
+}
 
 mcon_status mcon_library_query(mcon_library library, mcon_patch patch, size_t n, uint64_t* out_ids,
                                uint32_t* out_indices, double* out_distances, size_t capacity, size_t* out_count) {

@@ -4,6 +4,8 @@
 // progress and cancellation.
 #include <gtest/gtest.h>
 
+#include <set>
+
 #include <cmath>
 #include <cstring>
 #include <map>
@@ -290,6 +292,44 @@ TEST_F(LibraryTest, AddAfterBuildIsFoundAtOnceAndRemoveShiftsIndices) {
   QueryResult nose = query(lib.get(), patches_[2].get(), 1);
   EXPECT_EQ(nose.ids[0], 3u);
   EXPECT_EQ(nose.indices[0], 1u);
+}
+
+// A library holding every class twice (merged with itself): the plain top 3 of the eye is both
+// eyes and one more; the distinct top 3 is three classes, the eye's copy its alternative.
+TEST_F(LibraryTest, DistinctSuggestionsCountACopyOnce) {
+  LibraryPtr lib = built_library(0);
+  ASSERT_EQ(mcon_library_merge(lib.get(), lib.get()), MCON_OK) << last_message();
+  const size_t n = library_count(lib.get());
+  ASSERT_EQ(n, 2 * landmarks().size());
+  QueryResult plain = query(lib.get(), patches_[0].get(), 3);
+  ASSERT_EQ(plain.ids.size(), 3u);
+  EXPECT_EQ(plain.distances[0], 0.0);
+  EXPECT_EQ(plain.distances[1], 0.0);  // the copy
+  std::vector<uint32_t> idx(3), alt(3);
+  std::vector<double> dist(3), conf(3);
+  size_t count = 0;
+  ASSERT_EQ(mcon_library_query_distinct(lib.get(), patches_[0].get(), 3, idx.data(), dist.data(), conf.data(),
+                                        alt.data(), 3, &count),
+            MCON_OK)
+      << last_message();
+  ASSERT_EQ(count, 3u);
+  EXPECT_EQ(idx[0], 0u);
+  EXPECT_EQ(alt[0], 1u);  // its copy
+  EXPECT_EQ(conf[0], 1.0);  // an exact match
+  EXPECT_GT(dist[1], 0.0);
+  EXPECT_LE(dist[1], dist[2]);
+  std::set<std::string> classes;
+  for (size_t i = 0; i < count; ++i) {
+    mcon_library_entry_info info;
+    ASSERT_EQ(mcon_library_entry_info_init(&info), MCON_OK);
+    ASSERT_EQ(mcon_library_get_entry_info(lib.get(), idx[i], &info), MCON_OK);
+    classes.insert(landmarks()[idx[i] % landmarks().size()].class_label);
+  }
+  EXPECT_EQ(classes.size(), 3u);
+  EXPECT_EQ(mcon_library_query_distinct(lib.get(), patches_[0].get(), 0, nullptr, nullptr, nullptr, nullptr, 0, &count),
+            MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(mcon_library_query_distinct(lib.get(), patches_[0].get(), 3, idx.data(), nullptr, nullptr, nullptr, 2, &count),
+            MCON_ERROR_BUFFER_TOO_SMALL);
 }
 
 TEST_F(LibraryTest, InfoSaysWhetherAChecksumWasVerified) {

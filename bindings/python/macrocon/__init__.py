@@ -25,6 +25,7 @@ from .library import (
     Polyline,
     PolylineKind,
     QueryResult,
+    Suggestion,
     RetrievalDescriptor,
     Singularities,
 )
@@ -54,7 +55,7 @@ __all__ = [
     "DESCRIPTOR_CURV9", "DESCRIPTOR_MEAN_CURVATURE", "Error", "InvalidArgumentError", "NullPointerError",
     "StructSizeError", "BufferTooSmallError", "CancelledError", "InvalidMeshError", "NotADiskError",
     "NumericalError", "InvalidLibraryError", "UnsupportedError", "NotFoundError", "status_name", "close_all",
-    "Library", "Entry", "EntryInfo", "LibraryInfo", "QueryResult", "Polyline", "PolylineKind", "Singularities",
+    "Library", "Entry", "EntryInfo", "LibraryInfo", "QueryResult", "Suggestion", "Polyline", "PolylineKind", "Singularities",
     "Field", "FieldKind", "RetrievalDescriptor", "Map", "MapInfo", "PolylineSet", "StopReason", "Direction",
     "Orientation", "OutOfMemoryError", "IOError_",
 ]

@@ -379,6 +379,8 @@ _SIGNATURES = {
     "mcon_library_build_retrieval": [ctypes.c_void_p, ctypes.POINTER(RetrievalOptions)],
     "mcon_library_query": [ctypes.c_void_p, ctypes.c_void_p, c_size, ctypes.c_void_p, ctypes.c_void_p,
                            ctypes.c_void_p, c_size, ctypes.POINTER(c_size)],
+    "mcon_library_query_distinct": [ctypes.c_void_p, ctypes.c_void_p, c_size, ctypes.c_void_p, ctypes.c_void_p,
+                                    ctypes.c_void_p, ctypes.c_void_p, c_size, ctypes.POINTER(c_size)],
     "mcon_library_query_descriptors": [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_void_p, ctypes.c_uint32, c_size,
                                        c_size, ctypes.c_void_p, ctypes.c_void_p, ctypes.c_void_p, c_size,
                                        ctypes.POINTER(c_size)],

@@ -118,6 +118,17 @@ class EntryInfo:
 
 
 @dataclass(frozen=True)
+class Suggestion:
+    """One distinct suggestion: its best entry, distance, confidence (summing to 1 over the
+    suggestions of one query) and how many more entries of its class follow it."""
+
+    index: int
+    distance: float
+    confidence: float
+    alternative_count: int
+
+
+@dataclass(frozen=True)
 class QueryResult:
     """The nearest entries, best first: ids (uint64), indices (uint32), L1 histogram distances."""
 
@@ -428,6 +439,17 @@ class Library(_Handle):
                                              ctypes.byref(count)))
         k = count.value
         return QueryResult(ids[:k], idx[:k], dist[:k])
+
+    def query_distinct(self, patch: Patch, n: int = 5) -> List[Suggestion]:
+        """Up to ``n`` distinct suggestions: entries of one class (side suffix ignored) count once."""
+        require_type(patch, Patch, "patch")
+        m = max(1, min(int(n), len(self)))
+        idx, alt = np.zeros(m, np.uint32), np.zeros(m, np.uint32)
+        dist, conf = np.zeros(m), np.zeros(m)
+        count = ctypes.c_size_t()
+        check(_native.lib.mcon_library_query_distinct(self.handle, patch.handle, int(n), ptr(idx), ptr(dist), ptr(conf),
+                                                      ptr(alt), m, ctypes.byref(count)))
+        return [Suggestion(int(idx[k]), float(dist[k]), float(conf[k]), int(alt[k])) for k in range(count.value)]
 
     def query_descriptors(self, patch: Patch, descriptors: np.ndarray, n: int = 5) -> QueryResult:
         """The same with the caller's (vertex_count, dimension) float64 descriptors of ``patch``.

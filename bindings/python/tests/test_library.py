@@ -294,3 +294,25 @@ def test_open_errors(context, tmp_path):
     assert err.value.status == 8
     with pytest.raises(TypeError):
         macrocon.Library.open_memory(context, "text")
+
+
+def test_distinct_suggestions_group_one_class(context, patches):
+    """Every entry of `filled` is class "bump": one suggestion, the rest its alternatives; with a
+    class each (left and right suffixes ignored) every entry is its own suggestion."""
+    with macrocon.Library(context) as lib:
+        for k, patch in enumerate(patches):
+            lib.add_entry(patch, name=f"e{k}", class_label="bump_l" if k % 2 else "bump_r")
+        lib.build_retrieval(vocabulary_size=16, seed=7)
+        s = lib.query_distinct(patches[0], 3)
+        assert len(s) == 1 and s[0].index == 0 and s[0].alternative_count == len(patches) - 1
+        assert s[0].confidence == 1.0
+    with macrocon.Library(context) as lib:
+        for k, patch in enumerate(patches):
+            lib.add_entry(patch, name=f"e{k}", class_label=f"class{k}")
+        lib.build_retrieval(vocabulary_size=16, seed=7)
+        s = lib.query_distinct(patches[1], 3)
+        assert [x.alternative_count for x in s] == [0, 0, 0] and s[0].index == 1
+        assert abs(sum(x.confidence for x in s) - 1) < 1e-12
+        assert s[0].confidence >= s[1].confidence >= s[2].confidence
+        with pytest.raises(macrocon.InvalidArgumentError):
+            lib.query_distinct(patches[0], 0)
