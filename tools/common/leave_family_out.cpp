@@ -5,6 +5,7 @@
 #include <tbb/parallel_for.h>
 
 #include "base/error.h"
+#include "library/distinct_suggestions.h"
 #include "retrieval/bag_of_features.h"
 #include "retrieval/retrieval_index.h"
 
@@ -31,17 +32,21 @@ LeaveFamilyOutResult evaluate_leave_family_out(const RetrievalBenchmark& library
     const std::vector<float> h = bag_of_features(config, library.patches[e].descriptors[descriptor_index]);
     std::copy(h.begin(), h.end(), entries.begin() + static_cast<std::ptrdiff_t>(e * length));
   });
+  std::vector<MacroConstraint> labels(n);  // only the class labels, for the distinct suggestions
+  for (std::size_t e = 0; e < n; ++e) labels[e].class_label = library.patches[e].label;
   const std::size_t nq = queries.patches.size();
-  std::vector<char> hit1(nq, 0), hit3(nq, 0);
+  std::vector<char> hit1(nq, 0), hit3(nq, 0), hit3d(nq, 0);
   tbb::parallel_for(std::size_t{0}, nq, [&](std::size_t q) {
     const BenchmarkPatch& query = queries.patches[q];
     const std::vector<float> hq = bag_of_features(config, query.descriptors[descriptor_index]);
-    const std::vector<RetrievalHit> hits = top_n_l1(entries.data(), n, length, hq.data(), 3);
-    for (std::size_t k = 0; k < hits.size(); ++k)
-      if (library.patches[hits[k].entry].label == query.label) {
+    const std::vector<RetrievalHit> ranked = top_n_l1(entries.data(), n, length, hq.data(), n);
+    for (std::size_t k = 0; k < std::min<std::size_t>(3, ranked.size()); ++k)
+      if (library.patches[ranked[k].entry].label == query.label) {
         hit1[q] = hit1[q] || k == 0;
         hit3[q] = 1;
       }
+    for (const DistinctSuggestion& s : distinct_suggestions(ranked, labels, 3))
+      hit3d[q] = hit3d[q] || library.patches[s.entry].label == query.label;
   });
 
   LeaveFamilyOutResult r;
@@ -54,15 +59,19 @@ LeaveFamilyOutResult evaluate_leave_family_out(const RetrievalBenchmark& library
     ++r.class_size[c];
     r.class_top1[c] += hit1[q];
     r.class_top3[c] += hit3[q];
+    r.class_top3_distinct[c] += hit3d[q];
     r.top1 += hit1[q];
     r.top3 += hit3[q];
+    r.top3_distinct += hit3d[q];
   }
   for (auto& [c, size] : r.class_size) {
     r.class_top1[c] /= size;
     r.class_top3[c] /= size;
+    r.class_top3_distinct[c] /= size;
   }
   r.top1 /= static_cast<double>(nq);
   r.top3 /= static_cast<double>(nq);
+  r.top3_distinct /= static_cast<double>(nq);
   return r;
 }
 

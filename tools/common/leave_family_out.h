@@ -18,7 +18,10 @@ struct LeaveFamilyOutResult {
   int queries = 0, library_entries = 0;
   int failed_queries = 0;     // query patches that could not be cut at this radius (not counted)
   double top1 = 0, top3 = 0;  // share of queries whose first (any of the first 3) hit has their class
-  std::map<std::string, double> class_top1, class_top3;
+  // The same for the first 3 distinct suggestions (library/distinct_suggestions.h: one per class),
+  // what mcon_library_query_distinct returns.
+  double top3_distinct = 0;
+  std::map<std::string, double> class_top1, class_top3, class_top3_distinct;
   std::map<std::string, int> class_size;
 };
 

@@ -395,7 +395,7 @@ void run_leave_family_out(const EvalRetrievalCommand& cmd) {
   eo.rings = {static_cast<std::uint32_t>(cmd.rings)};
   const std::vector<tools::LeaveFamilyOutResult> results = tools::leave_family_out(cmd.options, eo);
   tools::Json runs = tools::Json::array(), overall = tools::Json::object();
-  std::map<double, std::array<double, 3>> by_scale;  // top-1 hits, top-3 hits, queries
+  std::map<double, std::array<double, 4>> by_scale;  // top-1 hits, top-3 hits, queries, distinct top-3 hits
   for (const tools::LeaveFamilyOutResult& r : results) {
     tools::Json j = tools::Json::object();
     j.set("library", r.library_model);
@@ -408,11 +408,14 @@ void run_leave_family_out(const EvalRetrievalCommand& cmd) {
     j.set("top3", r.top3);
     j.set("class_top1", class_rates(r.class_top1));
     j.set("class_top3", class_rates(r.class_top3));
+    j.set("top3_distinct", r.top3_distinct);
+    j.set("class_top3_distinct", class_rates(r.class_top3_distinct));
     runs.push_back(j);
     auto& s = by_scale[r.radius_scale];
     s[0] += r.top1 * r.queries;
     s[1] += r.top3 * r.queries;
     s[2] += r.queries;
+    s[3] += r.top3_distinct * r.queries;
     if (!cmd.json)
       std::printf("library %s, queries %s at radius x%.1f: top-1 %.3f, top-3 %.3f (%d queries, %d not cut)\n",
                   r.library_model.c_str(), r.query_model.c_str(), r.radius_scale, r.top1, r.top3, r.queries,
@@ -422,6 +425,7 @@ void run_leave_family_out(const EvalRetrievalCommand& cmd) {
     tools::Json j = tools::Json::object();
     j.set("top1", s[0] / s[2]);
     j.set("top3", s[1] / s[2]);
+    j.set("top3_distinct", s[3] / s[2]);
     char key[16];
     std::snprintf(key, sizeof key, "x%.1f", scale);
     overall.set(key, j);
