@@ -3,7 +3,7 @@
 // byte picks the format and whether the rest is stored as a `.gz` archive (the rest is then the
 // hostile archive itself). Any input must either read or throw mcon::Error with a status the
 // readers document (IO, UNSUPPORTED, the validation statuses of orient_and_validate, or
-// INVALID_ARGUMENT for coordinates outside the supported range); a crash,
+// INVALID_ARGUMENT for coordinates outside the supported range or a too small extent); a crash,
 // a sanitizer report, another exception or status is a finding, and so is an accepted mesh that
 // fails validate_mesh or whose vertex maps disagree with it.
 #include <cstdint>
@@ -18,11 +18,12 @@
 
 namespace {
 
-// INVALID_ARGUMENT only for coordinates outside the supported range (mesh/mesh.h, kMaxCoordinate):
-// with default options read_mesh has no other argument to reject.
+// INVALID_ARGUMENT only for coordinates outside the supported range (mesh/mesh.h, kMaxCoordinate
+// and kMinExtent; the message names "the supported range" or "the supported minimum"): with default
+// options read_mesh has no other argument to reject.
 bool documented(const mcon::Error& e) {
   switch (e.status()) {
-    case MCON_ERROR_INVALID_ARGUMENT: return std::string_view(e.what()).find("supported range") != std::string_view::npos;
+    case MCON_ERROR_INVALID_ARGUMENT: return std::string_view(e.what()).find("supported ") != std::string_view::npos;
     case MCON_ERROR_IO:
     case MCON_ERROR_UNSUPPORTED:
     case MCON_ERROR_NON_FINITE:
