@@ -325,6 +325,7 @@ namespace Macrocon
             public uint guidance_dimension; public double guidance_weight;
             public double refine_sigma_factor;
             public uint use_world_frame; public uint world_frame_mirror;
+            public double world_frame_anchor;
         }
 
         [StructLayout(LayoutKind.Sequential)]

@@ -34,6 +34,9 @@ namespace Macrocon
         /// positions is the rigid start and decides orientation (Info.FrameDecided); needs Automatic.
         /// WorldFrameMirror mirrors the source x -> -x first (a left part onto a right one).</summary>
         public bool UseWorldFrame, WorldFrameMirror;
+        /// <summary>With UseWorldFrame: weight (finite, >= 0; 0 = off) of the term keeping each source point near
+        /// its 3D closest target point after that alignment; null keeps the SDK default.</summary>
+        public double? WorldFrameAnchor;
     }
 
     /// <summary>Polylines re-traced on a target patch (every segment inside one target triangle).</summary>
@@ -101,6 +104,7 @@ namespace Macrocon
             o.orientation = (uint)settings.Orientation;
             o.use_world_frame = settings.UseWorldFrame ? 1u : 0u;
             o.world_frame_mirror = settings.WorldFrameMirror ? 1u : 0u;
+            if (settings.WorldFrameAnchor.HasValue) o.world_frame_anchor = settings.WorldFrameAnchor.Value;
             if (settings.RefineSigmaFactor.HasValue) o.refine_sigma_factor = settings.RefineSigmaFactor.Value;
             if ((settings.SourceGuidance == null) != (settings.TargetGuidance == null))
                 throw new ArgumentException("SourceGuidance and TargetGuidance must be given together");

@@ -623,6 +623,10 @@ typedef struct mcon_map_options {
    * right one). */
   uint32_t use_world_frame;
   uint32_t world_frame_mirror;
+  /* With use_world_frame: weight of the anchor term pulling every source point towards the target
+   * point closest to it in 3D after that ICP (docs/api.md); finite, >= 0, 0 = no anchor. Ignored
+   * without use_world_frame. Default 10. */
+  double world_frame_anchor;
 } mcon_map_options;
 
 MCON_API mcon_status mcon_map_options_init(mcon_map_options* options);

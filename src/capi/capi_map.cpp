@@ -44,6 +44,7 @@ mcon_map_options default_map_options() {
   o.orientation = MCON_MAP_ORIENTATION_AUTOMATIC;
   o.guidance_weight = 1.0;
   o.refine_sigma_factor = 0.5;
+  o.world_frame_anchor = PatchMapOptions{}.world_frame_anchor;
   return o;
 }
 
@@ -145,6 +146,9 @@ mcon_status mcon_map_compute(mcon_patch source, mcon_patch target, const mcon_ma
             "use_world_frame needs orientation AUTOMATIC (the frame decides the orientation)");
     po.use_world_frame = o.use_world_frame != 0;
     po.world_frame_mirror = o.world_frame_mirror != 0;
+    require(std::isfinite(o.world_frame_anchor) && o.world_frame_anchor >= 0, MCON_ERROR_INVALID_ARGUMENT,
+            "world_frame_anchor must be finite and >= 0 (0 = no anchor)");
+    po.world_frame_anchor = o.world_frame_anchor;
     Eigen::MatrixXd source_guidance, target_guidance;
     if (o.guidance_dimension == 0) {
       require(o.source_guidance == nullptr && o.target_guidance == nullptr, MCON_ERROR_INVALID_ARGUMENT,

@@ -47,19 +47,20 @@ void add_block_sums(const std::vector<double>& sums, const std::vector<int>& ind
 
 const std::vector<MapEnergyTerm>& map_energy_terms() {
   static const std::vector<MapEnergyTerm> terms = {
-      {"descriptor", &MapEnergyWeights::descriptor, nullptr},
-      {"distortion", &MapEnergyWeights::distortion,
+      {"descriptor", &MapEnergyWeights::descriptor, MapTermDomain::descriptor, nullptr},
+      {"distortion", &MapEnergyWeights::distortion, MapTermDomain::triangle,
        [](const Eigen::Matrix2d& J, const MapEnergyWeights&, Eigen::Vector4d* g, Eigen::Matrix4d* h) {
          return conformal_distortion(J, g, h);
        }},
-      {"area", &MapEnergyWeights::area,
+      {"area", &MapEnergyWeights::area, MapTermDomain::triangle,
        [](const Eigen::Matrix2d& J, const MapEnergyWeights&, Eigen::Vector4d* g, Eigen::Matrix4d* h) {
          return area_distortion(J, g, h);
        }},
-      {"injectivity", &MapEnergyWeights::injectivity,
+      {"injectivity", &MapEnergyWeights::injectivity, MapTermDomain::triangle,
        [](const Eigen::Matrix2d& J, const MapEnergyWeights& w, Eigen::Vector4d* g, Eigen::Matrix4d* h) {
          return injectivity_barrier(J, w.barrier_start, g, h);
        }},
+      {"anchor", &MapEnergyWeights::anchor, MapTermDomain::anchor, nullptr},
   };
   return terms;
 }
@@ -198,8 +199,16 @@ Eigen::Matrix2d project_psd(const Eigen::Matrix2d& h) {
 
 MapEnergy::MapEnergy(const SourceDisk& source, const DescriptorField2D& target_field,
                      const Eigen::MatrixXd& source_values, const ScoreSettings& score,
-                     const MapEnergyWeights& weights)
+                     const MapEnergyWeights& weights, const MapAnchor* anchor)
     : source_(&source), field_(&target_field), score_(score), weights_(weights) {
+  require(weights.anchor >= 0 && std::isfinite(weights.anchor), MCON_ERROR_INVALID_ARGUMENT,
+          "map energy: the anchor weight must be finite and >= 0");
+  if (weights.anchor > 0) {
+    require(anchor != nullptr && anchor->position.size() == static_cast<std::size_t>(source.num_vertices) &&
+                anchor->weight.size() == anchor->position.size(),
+            MCON_ERROR_INVALID_ARGUMENT, "map energy: an anchor weight > 0 needs one anchor position and weight per source vertex");
+    anchor_ = anchor;
+  }
   require(source_values.rows() == source.num_vertices, MCON_ERROR_INVALID_ARGUMENT,
           "map energy: one source descriptor row per vertex expected");
   require(source_values.cols() == target_field.dimension(), MCON_ERROR_INVALID_ARGUMENT,
@@ -215,8 +224,10 @@ MapEnergy::TriangleTermSet MapEnergy::triangle_terms() const {
   TriangleTermSet set;
   const std::vector<MapEnergyTerm>& terms = map_energy_terms();
   for (std::size_t i = 0; i < terms.size(); ++i) {
-    if (terms[i].triangle_energy == nullptr) {
+    if (terms[i].domain == MapTermDomain::descriptor) {
       set.descriptor = static_cast<int>(i);
+    } else if (terms[i].domain == MapTermDomain::anchor) {
+      set.anchor = static_cast<int>(i);
     } else {
       set.index.push_back(static_cast<int>(i));
       set.energy.push_back(terms[i].triangle_energy);
@@ -260,9 +271,23 @@ MapEnergyTerms MapEnergy::evaluate(const Eigen::VectorXd& x) const {
                                            Vec2(x[2 * v], x[2 * v + 1]), score_, false, scratch.data());
     return s.vertex_weight[v] * (1.0 - sample.score);
   });
+  if (anchor_) terms.values[tt.anchor] = anchor_energy(x, nullptr, nullptr);
   terms.total = weighted_total(terms.values);
   if (!std::isfinite(terms.total)) terms.total = kInf;
   return terms;
+}
+
+// E_p = sum_v A_v m_v |x_v - p_v|^2; gradient 2 alpha_p A_v m_v (x_v - p_v), Hessian 2 alpha_p A_v m_v I.
+double MapEnergy::anchor_energy(const Eigen::VectorXd& x, std::vector<Vec2>* gradient,
+                                std::vector<Eigen::Matrix2d>* hessians) const {
+  const SourceDisk& s = *source_;
+  return deterministic_sum(s.num_vertices, kVertexBlock, [&](int v) {
+    const double w = s.vertex_weight[v] * anchor_->weight[v];
+    const Vec2 d = Vec2(x[2 * v], x[2 * v + 1]) - anchor_->position[v];
+    if (gradient) (*gradient)[v] += 2 * weights_.anchor * w * d;
+    if (hessians) (*hessians)[v] += 2 * weights_.anchor * w * Eigen::Matrix2d::Identity();
+    return w * d.squaredNorm();
+  });
 }
 
 void MapEnergy::derivatives(const Eigen::VectorXd& x, Derivatives& out) const {
@@ -314,6 +339,7 @@ void MapEnergy::derivatives(const Eigen::VectorXd& x, Derivatives& out) const {
     out.vertex_hessians[v] = project_psd(Eigen::Matrix2d(-w * sample.hessian));
     return s.vertex_weight[v] * (1.0 - sample.score);
   });
+  if (anchor_) terms.values[tt.anchor] = anchor_energy(x, &vert_grad, &out.vertex_hessians);
   terms.total = weighted_total(terms.values);
   out.terms = terms;
   // Gather in a fixed order (deterministic).

@@ -27,6 +27,13 @@
 //  injectivity  E_f = sum_t A_t b(det J / s_f),  b(q) = -(q - 1)^2 log q for q < 1, else 0
 //    A C2 version of the truncated log barrier of eq. 4.12: +infinity at inversion (so phi
 //    stays locally injective), no effect while the area ratio stays above s_f.
+//  anchor       E_p = sum_v A_v m_v |x_v - p_v|^2                      (not in the thesis)
+//    A pull towards given positions p_v (MapAnchor): with a shared world frame, where the 3D
+//    closest-point map puts each source vertex (docs/design.md §11). The descriptor term alone
+//    can leave that start's basin (two eyes: start 6.5 -> optimized 37 eps x 100); the anchor keeps
+//    the map near what proximity transfer gives and lets the descriptors refine it. m_v in [0, 1]
+//    drops vertices the anchor does not know (their closest point on the target's rim). Weight 0
+//    (the default) leaves the energy as it was.
 //
 // The Hessian model is per element, each projected to positive semi-definite (docs/design.md §2).
 #pragma once
@@ -47,17 +54,28 @@ struct MapEnergyWeights {
   double area = 0.15;          // alpha_a: area distortion
   double injectivity = 0.01;   // alpha_f
   double barrier_start = 0.5;  // s_f: area ratio det J_phi below which the barrier acts
+  double anchor = 0.0;         // alpha_p: pull towards MapAnchor positions (0 = off)
+};
+
+// Where the anchor term pulls each source vertex: a position in the target disk's plane and a
+// weight m_v in [0, 1] (0 = not anchored).
+struct MapAnchor {
+  std::vector<Vec2> position;
+  std::vector<double> weight;
 };
 
 // The terms of the energy, in evaluation and summation order: the descriptor term (per source
-// vertex) first, then the terms of the Jacobian J of phi on each source triangle. The table lives
-// in map_energy.cpp; a new term is one row there plus its weight in MapEnergyWeights.
+// vertex) first, then the terms of the Jacobian J of phi on each source triangle, then the
+// anchor (per source vertex; last so that the indices of the older terms stay). The table lives
+// in map_energy.cpp; a new triangle term is one row there plus its weight in MapEnergyWeights.
 using TriangleEnergy = double (*)(const Eigen::Matrix2d& J, const MapEnergyWeights& weights,
                                   Eigen::Vector4d* gradient, Eigen::Matrix4d* hessian);
+enum class MapTermDomain { descriptor, triangle, anchor };
 struct MapEnergyTerm {
   const char* name;
   double MapEnergyWeights::*weight;
-  TriangleEnergy triangle_energy;  // nullptr for the descriptor term
+  MapTermDomain domain;
+  TriangleEnergy triangle_energy;  // nullptr unless domain == triangle
 };
 const std::vector<MapEnergyTerm>& map_energy_terms();
 // Index of the term named `name` in map_energy_terms(); -1 if there is none.
@@ -110,9 +128,10 @@ using Vector6d = Eigen::Matrix<double, 6, 1>;
 class MapEnergy {
  public:
   // All references must outlive the energy. source_values: one row per source vertex, same
-  // columns as the field.
+  // columns as the field. anchor: one position and weight per source vertex; needed (non-null)
+  // when weights.anchor > 0, ignored otherwise.
   MapEnergy(const SourceDisk& source, const DescriptorField2D& target_field, const Eigen::MatrixXd& source_values,
-            const ScoreSettings& score, const MapEnergyWeights& weights);
+            const ScoreSettings& score, const MapEnergyWeights& weights, const MapAnchor* anchor = nullptr);
 
   int num_variables() const { return 2 * source_->num_vertices; }
   const SourceDisk& source() const { return *source_; }
@@ -132,18 +151,23 @@ class MapEnergy {
   // The triangle rows of map_energy_terms(), resolved against the weights once per evaluation.
   struct TriangleTermSet {
     int descriptor = 0;               // index of the descriptor term
+    int anchor = -1;                  // index of the anchor term
     std::vector<int> index;           // index of each triangle term in map_energy_terms()
     std::vector<TriangleEnergy> energy;
     std::vector<double> weight;
   };
   TriangleTermSet triangle_terms() const;
   double weighted_total(const std::vector<double>& values) const;
+  // The anchor term's value; its weighted gradient and PSD Hessian blocks are added if non-null.
+  double anchor_energy(const Eigen::VectorXd& x, std::vector<Vec2>* gradient,
+                       std::vector<Eigen::Matrix2d>* hessians) const;
 
   const SourceDisk* source_;
   const DescriptorField2D* field_;
   std::vector<double> values_;  // source descriptors, row-major n * d for contiguous access
   ScoreSettings score_;
   MapEnergyWeights weights_;
+  const MapAnchor* anchor_ = nullptr;  // null when weights_.anchor == 0
 };
 
 }  // namespace mcon

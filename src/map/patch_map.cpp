@@ -1,12 +1,14 @@
 #include "map/patch_map.h"
 
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "descriptors/descriptor_pyramid.h"
 #include "base/error.h"
 #include "map/map_channels.h"
 #include "map/similarity_icp.h"
+#include "mesh/mesh_topology.h"
 
 namespace mcon {
 
@@ -58,18 +60,33 @@ double fit_rigid_2d(const std::vector<Vec2>& a0, const std::vector<Vec2>& b, con
   return residual;
 }
 
+// Whether a closest point lies on the target's boundary: its nonzero barycentric corners are all
+// boundary vertices (a boundary vertex, or a point on an edge between two of them).
+bool on_rim(const Tri& t, const Vec3& w, const std::vector<char>& boundary) {
+  for (int c = 0; c < 3; ++c)
+    if (w[c] > 1e-9 && !boundary[t[c]]) return false;
+  return true;
+}
+
 }  // namespace
 
-RigidTransform2D world_frame_start(const Patch& source, const Patch& target, bool mirror_x) {
+WorldFrame world_frame(const Patch& source, const Patch& target, bool mirror_x) {
   TriMesh s = host_mesh(source);
   if (mirror_x)
     for (Vec3& p : s.positions) p.x() = -p.x();
   const SimilarityIcpResult icp = similarity_icp(s, host_mesh(target));
-  std::vector<Vec2> b(icp.closest.size());
+  std::vector<char> boundary(target.uv.size(), 0);
+  for (const std::vector<int>& loop : build_topology(target.mesh).boundary_loops)
+    for (const int v : loop) boundary[v] = 1;
+  WorldFrame frame;
+  std::vector<Vec2>& b = frame.anchor.position;
+  b.resize(icp.closest.size());
+  frame.anchor.weight.resize(icp.closest.size());
   for (std::size_t v = 0; v < b.size(); ++v) {
     const Tri& t = target.mesh.triangles[icp.closest[v].triangle];
     const Vec3& w = icp.closest[v].barycentric;
     b[v] = w[0] * target.uv[t[0]] + w[1] * target.uv[t[1]] + w[2] * target.uv[t[2]];
+    frame.anchor.weight[v] = on_rim(t, w, boundary) ? 0.0 : 1.0;
   }
   std::vector<double> weight(source.mesh.positions.size(), 0.0);
   for (int t = 0; t < source.mesh.num_triangles(); ++t)
@@ -77,7 +94,12 @@ RigidTransform2D world_frame_start(const Patch& source, const Patch& target, boo
   RigidTransform2D plain, mirrored;
   const double rp = fit_rigid_2d(source.uv, b, weight, false, plain);
   const double rm = fit_rigid_2d(source.uv, b, weight, true, mirrored);
-  return rm < rp ? mirrored : plain;
+  frame.start = rm < rp ? mirrored : plain;
+  return frame;
+}
+
+RigidTransform2D world_frame_start(const Patch& source, const Patch& target, bool mirror_x) {
+  return world_frame(source, target, mirror_x).start;
 }
 
 SurfaceMap map_patches(const Patch& source, const Patch& target, const PatchMapOptions& options) {
@@ -130,7 +152,16 @@ SurfaceMap map_patches(const Patch& source, const Patch& target, const PatchMapO
   const std::vector<Eigen::MatrixXd> target_levels = descriptor_pyramid(target.mesh, t, options.pyramid_sigmas);
   SurfaceMapOptions map_options = options.map;
   if (!chiral_columns.empty()) map_options.chiral_columns = chiral_columns;
-  if (options.use_world_frame) map_options.frame_start = world_frame_start(source, target, options.world_frame_mirror);
+  require(options.world_frame_anchor >= 0 && std::isfinite(options.world_frame_anchor), MCON_ERROR_INVALID_ARGUMENT,
+          "map_patches: the world-frame anchor weight must be finite and >= 0");
+  if (options.use_world_frame) {
+    WorldFrame frame = world_frame(source, target, options.world_frame_mirror);
+    map_options.frame_start = frame.start;
+    if (options.world_frame_anchor > 0) {
+      map_options.weights.anchor = options.world_frame_anchor;
+      map_options.anchor = std::move(frame.anchor);
+    }
+  }
   return compute_surface_map({source.mesh, source.uv, source_levels}, {target.mesh, target.uv, target_levels},
                              map_options);
 }

@@ -53,11 +53,27 @@ struct PatchMapOptions {
   // frame-free behaviour. Requires map.orientation automatic.
   bool use_world_frame = false;
   bool world_frame_mirror = false;
+  // With use_world_frame: the weight of the anchor term (map_energy.h) pulling every source
+  // vertex towards the target uv of its 3D closest point after the ICP (WorldFrame::anchor); 0
+  // turns it off. Ignored without use_world_frame. 10 (with SurfaceMapOptions::anchor_decay
+  // 0.25): chosen among five settings on eval-mapping, in-family and --cross-family (docs/design.md §11).
+  double world_frame_anchor = 10.0;
 };
 
-// The world-frame start alone: ICP of source onto target in host coordinates, then the
-// area-weighted 2D Procrustes fit (rotation + translation, plain or mirrored, whichever leaves
-// the smaller residual) taking each source vertex's uv to the target uv of its closest point.
+// The world frame's view of a pair: the rigid start and, per source vertex, the target uv of its
+// closest point after the ICP (weight 0 where that point lies on the target's rim: the source
+// reaches beyond the target there, and the rim is not its correspondent).
+struct WorldFrame {
+  RigidTransform2D start;
+  MapAnchor anchor;
+};
+
+// ICP of source onto target in host coordinates, then the area-weighted 2D Procrustes fit
+// (rotation + translation, plain or mirrored, whichever leaves the smaller residual) taking each
+// source vertex's uv to the target uv of its closest point.
+WorldFrame world_frame(const Patch& source, const Patch& target, bool mirror_x);
+
+// The world-frame start alone (world_frame(...).start).
 RigidTransform2D world_frame_start(const Patch& source, const Patch& target, bool mirror_x);
 
 // Maps `source` onto `target` (both from extract_geodesic_disk, normalized to radius 1).

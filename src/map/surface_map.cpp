@@ -110,6 +110,18 @@ void check_inputs(const MapDomain& source, const MapDomain& target, const Surfac
                                    std::isfinite(options.frame_start->angle) &&
                                    options.frame_start->translation.allFinite()),
           MCON_ERROR_INVALID_ARGUMENT, "invalid map options: a frame start needs automatic orientation and finite values");
+  require(options.weights.anchor >= 0 && std::isfinite(options.weights.anchor), MCON_ERROR_INVALID_ARGUMENT,
+          "invalid map options: the anchor weight must be finite and >= 0");
+  require(options.anchor_decay > 0 && options.anchor_decay <= 1, MCON_ERROR_INVALID_ARGUMENT,
+          "invalid map options: anchor_decay must be in (0, 1]");
+  if (options.weights.anchor > 0) {
+    const std::size_t n = source.uv.size();
+    require(options.anchor.position.size() == n && options.anchor.weight.size() == n, MCON_ERROR_INVALID_ARGUMENT,
+            "invalid map options: an anchor weight > 0 needs one anchor position and weight per source vertex");
+    for (std::size_t v = 0; v < n; ++v)
+      require(options.anchor.position[v].allFinite() && options.anchor.weight[v] >= 0 && options.anchor.weight[v] <= 1,
+              MCON_ERROR_INVALID_ARGUMENT, "invalid map options: anchor positions must be finite, weights in [0, 1]");
+  }
 }
 
 // The target's single boundary loop in uv, which must lie on the unit circle counter-clockwise.
@@ -240,8 +252,10 @@ NewtonReport run_level(const Stages& st, int s, const SourceDisk& disk, Eigen::V
                        double progress_from, double progress_to) {
   const SurfaceMapOptions& options = st.options;
   const int l = std::min(s, st.L - 1);
+  MapEnergyWeights weights = options.weights;
+  weights.anchor *= std::pow(options.anchor_decay, s);
   const MapEnergy energy(disk, *st.levels.fields[l], source_values(st.source, st.levels, l, disk.reflected),
-                         stage_score(st, s), options.weights);
+                         stage_score(st, s), weights, &options.anchor);
   bool cancelled = false;
   NewtonOptions newton = options.newton;
   if (s >= st.L) newton.max_iterations = std::min(newton.max_iterations, options.refine_max_iterations);
@@ -339,7 +353,7 @@ void run_remaining_levels(const Stages& st, Candidate& chosen) {
 MapEnergyTerms finest_level_terms(const Stages& st, const SourceDisk& disk, const Eigen::VectorXd& x) {
   const int L = st.L;
   return MapEnergy(disk, *st.levels.fields[L - 1], source_values(st.source, st.levels, L - 1, disk.reflected),
-                   stage_score(st, L - 1), st.options.weights)
+                   stage_score(st, L - 1), st.options.weights, &st.options.anchor)
       .evaluate(x);
 }
 

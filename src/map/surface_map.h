@@ -77,6 +77,13 @@ struct SurfaceMapOptions {
   // set, it is the start and decides the orientation (no comparison, `orientation` must be
   // automatic); the descriptor search still runs and its scores are reported.
   std::optional<RigidTransform2D> frame_start;
+  // The anchor term's positions (map_energy.h), one per source vertex; read when
+  // weights.anchor > 0 (map_patches fills it from the world frame's closest points).
+  MapAnchor anchor;
+  // The anchor weight of stage s is weights.anchor * anchor_decay^s: a strong pull at the
+  // smoothest level keeps the map in the anchor's basin, the finer stages let the descriptors
+  // move it (in (0, 1]; docs/design.md §11).
+  double anchor_decay = 0.25;
   // Progress in [0, 1] on the calling thread; returning false throws MCON_ERROR_CANCELLED.
   std::function<bool(double)> progress;
 };

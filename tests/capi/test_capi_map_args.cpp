@@ -710,6 +710,41 @@ TEST_F(CapiMapArgs, WorldFrameStartIsOptInAndReported) {
   EXPECT_EQ(short_info.frame_decided, 7u);
 }
 
+TEST_F(CapiMapArgs, WorldFrameAnchorIsCheckedAndDefaulted) {
+  // The default comes from mcon_map_options_init; 0 turns the anchor off (a different map here);
+  // negative or non-finite is refused naming the field; a caller compiled before the field gets
+  // the default.
+  mcon_map_options o;
+  ASSERT_EQ(mcon_map_options_init(&o), MCON_OK);
+  EXPECT_GT(o.world_frame_anchor, 0.0);
+  auto phi_of = [&](const mcon_map_options& opts) {
+    mcon_map m = nullptr;
+    EXPECT_EQ(mcon_map_compute(source_, target_, &opts, &m), MCON_OK) << last_message();
+    const MapPtr owned(m);
+    std::vector<double> phi(2 * ns_);
+    EXPECT_EQ(mcon_map_get_phi(m, phi.data(), phi.size()), MCON_OK);
+    return phi;
+  };
+  mcon_map_options on = fast_options();
+  on.use_world_frame = 1;
+  const std::vector<double> anchored = phi_of(on);
+  mcon_map_options off = on;
+  off.world_frame_anchor = 0;
+  EXPECT_NE(phi_of(off), anchored);
+  mcon_map_options old = on;
+  old.struct_size = static_cast<uint32_t>(offsetof(mcon_map_options, world_frame_anchor));
+  old.world_frame_anchor = -3;  // beyond the caller's struct: not read
+  EXPECT_EQ(phi_of(old), anchored);
+  for (const double bad : {-1.0, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    mcon_map_options b = on;
+    b.world_frame_anchor = bad;
+    mcon_map m = reinterpret_cast<mcon_map>(&m);
+    EXPECT_EQ(mcon_map_compute(source_, target_, &b, &m), MCON_ERROR_INVALID_ARGUMENT) << bad;
+    EXPECT_EQ(m, nullptr);
+    EXPECT_TRUE(mentions("world_frame_anchor")) << last_message();
+  }
+}
+
 // A disk from arrays whose triangles disagree is repaired to the majority (a disk has no inside:
 // an all-reversed disk stays as given), the center stays the caller's point, and the patch info
 // reports the repair.

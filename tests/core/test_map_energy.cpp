@@ -234,13 +234,15 @@ TEST(MapEnergy, TermTableNamesEachTermOnceWithTheDescriptorFirst) {
   ASSERT_GE(terms.size(), 4u);
   EXPECT_STREQ(terms[0].name, "descriptor");
   EXPECT_EQ(terms[0].triangle_energy, nullptr);
+  EXPECT_EQ(terms[0].domain, MapTermDomain::descriptor);
   for (std::size_t i = 0; i < terms.size(); ++i) {
     EXPECT_EQ(map_energy_term_index(terms[i].name), static_cast<int>(i));
-    if (i > 0) {
-      EXPECT_NE(terms[i].triangle_energy, nullptr) << terms[i].name;
-    }
+    // Exactly the triangle terms have a triangle energy.
+    EXPECT_EQ(terms[i].triangle_energy != nullptr, terms[i].domain == MapTermDomain::triangle) << terms[i].name;
   }
   for (const char* name : {"distortion", "area", "injectivity"}) EXPECT_GE(map_energy_term_index(name), 1) << name;
+  // The anchor came after the first four: their indices (the C API's term order) stay.
+  EXPECT_EQ(map_energy_term_index("anchor"), 4);
   EXPECT_EQ(map_energy_term_index("bogus"), -1);
 }
 
@@ -273,6 +275,65 @@ TEST(MapEnergy, TotalIsTheWeightedSumOfTheTermValues) {
   EXPECT_GT(t.value("area"), 0);  // the disk was shrunk to 0.8: the area term sees it
   EXPECT_EQ(t.value("descriptor"), t.values[0]);
   EXPECT_THROW(t.value("bogus"), Error);
+}
+
+TEST(MapEnergy, AnchorTermIsTheWeightedSquaredDistanceToItsPositions) {
+  synthetic::GroundTruth truth;
+  truth.angle = 0.2;
+  const synthetic::Problem pr = synthetic::make_problem(6, 5, truth, 2, {0.0});
+  const TriangleLocator2D locator(pr.target_uv, pr.target.triangles);
+  const DescriptorField2D field(locator, pr.target_levels[0]);
+  const SourceDisk disk = make_source_disk(pr.source, pr.source_uv, false);
+  ScoreSettings score;
+  score.sigma = 0.3;
+  const int n = disk.num_vertices;
+  MapAnchor anchor;
+  for (int v = 0; v < n; ++v) {
+    anchor.position.push_back(rotation(0.25) * pr.source_uv[v] + Vec2(0.03, -0.02));
+    anchor.weight.push_back(v % 3 == 0 ? 0.0 : (v % 3 == 1 ? 1.0 : 0.5));
+  }
+  Eigen::VectorXd x(2 * n);
+  for (int v = 0; v < n; ++v) x.segment<2>(2 * v) = 0.9 * rotation(0.2) * pr.source_uv[v];
+  MapEnergyWeights off;
+  MapEnergyWeights on = off;
+  on.anchor = 2.5;
+  // Weight 0 (the default): the term is 0 and the total is what it was without an anchor.
+  const MapEnergyTerms t_off = MapEnergy(disk, field, pr.source_levels[0], score, off, &anchor).evaluate(x);
+  const MapEnergyTerms t_none = MapEnergy(disk, field, pr.source_levels[0], score, off).evaluate(x);
+  EXPECT_EQ(t_off.value("anchor"), 0.0);
+  EXPECT_EQ(t_off.total, t_none.total);
+  // E_p = sum_v A_v m_v |x_v - p_v|^2, added with its weight.
+  const MapEnergy energy(disk, field, pr.source_levels[0], score, on, &anchor);
+  const MapEnergyTerms t = energy.evaluate(x);
+  double expected = 0;
+  for (int v = 0; v < n; ++v)
+    expected += disk.vertex_weight[v] * anchor.weight[v] * (x.segment<2>(2 * v) - anchor.position[v]).squaredNorm();
+  EXPECT_NEAR(t.value("anchor"), expected, 1e-14);
+  EXPECT_GT(expected, 0);
+  EXPECT_NEAR(t.total, t_none.total + on.anchor * expected, 1e-12);
+  // Its gradient and Hessian: the difference of the derivatives with and without it.
+  MapEnergy::Derivatives d_on, d_off;
+  energy.derivatives(x, d_on);
+  MapEnergy(disk, field, pr.source_levels[0], score, off).derivatives(x, d_off);
+  for (int v = 0; v < n; ++v) {
+    const double w = 2 * on.anchor * disk.vertex_weight[v] * anchor.weight[v];
+    const Vec2 g = d_on.gradient.segment<2>(2 * v) - d_off.gradient.segment<2>(2 * v);
+    EXPECT_NEAR((g - w * (x.segment<2>(2 * v) - anchor.position[v])).norm(), 0, 1e-12) << v;
+    EXPECT_NEAR((d_on.vertex_hessians[v] - d_off.vertex_hessians[v] - w * Eigen::Matrix2d::Identity()).norm(), 0,
+                1e-12) << v;
+  }
+  // At its positions the term vanishes.
+  Eigen::VectorXd at(2 * n);
+  for (int v = 0; v < n; ++v) at.segment<2>(2 * v) = anchor.position[v];
+  EXPECT_EQ(energy.evaluate(at).value("anchor"), 0.0);
+  // A weight without positions, or with the wrong count, or a negative weight: INVALID_ARGUMENT.
+  EXPECT_THROW(MapEnergy(disk, field, pr.source_levels[0], score, on), Error);
+  MapAnchor short_anchor = anchor;
+  short_anchor.position.pop_back();
+  EXPECT_THROW(MapEnergy(disk, field, pr.source_levels[0], score, on, &short_anchor), Error);
+  MapEnergyWeights negative = off;
+  negative.anchor = -1;
+  EXPECT_THROW(MapEnergy(disk, field, pr.source_levels[0], score, negative, &anchor), Error);
 }
 
 }  // namespace

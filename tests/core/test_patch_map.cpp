@@ -166,3 +166,84 @@ TEST(PatchMap, WorldFrameStartDecidesWhenAsked) {
   o.map.orientation = MapOrientation::preserve;
   EXPECT_EQ(map_status(p, q, o), MCON_ERROR_INVALID_ARGUMENT);
 }
+
+namespace {
+
+// The same patch with its disk parametrization twisted (angle + 1.2 r (1 - r), centre and rim
+// kept): a non-rigid change of the target's uv that a flat disk's descriptors (all functions of
+// the distance to the centre) cannot see.
+Patch with_warped_uv(Patch p) {
+  for (Vec2& q : p.uv) {
+    const double r = q.norm(), a = 1.2 * r * (1 - r), c = std::cos(a), s = std::sin(a);
+    q = Vec2(c * q.x() - s * q.y(), s * q.x() + c * q.y());
+  }
+  return p;
+}
+
+double worst_distance(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
+  double worst = 0;
+  for (std::size_t v = 0; v < a.size(); ++v) worst = std::max(worst, (a[v] - b[v]).norm());
+  return worst;
+}
+
+
+// Mean distance over the vertices with |b| < 0.8 (off the rim, which is not anchored).
+double interior_mean_distance(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
+  double sum = 0;
+  int n = 0;
+  for (std::size_t v = 0; v < a.size(); ++v)
+    if (b[v].norm() < 0.8) {
+      sum += (a[v] - b[v]).norm();
+      ++n;
+    }
+  return sum / std::max(n, 1);
+}
+
+}  // namespace
+
+// The world frame's anchor: every vertex onto itself (the same surface in 3D), its position the
+// target's uv of that vertex; the rim's vertices are not anchored (their closest point is the rim).
+TEST(PatchMap, WorldFrameAnchorIsTheClosestPointsUvOffTheRim) {
+  const Patch p = flat_patch();
+  const Patch q = with_warped_uv(p);
+  const WorldFrame frame = world_frame(p, q, false);
+  ASSERT_EQ(frame.anchor.position.size(), p.uv.size());
+  EXPECT_LT(worst_distance(frame.anchor.position, q.uv), 1e-9);
+  for (std::size_t v = 0; v < p.uv.size(); ++v)
+    EXPECT_EQ(frame.anchor.weight[v], std::abs(p.uv[v].norm() - 1) < 1e-9 ? 0.0 : 1.0) << v;
+}
+
+// The anchor pulls the map towards its positions: here positions shifted off the true
+// correspondence (the same disk) by 0.08; a heavy anchor moves the map most of the way there.
+TEST(PatchMap, AnchorPullsTheMapTowardsItsPositions) {
+  const Patch p = flat_patch();
+  PatchMapOptions o = quick_options();
+  o.map.orientation = MapOrientation::preserve;
+  MapAnchor anchor;
+  for (const Vec2& u : p.uv) {
+    anchor.position.push_back(u + Vec2(0.08, 0.0));
+    anchor.weight.push_back(1.0);
+  }
+  const SurfaceMap free_map = map_patches(p, p, o);
+  o.map.anchor = anchor;
+  o.map.weights.anchor = 200;
+  const SurfaceMap anchored = map_patches(p, p, o);
+  EXPECT_GT(anchored.energy.value("anchor"), 0.0);
+  EXPECT_EQ(free_map.energy.value("anchor"), 0.0);
+  const double e_free = interior_mean_distance(free_map.phi, anchor.position);
+  const double e_anchored = interior_mean_distance(anchored.phi, anchor.position);
+  EXPECT_GT(e_free, 0.06);
+  EXPECT_LT(e_anchored, 0.5 * e_free) << e_anchored << " vs " << e_free;
+  o.map.weights.anchor = -1;
+  EXPECT_EQ(map_status(p, p, o), MCON_ERROR_INVALID_ARGUMENT);
+  o.map.weights.anchor = 1;
+  o.map.anchor.weight[3] = 2;  // outside [0, 1]
+  EXPECT_EQ(map_status(p, p, o), MCON_ERROR_INVALID_ARGUMENT);
+  o.map.anchor.position.pop_back();
+  EXPECT_EQ(map_status(p, p, o), MCON_ERROR_INVALID_ARGUMENT);
+  // The world-frame weight is checked too.
+  PatchMapOptions w = quick_options();
+  w.use_world_frame = true;
+  w.world_frame_anchor = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(map_status(p, p, w), MCON_ERROR_INVALID_ARGUMENT);
+}

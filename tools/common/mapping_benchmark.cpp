@@ -403,11 +403,14 @@ void run_proximity(const PairPatches& pp, bool mirrored, PairMaps& maps, Mapping
 
 // macrocon-frame: the SDK's map with the 3D-aligned start (PatchMapOptions::use_world_frame),
 // the source mirrored x -> -x first for a mirrored pair, as for proximity.
-void run_frame(const PairPatches& pp, bool mirrored, PairMaps& maps, std::map<std::string, MethodPairResult>& res) {
+void run_frame(const MappingEvalOptions& options, const PairPatches& pp, bool mirrored, PairMaps& maps,
+               std::map<std::string, MethodPairResult>& res) {
   PatchMapOptions fo;
   fo.map.alignment = maps.alignment;
   fo.use_world_frame = true;
   fo.world_frame_mirror = mirrored;
+  if (options.frame_anchor >= 0) fo.world_frame_anchor = options.frame_anchor;
+  if (options.frame_anchor_decay > 0) fo.map.anchor_decay = options.frame_anchor_decay;
   const auto t0 = std::chrono::steady_clock::now();
   const SurfaceMap fm = map_patches(pp.src.patch, pp.dst.patch, fo);
   maps.phi["macrocon-frame"] = fm.phi;
@@ -561,7 +564,7 @@ void evaluate_pair(const Model& model, const MappingSlot& slot, int i, const Map
   PairMaps maps = unguided_maps(pp, options, res);
   if (wants(options, "proximity")) run_proximity(pp, slot.mirrored, maps, res);
   if (wants(options, "macrocon-frame") || wants(options, "frame-rigid"))
-    run_frame(pp, slot.mirrored, maps, res.methods);
+    run_frame(options, pp, slot.mirrored, maps, res.methods);
   if (wants(options, "oracle"))
     run_guided("oracle", pp, oracle_guidance(model, pp.src.host, slot.mirrored), oracle_guidance(model, pp.dst.host, false),
                kOracleGuidanceWeight, maps, res);
@@ -826,7 +829,7 @@ void evaluate_cross_family_pair(const Model& src_model, const Model& dst_model, 
   PairMaps maps = unguided_maps(pp, options, scratch);
   if (wants(options, "proximity")) run_proximity(pp, res.slot.mirrored, maps, scratch);
   if (wants(options, "macrocon-frame") || wants(options, "frame-rigid"))
-    run_frame(pp, res.slot.mirrored, maps, scratch.methods);
+    run_frame(options, pp, res.slot.mirrored, maps, scratch.methods);
   res.orientation_note = scratch.orientation_note;
   const TriangleLocator2D locator(pp.dst.patch.uv, pp.dst.patch.mesh.triangles);
   const HeatGeodesics heat(pp.dst.patch.mesh);

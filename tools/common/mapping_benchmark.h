@@ -53,6 +53,9 @@ struct MappingEvalOptions {
   int max_evaluated_vertices = 300;      // per pair, deterministic stride subsample
   int threads = 2;
   int landmarks = 4;                     // corresponding points of the `landmarks` method
+  // macrocon-frame's anchor weight (PatchMapOptions::world_frame_anchor); < 0: the SDK default.
+  double frame_anchor = -1;
+  double frame_anchor_decay = -1;  // its decay per stage (SurfaceMapOptions::anchor_decay); < 0: default
   std::function<void(const std::string&)> log;  // one line per pair (stderr in the CLI)
 };
 

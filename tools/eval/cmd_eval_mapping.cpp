@@ -1,4 +1,5 @@
 // `macrocon-eval eval-mapping`: map quality on ground truth (tools/common/mapping_benchmark.h).
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 #include <string>
@@ -26,7 +27,9 @@ const char* kUsage =
     "Only when asked for: macrocon-frame = the SDK's map with the 3D-aligned start (use_world_frame: the\n"
     "ICP alignment expressed in the two disk parametrizations is the rigid start and decides orientation\n"
     "and reflection; a mirrored pair's source mirrored x -> -x first), beside the frame-free macrocon;\n"
-    "frame-rigid = that start alone (what rigid is to macrocon).\n"
+    "frame-rigid = that start alone (what rigid is to macrocon). --frame-anchor W: macrocon-frame's\n"
+    "anchor weight (world_frame_anchor; default the SDK's, 0 = no anchor), --frame-anchor-decay D its\n"
+    "factor per stage (default the SDK's).\n"
     "Diagnostic method, only when asked for (--method macrocon,oracle): oracle = the SDK's map with\n"
     "the ground-truth correspondents' base-mesh positions as extra guidance channels, i.e. what the\n"
     "optimizer and its distortion prior reach when the descriptors are unambiguous; landmarks = the\n"
@@ -92,7 +95,7 @@ int run_eval_mapping(const Args& args) {
   }
   const ArgParser p(args,
                     {"shared", "seed", "pairs", "classes", "method", "samples", "thesis-iterations", "eval-vertices",
-                     "threads", "landmarks", "noise", "density"},
+                     "threads", "landmarks", "noise", "density", "frame-anchor", "frame-anchor-decay"},
                     {"json", "quiet", "cross-family", "flip-winding"});
   tools::MappingEvalOptions o;
   o.shared_dir = p.required("shared");
@@ -114,6 +117,16 @@ int run_eval_mapping(const Args& args) {
               o.threads <= 256,
           MCON_ERROR_INVALID_ARGUMENT,
           "--samples, --eval-vertices and --threads must be positive, --thesis-iterations >= 0");
+  if (p.has("frame-anchor")) {
+    o.frame_anchor = p.number("frame-anchor", 0.0);
+    require(o.frame_anchor >= 0 && std::isfinite(o.frame_anchor), MCON_ERROR_INVALID_ARGUMENT,
+            "--frame-anchor must be a finite number >= 0");
+  }
+  if (p.has("frame-anchor-decay")) {
+    o.frame_anchor_decay = p.number("frame-anchor-decay", 1.0);
+    require(o.frame_anchor_decay > 0 && o.frame_anchor_decay <= 1, MCON_ERROR_INVALID_ARGUMENT,
+            "--frame-anchor-decay must be in (0, 1]");
+  }
   o.perturbation.noise = p.number("noise", 0.0);
   o.perturbation.density = p.number("density", 1.0);
   o.perturbation.flip_winding = p.flag("flip-winding");

@@ -528,6 +528,10 @@ static class Tests
             Check(a.FrameDecided == 0, "frame-free by default");
             using (var framed = Map.Compute(source, target, new MapSettings { Seed = 3, AlignmentSamples = 400, MaxIterations = 30, UseWorldFrame = true }))
                 Check(framed.Info.FrameDecided == 1 && framed.Info.Reflected == 0, "the world frame decides when asked");
+            using (var unanchored = Map.Compute(source, target, new MapSettings { Seed = 3, AlignmentSamples = 400, MaxIterations = 30, UseWorldFrame = true, WorldFrameAnchor = 0 }))
+                Check(Array.Exists(unanchored.EnergyTerms, e => e.Name == "anchor" && e.Value == 0), "anchor 0: the term is off");
+            var badAnchor = Expect<MacroconException>(() => Map.Compute(source, target, new MapSettings { UseWorldFrame = true, WorldFrameAnchor = -1 }));
+            Check(badAnchor.Status == Status.InvalidArgument && badAnchor.Message.Contains("world_frame_anchor"), "negative anchor: " + badAnchor.Message);
             Check(a.AlignmentScoreUnreflected >= 0 && a.AlignmentScoreReflected >= 0, "both rigid scores");
             Check(a.AlignmentScore == (a.Reflected != 0 ? a.AlignmentScoreReflected : a.AlignmentScoreUnreflected), "winner's score");
             Check(a.OrientationCompared != 0

@@ -256,6 +256,7 @@ class MapOptions(Struct):
         ("refine_sigma_factor", ctypes.c_double),
         ("use_world_frame", ctypes.c_uint32),
         ("world_frame_mirror", ctypes.c_uint32),
+        ("world_frame_anchor", ctypes.c_double),
     ]
 
 

@@ -156,6 +156,7 @@ class Map(_Handle):
         refine_sigma_factor: Optional[float] = None,
         use_world_frame: bool = False,
         world_frame_mirror: bool = False,
+        world_frame_anchor: Optional[float] = None,
     ) -> "Map":
         """orientation: "automatic" (the descriptors decide; allow_reflection restricts it),
         "preserve" or "reverse" (forced, e.g. a "flip" that recomputes with the orientation
@@ -174,6 +175,8 @@ class Map(_Handle):
         similarity-ICP alignment of their host positions becomes the rigid start and decides
         orientation and reflection (info.frame_decided); needs orientation "automatic".
         world_frame_mirror: mirror the source x -> -x first (a left part onto a right one).
+        world_frame_anchor: with use_world_frame, the weight (finite, >= 0; 0 = off) of the term
+        that keeps each source point near the target point closest to it in 3D after that alignment.
 
         Options left at None keep mcon_map_options_init's defaults."""
         require_type(source, Patch, "source")
@@ -191,6 +194,8 @@ class Map(_Handle):
         o.orientation = int(_ORIENTATIONS[orientation])
         o.use_world_frame = 1 if use_world_frame else 0
         o.world_frame_mirror = 1 if world_frame_mirror else 0
+        if world_frame_anchor is not None:
+            o.world_frame_anchor = float(world_frame_anchor)
         if refine_sigma_factor is not None:
             o.refine_sigma_factor = float(refine_sigma_factor)
         if (source_guidance is None) != (target_guidance is None):

@@ -407,3 +407,11 @@ def test_world_frame_start_is_opt_in_and_reported(host):
             assert framed.info.reflected is False  # the same surface: no mirror in the world frame
         with pytest.raises(macrocon.InvalidArgumentError):
             macrocon.Map.compute(a, b, use_world_frame=True, orientation="preserve", **FAST)
+        # The anchor term: on by default with the world frame, off at 0, checked.
+        with macrocon.Map.compute(a, b, seed=3, use_world_frame=True, **FAST) as anchored:
+            assert anchored.energy_terms["anchor"] > 0
+        with macrocon.Map.compute(a, b, seed=3, use_world_frame=True, world_frame_anchor=0, **FAST) as free:
+            assert free.energy_terms["anchor"] == 0
+        for bad in (-1.0, float("nan")):
+            with pytest.raises(macrocon.InvalidArgumentError):
+                macrocon.Map.compute(a, b, use_world_frame=True, world_frame_anchor=bad, **FAST)
