@@ -1,15 +1,53 @@
 # Builds the wheel (library stripped with STRIP = CMAKE_STRIP), checks the bundled library
 # (stripped, same mcon_ exports: packaged_library.cmake), its bundled runtime dependencies (libtbb,
 # libz: present, stripped, licensed, found through RUNPATH $ORIGIN) and imports the package from it
-# with an empty LD_LIBRARY_PATH, checking that the loader took the bundled copies.
+# with an empty LD_LIBRARY_PATH, checking that the loader took the bundled copies. The wheel also
+# carries the starter library (STARTER, byte-identical; macrocon.starter_library() returns it),
+# the repository's LICENSE (in the package and the dist-info) and METADATA naming the licence;
+# THIRD_PARTY_NOTICES.txt starts with the repository's THIRD_PARTY_NOTICES.
 include(${CMAKE_CURRENT_LIST_DIR}/packaged_library.cmake)
 file(REMOVE_RECURSE ${WORK})
-execute_process(COMMAND ${PYTHON} ${SRC}/build_wheel.py --library ${LIB} --out ${WORK}/dist "--strip=${STRIP}"
+execute_process(COMMAND ${PYTHON} ${SRC}/build_wheel.py --library ${LIB} --starter-library ${STARTER}
+                        --out ${WORK}/dist "--strip=${STRIP}"
   OUTPUT_VARIABLE wheel RESULT_VARIABLE rc OUTPUT_STRIP_TRAILING_WHITESPACE)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "building the wheel failed")
 endif()
 file(ARCHIVE_EXTRACT INPUT ${wheel} DESTINATION ${WORK}/site)
+# Licence, notices, starter library and METADATA.
+execute_process(COMMAND ${CMAKE_COMMAND} -E tar tf ${wheel} OUTPUT_VARIABLE members RESULT_VARIABLE rc)
+file(GLOB dist_info RELATIVE ${WORK}/site ${WORK}/site/macrocon-*.dist-info)
+if(NOT rc EQUAL 0 OR NOT dist_info)
+  message(FATAL_ERROR "${wheel}: not a readable zip with a dist-info folder:\n${members}")
+endif()
+get_filename_component(repo ${SRC}/../.. ABSOLUTE)
+foreach(pair "macrocon/starter.mclb=${STARTER}" "macrocon/LICENSE=${repo}/LICENSE" "${dist_info}/LICENSE=${repo}/LICENSE")
+  string(REGEX REPLACE "=.*$" "" member "${pair}")
+  string(REGEX REPLACE "^[^=]*=" "" source "${pair}")
+  string(FIND "${members}" "${member}\n" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "the wheel lacks ${member}:\n${members}")
+  endif()
+  file(SHA256 ${WORK}/site/${member} a)
+  file(SHA256 ${source} b)
+  if(NOT a STREQUAL b)
+    message(FATAL_ERROR "the wheel's ${member} differs from ${source}")
+  endif()
+endforeach()
+file(READ ${WORK}/site/${dist_info}/METADATA metadata)
+foreach(line "License: Apache-2.0" "License-File: LICENSE" "Classifier: License :: OSI Approved :: Apache Software License")
+  string(FIND "${metadata}" "\n${line}\n" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "${dist_info}/METADATA lacks '${line}':\n${metadata}")
+  endif()
+endforeach()
+file(READ ${repo}/THIRD_PARTY_NOTICES source_notices)
+file(READ ${WORK}/site/macrocon/THIRD_PARTY_NOTICES.txt wheel_notices)
+string(LENGTH "${source_notices}" n)
+string(SUBSTRING "${wheel_notices}" 0 ${n} head)
+if(NOT head STREQUAL source_notices)
+  message(FATAL_ERROR "the wheel's THIRD_PARTY_NOTICES.txt does not start with the repository's THIRD_PARTY_NOTICES")
+endif()
 get_filename_component(lib_name ${LIB} NAME)
 if(NOT EXISTS ${WORK}/site/macrocon/${lib_name})
   message(FATAL_ERROR "the wheel lacks macrocon/${lib_name}")
@@ -61,6 +99,9 @@ import macrocon
 pkg = os.path.realpath(os.path.dirname(macrocon.__file__))
 assert pkg == os.path.realpath(sys.argv[1]), pkg
 print('version', '.'.join(map(str, macrocon.version())))
+starter = macrocon.starter_library()
+assert starter == os.path.join(pkg, 'starter.mclb'), starter
+print('starter library', starter)
 after = mapped()
 bundled = 0
 for soname in (@sonames@):
@@ -75,7 +116,7 @@ assert bundled > 0, 'no bundled dependency was loaded from the wheel'
 ]=])
 string(CONFIGURE "${probe}" probe @ONLY)
 file(WRITE ${WORK}/probe.py "${probe}")
-execute_process(COMMAND ${CMAKE_COMMAND} -E env --unset=MACROCON_LIBRARY --unset=LD_PRELOAD LD_LIBRARY_PATH= PYTHONPATH=${WORK}/site
+execute_process(COMMAND ${CMAKE_COMMAND} -E env --unset=MACROCON_LIBRARY --unset=MACROCON_STARTER_LIBRARY --unset=LD_PRELOAD LD_LIBRARY_PATH= PYTHONPATH=${WORK}/site
   ${PYTHON} ${WORK}/probe.py ${pkg}
   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(NOT rc EQUAL 0 OR NOT out MATCHES "version [0-9]+[.][0-9]+[.][0-9]+")
