@@ -123,3 +123,40 @@ if(NOT rc EQUAL 0 OR NOT out MATCHES "version [0-9]+[.][0-9]+[.][0-9]+")
   message(FATAL_ERROR "importing from the wheel failed (exit ${rc}):\n${out}\n${err}")
 endif()
 message(STATUS "wheel ${wheel} imports with LD_LIBRARY_PATH empty:\n${out}")
+
+# The documented offline install (README "Python wheel"): pip from Debian's python3-pip into a venv
+# of Debian's interpreter (python3-venv; --system-site-packages for Debian's numpy), --no-index,
+# then import from the venv with no MACROCON_LIBRARY: the library, the starter library and the
+# licence metadata come from the installed wheel. Missing pip or venv fails the test with a message.
+execute_process(COMMAND ${PYTHON} -m pip --version RESULT_VARIABLE rc OUTPUT_QUIET ERROR_QUIET)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "${PYTHON} -m pip does not run (Debian package python3-pip, tools/debian-packages.txt): "
+                      "cannot check the documented `pip install` of the wheel")
+endif()
+execute_process(COMMAND ${PYTHON} -m venv --system-site-packages ${WORK}/venv RESULT_VARIABLE rc ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "${PYTHON} -m venv failed (Debian package python3-venv, tools/debian-packages.txt): ${err}")
+endif()
+execute_process(COMMAND ${WORK}/venv/bin/python -m pip install --no-index --no-deps --disable-pip-version-check ${wheel}
+  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "pip install ${wheel} into a venv failed:\n${out}\n${err}")
+endif()
+set(venv_probe [=[
+import os, sys, importlib.metadata as md
+import macrocon
+pkg = os.path.dirname(os.path.realpath(macrocon.__file__))
+assert pkg.startswith(os.path.realpath(sys.prefix)), (pkg, sys.prefix)
+assert os.path.dirname(os.path.realpath(macrocon.library_path())) == pkg, macrocon.library_path()
+assert macrocon.starter_library() == os.path.join(pkg, 'starter.mclb'), macrocon.starter_library()
+assert md.metadata('macrocon')['License'] == 'Apache-2.0'
+print('venv import', '.'.join(map(str, macrocon.version())), macrocon.starter_library())
+]=])
+file(WRITE ${WORK}/venv_probe.py "${venv_probe}")
+execute_process(COMMAND ${CMAKE_COMMAND} -E env --unset=MACROCON_LIBRARY --unset=MACROCON_STARTER_LIBRARY --unset=PYTHONPATH
+  --unset=LD_PRELOAD LD_LIBRARY_PATH= ${WORK}/venv/bin/python ${WORK}/venv_probe.py
+  WORKING_DIRECTORY ${WORK} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "importing the pip-installed wheel from the venv failed (exit ${rc}):\n${out}\n${err}")
+endif()
+message(STATUS "pip install --no-index into a venv: ${out}")
