@@ -131,6 +131,21 @@ foreach(kind deb tgz)
     endif()
   endforeach()
 endforeach()
+# End to end: gdb, pointed at the -dbgsym.tar.gz's lib/debug, finds the line table of the stripped
+# library by build id (gdb is optional, not in tools/debian-packages.txt: without it this says so).
+find_program(GDB gdb)
+if(GDB)
+  set(lib ${tgz_root}/lib/libmacrocon.so.${VERSION})
+  execute_process(COMMAND ${GDB} -batch -nx -ex "set debug-file-directory ${out}/x/tgz-dbgsym/lib/debug"
+                  -ex "file ${lib}" -ex "info line mcon_get_version"
+    OUTPUT_VARIABLE gdb_out ERROR_VARIABLE gdb_err RESULT_VARIABLE rc)
+  if(NOT rc EQUAL 0 OR NOT gdb_out MATCHES "Line [0-9]+ of \"[^\"]*capi[^\"]*\"")
+    message(FATAL_ERROR "gdb does not find the debug info of ${lib} in the -dbgsym.tar.gz:\n${gdb_out}\n${gdb_err}")
+  endif()
+  message(STATUS "gdb finds mcon_get_version's line through the -dbgsym.tar.gz")
+else()
+  message(STATUS "SKIPPED the gdb check of the debug-symbol package: gdb not found")
+endif()
 foreach(f ${tgz} ${tgz_dbg} ${deb} ${ddeb})
   file(SIZE ${f} size)
   message(STATUS "built ${f} (${size} bytes)")
