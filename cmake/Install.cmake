@@ -31,6 +31,9 @@ install(FILES ${PROJECT_BINARY_DIR}/packaging/macrocon.pc
 install(FILES ${MACROCON_STARTER_LIBRARY} DESTINATION ${CMAKE_INSTALL_DATADIR}/macrocon COMPONENT runtime)
 install(FILES README.md CHANGELOG.md samples/data/NOTICE.md
   DESTINATION ${CMAKE_INSTALL_DOCDIR} COMPONENT development)
+# The licence (Apache-2.0) and the third-party notices go with the runtime: every install tree and
+# package (share/doc/macrocon/), the wheel and the nupkg (build_wheel.py, nuget.pack.cmake).
+install(FILES LICENSE THIRD_PARTY_NOTICES DESTINATION ${CMAKE_INSTALL_DOCDIR} COMPONENT runtime)
 
 set(CPACK_PACKAGE_NAME macrocon)
 set(CPACK_PACKAGE_VENDOR "Macrocon")
@@ -39,8 +42,18 @@ set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "Retrieval and re-embedding of macro const
 set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
 set(CPACK_GENERATOR "TGZ;DEB")
 set(CPACK_PACKAGE_FILE_NAME "macrocon-${PROJECT_VERSION}-Linux-${CMAKE_SYSTEM_PROCESSOR}")
-set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS OFF)
-set(CPACK_DEBIAN_PACKAGE_DEPENDS "libtbb12 (>= 2021.5), libc6 (>= 2.34), libstdc++6 (>= 12), zlib1g (>= 1:1.2.11)")
+set(CPACK_RESOURCE_FILE_LICENSE ${PROJECT_SOURCE_DIR}/LICENSE)
+# Depends computed by dpkg-shlibdeps from the packaged ELF files (libc6, libstdc++6, libgcc-s1,
+# libtbb12, zlib1g with the versions the symbols need); the CLI's RUNPATH $ORIGIN/../lib resolves
+# libmacrocon inside the package. No hand-written list.
+set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
+# The .deb's ELF files are stripped (objcopy --strip-unneeded) and their debug info goes to
+# macrocon-dbgsym_<version>_<arch>.ddeb (usr/lib/debug/.build-id/<id>.debug, with a gnu-debuglink).
+set(CPACK_DEBIAN_DEBUGINFO_PACKAGE ON)
+# The .tar.gz: per-generator settings (stripped too; its debug info in a separate
+# -dbgsym.tar.gz), cmake/CPackOptions.cmake.in.
+configure_file(${PROJECT_SOURCE_DIR}/cmake/CPackOptions.cmake.in ${PROJECT_BINARY_DIR}/CPackOptions.cmake @ONLY)
+set(CPACK_PROJECT_CONFIG_FILE ${PROJECT_BINARY_DIR}/CPackOptions.cmake)
 set(CPACK_DEBIAN_PACKAGE_SECTION libdevel)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 include(CPack)

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Builds a wheel of the pure-Python package that bundles libmacrocon next to it.
 
-usage: build_wheel.py --library build/lib/libmacrocon.so.0 --out DIR [--strip /usr/bin/strip]
+usage: build_wheel.py --library build/lib/libmacrocon.so.0 --starter-library build/share/macrocon/starter.mclb
+                      --out DIR [--strip /usr/bin/strip]
 No pip or setuptools needed: a wheel is a zip with a dist-info folder (PEP 427).
 The bundled library is a `strip --strip-unneeded` copy (--strip: the tool, CMake passes
 CMAKE_STRIP; default: `strip` on PATH); without a strip tool it is bundled unstripped, with a note
@@ -11,6 +12,10 @@ the loader, libstdc++ and libgcc_s) are bundled next to it under their sonames, 
 way, with their Debian copyright files in macrocon/THIRD_PARTY_NOTICES.txt; the library's RUNPATH
 $ORIGIN (src/CMakeLists.txt) makes the loader take them from the package folder. The same rules
 as tests/scripts/packaged_library.cmake (the NuGet package), which python.wheel checks this against.
+THIRD_PARTY_NOTICES.txt starts with the repository's THIRD_PARTY_NOTICES (what is compiled in);
+the repository's LICENSE (Apache-2.0) is macrocon/LICENSE and <dist-info>/LICENSE, and METADATA
+names it (License, License-File, the classifier). The starter constraint library is
+macrocon/starter.mclb (macrocon.starter_library() returns its path).
 """
 import argparse
 import base64
@@ -27,6 +32,7 @@ from pathlib import Path
 from typing import Dict
 
 HERE = Path(__file__).resolve().parent
+ROOT = HERE.parent.parent  # the repository: LICENSE, THIRD_PARTY_NOTICES
 
 
 def version() -> str:
@@ -85,9 +91,14 @@ def owning_package(path: Path) -> str:
     return ""
 
 
+# Between the repository's notices and the bundled libraries' sections (packaged_library.cmake too).
+BUNDLED_HEADING = "\n7. Libraries bundled in this package (wheel, NuGet package)\n" + "-" * 59 + "\n\n"
+
+
 def notices(deps: Dict[str, Path]) -> bytes:
     """THIRD_PARTY_NOTICES.txt: per bundled library its Debian package, version and copyright file."""
-    text = ("Third-party libraries bundled with libmacrocon (runtime dependencies, unmodified\n"
+    text = ((ROOT / "THIRD_PARTY_NOTICES").read_text() + BUNDLED_HEADING
+            + "Third-party libraries bundled with libmacrocon (runtime dependencies, unmodified\n"
             "except for stripping), with their copyright and licence notices as shipped by Debian.\n")
     for soname, path in deps.items():
         pkg = owning_package(path)
@@ -104,6 +115,7 @@ def notices(deps: Dict[str, Path]) -> bytes:
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--library", required=True, type=Path)
+    ap.add_argument("--starter-library", required=True, type=Path, help="starter.mclb (build/share/macrocon)")
     ap.add_argument("--out", required=True, type=Path)
     ap.add_argument("--strip", default=shutil.which("strip") or "", help="strip tool ('' = bundle unstripped)")
     args = ap.parse_args()
@@ -119,9 +131,16 @@ def main() -> None:
     for soname, path in deps.items():
         files[f"macrocon/{soname}"] = library_bytes(path, args.strip)
     files["macrocon/THIRD_PARTY_NOTICES.txt"] = notices(deps)
+    files["macrocon/starter.mclb"] = args.starter_library.read_bytes()
+    licence = (ROOT / "LICENSE").read_bytes()
+    files["macrocon/LICENSE"] = licence
+    files[f"{dist}/LICENSE"] = licence
     files[f"{dist}/METADATA"] = (
         f"Metadata-Version: 2.1\nName: macrocon\nVersion: {ver}\nRequires-Python: >=3.8\nRequires-Dist: numpy\n"
-        "Summary: Retrieval and re-embedding of macro constraints for quad meshing\n\n"
+        "Summary: Retrieval and re-embedding of macro constraints for quad meshing\n"
+        "License: Apache-2.0\nLicense-File: LICENSE\n"
+        "Classifier: License :: OSI Approved :: Apache Software License\n"
+        "Classifier: Programming Language :: Python :: 3\nClassifier: Operating System :: POSIX :: Linux\n\n"
         + (HERE / "README.md").read_text()
     ).encode()
     files[f"{dist}/WHEEL"] = f"Wheel-Version: 1.0\nGenerator: macrocon build_wheel.py\nRoot-Is-Purelib: false\nTag: {tag}\n".encode()

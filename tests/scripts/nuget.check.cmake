@@ -21,7 +21,7 @@ string(REPLACE "\n" ";" members "${listing}")
 list(FILTER members EXCLUDE REGEX "/$")  # directory entries
 list(SORT members)
 set(native runtimes/linux-x64/native)
-set(expected "Macrocon.nuspec" "[Content_Types].xml" "_rels/.rels" "lib/netstandard2.0/Macrocon.dll"
+set(expected "Macrocon.nuspec" "[Content_Types].xml" "_rels/.rels" "LICENSE" "lib/netstandard2.0/Macrocon.dll"
     "${native}/libmacrocon.so" "${native}/THIRD_PARTY_NOTICES.txt")
 # Plus the built library's non-system runtime dependencies (ldd), bundled next to it.
 macrocon_bundled_dependencies(${LIB} deps)
@@ -38,7 +38,8 @@ endif()
 file(REMOVE_RECURSE ${WORK})
 file(ARCHIVE_EXTRACT INPUT ${NUPKG} DESTINATION ${WORK})
 file(READ ${WORK}/Macrocon.nuspec spec)
-foreach(want "<id>Macrocon</id>" "<version>${VERSION}</version>"
+foreach(want "<id>Macrocon</id>" "<version>${VERSION}</version>" "<license type=\"expression\">Apache-2.0</license>"
+        "<file src=\"LICENSE\" target=\"LICENSE\" />"
         "target=\"lib/netstandard2.0/Macrocon.dll\"" "target=\"runtimes/linux-x64/native/libmacrocon.so\""
         "target=\"${native}/THIRD_PARTY_NOTICES.txt\"" ${dep_targets})
   string(FIND "${spec}" "${want}" at)
@@ -49,6 +50,20 @@ endforeach()
 string(FIND "${spec}" "$version$" at)
 if(NOT at EQUAL -1)
   message(FATAL_ERROR "Macrocon.nuspec still holds the $version$ token")
+endif()
+# The licence is the repository's; the notices start with the repository's THIRD_PARTY_NOTICES.
+get_filename_component(repo ${CMAKE_CURRENT_LIST_DIR}/../.. ABSOLUTE)
+file(SHA256 ${WORK}/LICENSE a)
+file(SHA256 ${repo}/LICENSE b)
+if(NOT a STREQUAL b)
+  message(FATAL_ERROR "the package's LICENSE is not the repository's")
+endif()
+file(READ ${repo}/THIRD_PARTY_NOTICES source_notices)
+file(READ ${WORK}/${native}/THIRD_PARTY_NOTICES.txt packed_notices)
+string(LENGTH "${source_notices}" n)
+string(SUBSTRING "${packed_notices}" 0 ${n} head)
+if(NOT head STREQUAL source_notices)
+  message(FATAL_ERROR "${native}/THIRD_PARTY_NOTICES.txt does not start with the repository's THIRD_PARTY_NOTICES")
 endif()
 get_filename_component(lib_real ${LIB} REALPATH)
 foreach(pair "${DLL}|lib/netstandard2.0/Macrocon.dll|4d5a" "${lib_real}|runtimes/linux-x64/native/libmacrocon.so|7f454c46")

@@ -19,7 +19,8 @@ file(READ ${NUSPEC} spec)
 string(REPLACE "$version$" "${VERSION}" spec "${spec}")
 file(WRITE ${stage}/Macrocon.nuspec "${spec}")
 get_filename_component(lib_real ${LIB} REALPATH)
-set(sources "Macrocon.dll=${DLL}" "libmacrocon.so=${lib_real}")
+get_filename_component(repo ${CMAKE_CURRENT_LIST_DIR}/../.. ABSOLUTE)
+set(sources "Macrocon.dll=${DLL}" "libmacrocon.so=${lib_real}" "LICENSE=${repo}/LICENSE")
 string(REGEX MATCHALL "<file src=\"[^\"]+\" target=\"[^\"]+\"" entries "${spec}")
 set(members Macrocon.nuspec)
 foreach(e ${entries})
@@ -77,6 +78,7 @@ file(WRITE "${stage}/[Content_Types].xml"
   "<Default Extension=\"dll\" ContentType=\"application/octet\" />"
   "<Default Extension=\"so\" ContentType=\"application/octet\" />"
   "<Default Extension=\"txt\" ContentType=\"text/plain\" />"
+  "<Override PartName=\"/LICENSE\" ContentType=\"text/plain\" />"
   "${overrides}"
   "</Types>\n")
 file(MAKE_DIRECTORY ${stage}/_rels)

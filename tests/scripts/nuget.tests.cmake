@@ -1,5 +1,6 @@
 # NuGet package of the C# binding (bindings/csharp/Macrocon.nuspec): lib/netstandard2.0/Macrocon.dll
-# and runtimes/linux-x64/native/libmacrocon.so (stripped with CMAKE_STRIP), zipped by nuget.pack.cmake (no nuget.exe here).
+# and runtimes/linux-x64/native/libmacrocon.so (stripped with CMAKE_STRIP), LICENSE at the root, zipped by
+# nuget.pack.cmake (no nuget.exe here).
 # Needs the C# build of csharp.tests.cmake (included before this file: the glob is sorted).
 if(TARGET macrocon_csharp AND NOT MACROCON_SANITIZE)  # the package ships the Release library
   set(nupkg ${cs_dir}/Macrocon.${PROJECT_VERSION}.nupkg)
@@ -10,6 +11,7 @@ if(TARGET macrocon_csharp AND NOT MACROCON_SANITIZE)  # the package ships the Re
             -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/nuget.pack.cmake
     DEPENDS ${nuspec} ${cs_dir}/Macrocon.dll macrocon ${CMAKE_CURRENT_SOURCE_DIR}/scripts/nuget.pack.cmake
             ${CMAKE_CURRENT_SOURCE_DIR}/scripts/packaged_library.cmake
+            ${PROJECT_SOURCE_DIR}/LICENSE ${PROJECT_SOURCE_DIR}/THIRD_PARTY_NOTICES
     COMMENT "Packing ${nupkg}")
   add_custom_target(macrocon_nupkg ALL DEPENDS ${nupkg})
   add_dependencies(macrocon_nupkg macrocon_csharp)

@@ -147,8 +147,14 @@ endfunction()
 # package and version, followed by that package's copyright file (the licence texts: oneTBB is
 # Apache-2.0, zlib the zlib licence). No owning package or copyright file is an error: a
 # redistributed library without its licence notice must not ship.
+# The notices start with the repository's THIRD_PARTY_NOTICES (what libmacrocon compiles in) and a
+# heading; build_wheel.py writes the same bytes.
+set(MACROCON_SOURCE_NOTICES ${CMAKE_CURRENT_LIST_DIR}/../../THIRD_PARTY_NOTICES)
 function(macrocon_bundle_dependencies deps dir notices strip)
-  string(CONCAT text "Third-party libraries bundled with libmacrocon (runtime dependencies, unmodified\n"
+  file(READ ${MACROCON_SOURCE_NOTICES} source_notices)
+  string(REPEAT "-" 59 rule)
+  string(CONCAT text "${source_notices}" "\n7. Libraries bundled in this package (wheel, NuGet package)\n" "${rule}\n\n"
+           "Third-party libraries bundled with libmacrocon (runtime dependencies, unmodified\n"
            "except for stripping), with their copyright and licence notices as shipped by Debian.\n")
   foreach(d ${deps})
     string(REGEX REPLACE "=.*$" "" soname "${d}")

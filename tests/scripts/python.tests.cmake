@@ -22,6 +22,7 @@ if(NOT MACROCON_SANITIZE)
   add_test(NAME python.wheel
     COMMAND ${CMAKE_COMMAND} -DPYTHON=${MACROCON_PYTHON} -DLIB=$<TARGET_FILE:macrocon>
             -DSRC=${PROJECT_SOURCE_DIR}/bindings/python -DWORK=${PROJECT_BINARY_DIR}/python-wheel
+            -DSTARTER=${MACROCON_STARTER_LIBRARY}
             "-DSTRIP=${CMAKE_STRIP}" "-DREADELF=${CMAKE_READELF}" "-DNM=${CMAKE_NM}"
             -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_python_wheel.cmake)
 endif()

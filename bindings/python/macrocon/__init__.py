@@ -1,9 +1,10 @@
 """Macrocon: retrieval and re-embedding of macro constraints for quad meshing (ctypes binding).
 
 The native library is found next to this package (wheel) or through ``MACROCON_LIBRARY``; its ABI
-major version is checked at import.
+major version is checked at import. ``starter_library()`` is the path of the starter constraint
+library (in the wheel: next to this package).
 """
-from ._native import ABI_MAJOR, library_version
+from ._native import ABI_MAJOR, library_path, library_version, starter_library
 from .core import (
     DESCRIPTOR_CURV9,
     DESCRIPTOR_MEAN_CURVATURE,
@@ -51,7 +52,7 @@ from .errors import (
 __version__ = "0.1.0"
 
 __all__ = [
-    "ABI_MAJOR", "library_version", "version", "shutdown", "Context", "LogCallbackWarning", "Mesh", "Patch",
+    "ABI_MAJOR", "library_version", "library_path", "starter_library", "version", "shutdown", "Context", "LogCallbackWarning", "Mesh", "Patch",
     "DESCRIPTOR_CURV9", "DESCRIPTOR_MEAN_CURVATURE", "Error", "InvalidArgumentError", "NullPointerError",
     "StructSizeError", "BufferTooSmallError", "CancelledError", "InvalidMeshError", "NotADiskError",
     "NumericalError", "InvalidLibraryError", "UnsupportedError", "NotFoundError", "status_name", "close_all",

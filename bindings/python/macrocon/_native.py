@@ -329,6 +329,36 @@ def _load() -> ctypes.CDLL:
 
 lib = _load()
 
+
+def library_path() -> str:
+    """The path of the native library this package loaded (as given to the loader)."""
+    return lib._name
+
+
+def starter_library() -> str:
+    """The path of the starter constraint library (``starter.mclb``), for ``Library.open``.
+
+    ``MACROCON_STARTER_LIBRARY`` if set (it must exist), else the copy next to this package (the
+    wheel), else ``share/macrocon/starter.mclb`` beside the loaded native library's ``lib`` folder
+    (an install prefix or the build tree: ``<prefix>/lib[/<triplet>]/libmacrocon.so`` ->
+    ``<prefix>/share/macrocon/starter.mclb``). Raises FileNotFoundError naming what was tried.
+    """
+    env = os.environ.get("MACROCON_STARTER_LIBRARY")
+    if env:
+        if not Path(env).is_file():
+            raise FileNotFoundError(f"macrocon: MACROCON_STARTER_LIBRARY={env!r} is not a file")
+        return env
+    tried = [Path(__file__).resolve().parent / "starter.mclb"]
+    if lib._name and os.sep in lib._name:  # a path, not a bare soname found by the loader
+        lib_dir = Path(lib._name).resolve().parent
+        tried += [lib_dir.parent / "share" / "macrocon" / "starter.mclb",
+                  lib_dir.parent.parent / "share" / "macrocon" / "starter.mclb"]
+    for path in tried:
+        if path.is_file():
+            return str(path)
+    raise FileNotFoundError("macrocon: no starter library (starter.mclb); tried "
+                            + ", ".join(str(p) for p in tried) + " (set MACROCON_STARTER_LIBRARY)")
+
 _SIGNATURES = {
     "mcon_get_version": [ctypes.POINTER(ctypes.c_uint32)] * 3,
     "mcon_get_status_name": [c_status, ctypes.POINTER(ctypes.c_char_p)],
