@@ -330,6 +330,17 @@ TEST_F(LibraryTest, DistinctSuggestionsCountACopyOnce) {
             MCON_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(mcon_library_query_distinct(lib.get(), patches_[0].get(), 3, idx.data(), nullptr, nullptr, nullptr, 2, &count),
             MCON_ERROR_BUFFER_TOO_SMALL);
+  // NULL handles and a NULL count: NULL_POINTER naming the argument, no suggestion written.
+  count = 77;
+  EXPECT_EQ(mcon_library_query_distinct(nullptr, patches_[0].get(), 3, idx.data(), nullptr, nullptr, nullptr, 3, &count),
+            MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(count, 77u);
+  EXPECT_EQ(mcon_library_query_distinct(lib.get(), nullptr, 3, idx.data(), nullptr, nullptr, nullptr, 3, &count),
+            MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(count, 0u);  // past the library check the count is reset first: an error reports none
+  EXPECT_EQ(mcon_library_query_distinct(lib.get(), patches_[0].get(), 3, idx.data(), nullptr, nullptr, nullptr, 3, nullptr),
+            MCON_ERROR_NULL_POINTER);
+  EXPECT_NE(last_message().find("out_count"), std::string::npos) << last_message();
 }
 
 TEST_F(LibraryTest, InfoSaysWhetherAChecksumWasVerified) {

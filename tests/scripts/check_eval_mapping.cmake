@@ -143,6 +143,19 @@ string(JSON wrong GET "${cross_out}" cross_family methods macrocon overall orien
 if(NOT gross EQUAL 0 OR NOT wrong EQUAL 0)
   message(FATAL_ERROR "--cross-family: the nose maps should be right: ${cross_out}")
 endif()
+# Each SDK map carries its candidate confidence signals, and the summary their ROC AUC (null here:
+# no gross failure among two right noses).
+foreach(k 0 1)
+  string(JSON score GET "${cross_out}" cross_family cases ${k} methods macrocon signals matching_score)
+  string(JSON overlap GET "${cross_out}" cross_family cases ${k} methods macrocon signals overlap)
+  if(NOT score GREATER 0 OR score GREATER 1 OR NOT overlap GREATER 0 OR overlap GREATER 1)
+    message(FATAL_ERROR "--cross-family case ${k}: signals out of [0, 1]: ${cross_out}")
+  endif()
+endforeach()
+string(JSON auc_type TYPE "${cross_out}" cross_family methods macrocon signal_roc_auc matching_score)
+if(NOT auc_type STREQUAL "NULL")
+  message(FATAL_ERROR "--cross-family: an AUC without a gross failure must be null: ${cross_out}")
+endif()
 message(STATUS "eval-mapping --cross-family nose: ${cross_out}")
 
 # The 3D-aligned start (macrocon-frame, and frame-rigid = that start alone) on the two forearm

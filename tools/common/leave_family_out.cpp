@@ -17,13 +17,8 @@ LeaveFamilyOutResult evaluate_leave_family_out(const RetrievalBenchmark& library
           "leave-family-out: the library and the queries need at least one patch each");
   std::vector<Eigen::MatrixXd> training;
   for (const BenchmarkPatch& p : library.patches) training.push_back(p.descriptors[descriptor_index].values);
-  RetrievalBuildOptions bo;
-  bo.descriptor = library.descriptors[descriptor_index];
-  bo.vocabulary_size = options.vocabulary_size;
-  bo.sigma_bof = options.sigma_bof;
-  bo.seed = options.seed;
-  bo.max_training_points = options.max_training_points;
-  RetrievalConfig config = build_retrieval_config(training, bo);
+  RetrievalConfig config =
+      build_retrieval_config(training, retrieval_build_options(options, library.descriptors[descriptor_index]));
   config.rings = options.rings.empty() ? 1u : options.rings.front();
 
   const std::size_t n = library.patches.size(), length = config.histogram_length();

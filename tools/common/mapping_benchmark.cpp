@@ -13,7 +13,6 @@
 #include "common/makehuman_people.h"
 #include "common/patch_instances.h"
 #include "common/retessellate.h"
-#include "mesh/orientation.h"
 #include "common/thesis_gradient_descent.h"
 #include "descriptors/curvature_descriptors.h"
 #include "base/error.h"
@@ -238,9 +237,8 @@ PerturbedTarget perturbed_target(const Retessellation& re, const MappingEvalOpti
   const auto it = std::find(re.to_original.begin(), re.to_original.end(), center_vertex);
   require(it != re.to_original.end(), MCON_ERROR_NUMERICAL, "eval-mapping: decimation removed the patch center");
   const int center = static_cast<int>(it - re.to_original.begin());
-  PerturbedMesh p = perturb_mesh(re.mesh, options.perturbation,
-                                 options.seed * 2000003ull + static_cast<std::uint64_t>(i) + 104729ull * attempt, {center});
-  orient_and_validate(p.mesh);
+  PerturbedMesh p = user_mesh(re.mesh, options.perturbation,
+                              options.seed * 2000003ull + static_cast<std::uint64_t>(i) + 104729ull * attempt, {center});
   PerturbedTarget out{std::move(p.mesh), {}};
   out.to_original.resize(p.to_original.size());
   for (std::size_t v = 0; v < p.to_original.size(); ++v)
@@ -326,8 +324,26 @@ GroundTruth ground_truth(const Model& model, const MappingSlot& slot, const Pair
 struct PairMaps {
   std::map<std::string, std::vector<Vec2>> phi;
   std::map<std::string, bool> reflected;
+  std::map<std::string, std::map<std::string, double>> signals;  // candidate confidence signals
   RigidAlignmentOptions alignment;  // the rigid search options, shared by the guided methods
 };
+
+// Candidate signals for a map's confidence (issue 14), each oriented so that larger means more
+// confident: the matching score, the overlap, the margin between the best plain and mirrored
+// rigid starts, and (with a world frame) minus the anchor's RMS displacement and minus the angle
+// between the frame start and the descriptor search's best start of the same orientation.
+std::map<std::string, double> map_signals(const SurfaceMap& m) {
+  std::map<std::string, double> s;
+  s["matching_score"] = m.matching_score;
+  s["overlap"] = m.overlap_ratio;
+  s["rigid_margin"] = std::abs(m.alignment.score_unreflected - m.alignment.score_reflected);
+  if (m.frame_decided) {
+    s["anchor_rms"] = -std::sqrt(std::max(0.0, m.energy.value("anchor")));
+    const RigidTransform2D& d = m.alignment.transform.reflected ? m.alignment.best_reflected : m.alignment.best_unreflected;
+    s["start_agreement"] = -std::abs(std::remainder(m.alignment.transform.angle - d.angle, 2 * M_PI));
+  }
+  return s;
+}
 
 // The maps: macrocon, rigid and thesis, all from one map_patches call's rigid start.
 PairMaps unguided_maps(const PairPatches& pp, const MappingEvalOptions& options, MappingPairResult& res) {
@@ -355,6 +371,7 @@ PairMaps unguided_maps(const PairPatches& pp, const MappingEvalOptions& options,
   if (wants(options, "macrocon")) {
     maps.phi["macrocon"] = map.phi;
     maps.reflected["macrocon"] = map.reflected;
+    maps.signals["macrocon"] = map_signals(map);
     res.methods["macrocon"].seconds = map_seconds;
     res.methods["macrocon"].iterations = map.iterations;
   }
@@ -415,6 +432,7 @@ void run_frame(const MappingEvalOptions& options, const PairPatches& pp, bool mi
   const SurfaceMap fm = map_patches(pp.src.patch, pp.dst.patch, fo);
   maps.phi["macrocon-frame"] = fm.phi;
   maps.reflected["macrocon-frame"] = fm.reflected;
+  maps.signals["macrocon-frame"] = map_signals(fm);
   res["macrocon-frame"].seconds = seconds_since(t0);
   res["macrocon-frame"].iterations = fm.iterations;
   // frame-rigid: that start alone (what `rigid` is to macrocon).
@@ -841,6 +859,7 @@ void evaluate_cross_family_pair(const Model& src_model, const Model& dst_model, 
     CrossFamilyMethodResult& r = res.methods[name];
     r.reflected = maps.reflected.at(name);
     r.seconds = scratch.methods[name].seconds;
+    if (maps.signals.count(name)) r.signals = maps.signals.at(name);
     score_landmarks(pp, lp, phi, locator, distances, r);
   }
 }
@@ -904,6 +923,36 @@ std::vector<CrossFamilyPairResult> run_cross_family_evaluation(const MappingEval
 
 namespace {
 
+bool gross_failure(const CrossFamilyMethodResult& r) {
+  return !r.landmark_eps.empty() && median(r.landmark_eps) > kGrossFailureEps;
+}
+
+// ROC AUC of each signal for telling the pairs that are not gross failures (positives) from those
+// that are: the probability that a random positive scores higher than a random negative (ties
+// count half; Mann-Whitney U / (P N)). Null when a class is empty.
+Json signal_auc(const std::vector<const CrossFamilyMethodResult*>& rs) {
+  Json out = Json::object();
+  if (rs.empty() || rs.front()->signals.empty()) return out;
+  for (const auto& entry : rs.front()->signals) {
+    const std::string& name = entry.first;
+    std::vector<double> good, bad;
+    for (const CrossFamilyMethodResult* r : rs) {
+      const auto it = r->signals.find(name);
+      if (it == r->signals.end()) continue;
+      (gross_failure(*r) ? bad : good).push_back(it->second);
+    }
+    if (good.empty() || bad.empty()) {
+      out.set(name, Json());
+      continue;
+    }
+    double u = 0;
+    for (double g : good)
+      for (double b : bad) u += g > b ? 1.0 : (g == b ? 0.5 : 0.0);
+    out.set(name, u / static_cast<double>(good.size() * bad.size()));
+  }
+  return out;
+}
+
 Json cross_family_summary(const std::vector<const CrossFamilyMethodResult*>& rs) {
   std::vector<double> all, pair_means, secs;
   int gross = 0, wrong = 0;
@@ -914,7 +963,7 @@ Json cross_family_summary(const std::vector<const CrossFamilyMethodResult*>& rs)
       sum += e;
     }
     pair_means.push_back(r->landmark_eps.empty() ? 0.0 : sum / static_cast<double>(r->landmark_eps.size()));
-    gross += !r->landmark_eps.empty() && median(r->landmark_eps) > kGrossFailureEps;
+    gross += gross_failure(*r);
     wrong += r->inverted_pairs > 0;
     secs.push_back(r->seconds);
   }
@@ -954,6 +1003,11 @@ Json cross_family_case(const CrossFamilyPairResult& p, const std::vector<std::st
     e.set("checked_pairs", r.checked_pairs);
     e.set("inverted_pairs", r.inverted_pairs);
     e.set("inverted", r.inverted);
+    if (!r.signals.empty()) {
+      Json sig = Json::object();
+      for (const auto& [name, value] : r.signals) sig.set(name, value);
+      e.set("signals", sig);
+    }
     ms.set(m, e);
   }
   c.set("methods", ms);
@@ -977,6 +1031,7 @@ Json cross_family_json(const std::vector<CrossFamilyPairResult>& pairs, const st
     }
     Json entry = Json::object();
     entry.set("overall", cross_family_summary(all));
+    if (!all.empty() && !all.front()->signals.empty()) entry.set("signal_roc_auc", signal_auc(all));
     Json per = Json::object();
     for (const char* part : kMappingParts)
       if (by_part.count(part)) per.set(part, cross_family_summary(by_part[part]));

@@ -122,6 +122,9 @@ struct CrossFamilyMethodResult {
   int checked_pairs = 0, inverted_pairs = 0;
   std::string inverted;
   double seconds = 0;
+  // Candidate confidence signals of the map (macrocon, macrocon-frame; mapping_benchmark.cpp,
+  // kConfidenceSignals): name -> value, for the ROC AUC in cross_family_json.
+  std::map<std::string, double> signals;
 };
 
 struct CrossFamilyPairResult {

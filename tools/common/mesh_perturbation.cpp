@@ -9,6 +9,7 @@
 #include "base/error.h"
 #include "common/retessellate.h"
 #include "mesh/edge_key.h"
+#include "mesh/orientation.h"
 
 namespace mcon::tools {
 namespace {
@@ -116,6 +117,13 @@ PerturbedMesh perturb_mesh(const TriMesh& mesh, const MeshPerturbation& perturba
   if (perturbation.noise != 0) add_noise(p.mesh, perturbation.noise, seed);
   if (perturbation.flip_winding)
     for (Tri& t : p.mesh.triangles) std::swap(t[1], t[2]);
+  return p;
+}
+
+PerturbedMesh user_mesh(const TriMesh& mesh, const MeshPerturbation& perturbation, std::uint64_t seed,
+                        const std::vector<int>& keep) {
+  PerturbedMesh p = perturb_mesh(mesh, perturbation, seed, keep);
+  p.reoriented_triangles = orient_and_validate(p.mesh).reoriented_triangles;
   return p;
 }
 

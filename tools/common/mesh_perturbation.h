@@ -39,6 +39,7 @@ struct PerturbedMesh {
   // by subdivision.
   std::vector<int> to_original;
   int vertices_before = 0;
+  int reoriented_triangles = 0;  // set by user_mesh: triangles orient_and_validate turned
 };
 
 // Density first, then noise, then the winding. `keep`: input vertices that must survive a
@@ -46,6 +47,11 @@ struct PerturbedMesh {
 // (the caller's product path, orient_and_validate, does that).
 PerturbedMesh perturb_mesh(const TriMesh& mesh, const MeshPerturbation& perturbation, std::uint64_t seed,
                            const std::vector<int>& keep = {});
+
+// The mesh as a user hands it to the product: perturb_mesh, then oriented and validated as
+// mcon_mesh_create does (mesh/orientation.h); to_original survives both steps.
+PerturbedMesh user_mesh(const TriMesh& mesh, const MeshPerturbation& perturbation, std::uint64_t seed,
+                        const std::vector<int>& keep = {});
 
 // The result's vertex that is input vertex `original`, or -1 if it did not survive.
 int perturbed_vertex(const PerturbedMesh& perturbed, int original);

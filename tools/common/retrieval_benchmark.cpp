@@ -17,7 +17,6 @@
 #include "common/patch_instances.h"
 #include "common/retessellate.h"
 #include "base/error.h"
-#include "mesh/orientation.h"
 #include "patch/geodesic_disk_patch.h"
 #include "retrieval/retrieval_descriptors.h"
 #include "retrieval/retrieval_index.h"
@@ -58,19 +57,13 @@ int mesh_vertex(const io::LoadedMesh& base, int file_vertex, const std::string& 
 // and validated as mcon_mesh_create does. `center` is renumbered to the host's vertices.
 TriMesh user_host(const TriMesh& mesh, const MeshPerturbation& perturbation, std::uint64_t seed, int& center,
                   BenchmarkPatch& out) {
-  TriMesh host;
-  if (perturbation.active()) {
-    PerturbedMesh p = perturb_mesh(mesh, perturbation, seed, {center});
-    center = perturbed_vertex(p, center);
-    require(center >= 0, MCON_ERROR_UNKNOWN, "retrieval benchmark: the perturbation removed a patch center");
-    host = std::move(p.mesh);
-  } else {
-    host = mesh;
-  }
+  PerturbedMesh p = user_mesh(mesh, perturbation, seed, {center});
+  center = perturbed_vertex(p, center);
+  require(center >= 0, MCON_ERROR_UNKNOWN, "retrieval benchmark: the perturbation removed a patch center");
   out.host_vertices_before = mesh.num_vertices();
-  out.host_vertices = host.num_vertices();
-  out.reoriented_triangles = orient_and_validate(host).reoriented_triangles;
-  return host;
+  out.host_vertices = p.mesh.num_vertices();
+  out.reoriented_triangles = p.reoriented_triangles;
+  return std::move(p.mesh);
 }
 
 // Re-tessellates the instance (quad diagonals, then a seeded decimation that keeps the center) and
@@ -171,6 +164,16 @@ void drop_failed_patches(RetrievalBenchmark& set, const Log& log) {
 }
 
 }  // namespace
+
+RetrievalBuildOptions retrieval_build_options(const RetrievalEvalOptions& options, const std::string& descriptor) {
+  RetrievalBuildOptions bo;
+  bo.descriptor = descriptor;
+  bo.vocabulary_size = options.vocabulary_size;
+  bo.sigma_bof = options.sigma_bof;
+  bo.seed = options.seed;
+  bo.max_training_points = options.max_training_points;
+  return bo;
+}
 
 RetrievalBenchmark build_retrieval_benchmark(const RetrievalBenchmarkOptions& options) {
   require(options.people >= 0 && options.faces >= 0 && options.people + options.faces >= 1,
@@ -333,12 +336,7 @@ void evaluate_fold(const RetrievalBenchmark& set, std::size_t descriptor_index, 
   }
   if (queries.empty()) return;
   require(!library.empty(), MCON_ERROR_INVALID_ARGUMENT, "retrieval evaluation: a fold holds every patch");
-  RetrievalBuildOptions bo;
-  bo.descriptor = set.descriptors[descriptor_index];
-  bo.vocabulary_size = options.vocabulary_size;
-  bo.sigma_bof = options.sigma_bof;
-  bo.seed = options.seed;
-  bo.max_training_points = options.max_training_points;
+  const RetrievalBuildOptions bo = retrieval_build_options(options, set.descriptors[descriptor_index]);
   const auto tv = Clock::now();
   RetrievalConfig config = build_retrieval_config(training, bo);
   runs.vocab_seconds.push_back(seconds_since(tv));

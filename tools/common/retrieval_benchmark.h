@@ -91,6 +91,10 @@ struct RetrievalEvalOptions {
   std::function<void(const std::string&)> log;
 };
 
+// The vocabulary build options of an evaluation for one descriptor (every evaluation that builds
+// a vocabulary reads its settings here).
+RetrievalBuildOptions retrieval_build_options(const RetrievalEvalOptions& options, const std::string& descriptor);
+
 struct RetrievalEvaluation {
   std::string descriptor;
   std::uint32_t rings = 1;
