@@ -326,6 +326,9 @@ namespace Macrocon
             public double refine_sigma_factor;
             public uint use_world_frame; public uint world_frame_mirror;
             public double world_frame_anchor;
+            public uint use_up_hints;
+            public double source_up_x, source_up_y, source_up_z;
+            public double target_up_x, target_up_y, target_up_z;
         }
 
         [StructLayout(LayoutKind.Sequential)]

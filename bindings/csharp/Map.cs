@@ -37,6 +37,9 @@ namespace Macrocon
         /// <summary>With UseWorldFrame: weight (finite, >= 0; 0 = off) of the term keeping each source point near
         /// its 3D closest target point after that alignment; null keeps the SDK default.</summary>
         public double? WorldFrameAnchor;
+        /// <summary>Up directions of the source's and the target's hosts (3 numbers each, own coordinates; both or
+        /// neither): a prior of the rigid start, so the map is never upside down.</summary>
+        public double[] SourceUp, TargetUp;
     }
 
     /// <summary>Polylines re-traced on a target patch (every segment inside one target triangle).</summary>
@@ -105,6 +108,16 @@ namespace Macrocon
             o.use_world_frame = settings.UseWorldFrame ? 1u : 0u;
             o.world_frame_mirror = settings.WorldFrameMirror ? 1u : 0u;
             if (settings.WorldFrameAnchor.HasValue) o.world_frame_anchor = settings.WorldFrameAnchor.Value;
+            if ((settings.SourceUp == null) != (settings.TargetUp == null))
+                throw new ArgumentException("SourceUp and TargetUp must be given together");
+            if (settings.SourceUp != null)
+            {
+                if (settings.SourceUp.Length != 3 || settings.TargetUp.Length != 3)
+                    throw new ArgumentException("SourceUp and TargetUp need 3 components each");
+                o.use_up_hints = 1;
+                o.source_up_x = settings.SourceUp[0]; o.source_up_y = settings.SourceUp[1]; o.source_up_z = settings.SourceUp[2];
+                o.target_up_x = settings.TargetUp[0]; o.target_up_y = settings.TargetUp[1]; o.target_up_z = settings.TargetUp[2];
+            }
             if (settings.RefineSigmaFactor.HasValue) o.refine_sigma_factor = settings.RefineSigmaFactor.Value;
             if ((settings.SourceGuidance == null) != (settings.TargetGuidance == null))
                 throw new ArgumentException("SourceGuidance and TargetGuidance must be given together");

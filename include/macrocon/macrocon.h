@@ -627,6 +627,13 @@ typedef struct mcon_map_options {
    * point closest to it in 3D after that ICP (docs/api.md); finite, >= 0, 0 = no anchor. Ignored
    * without use_world_frame. Default 10. */
   double world_frame_anchor;
+  /* Nonzero: source_up / target_up are the up directions of the patches' hosts, each in its own
+   * host coordinates (any length); they become a prior of the rigid start, so an upside-down map
+   * is not chosen (docs/api.md). INVALID_ARGUMENT for a zero or non-finite vector or one (nearly)
+   * normal to its patch at the center. Default 0: no hints. */
+  uint32_t use_up_hints;
+  double source_up[3];
+  double target_up[3];
 } mcon_map_options;
 
 MCON_API mcon_status mcon_map_options_init(mcon_map_options* options);

@@ -149,6 +149,10 @@ mcon_status mcon_map_compute(mcon_patch source, mcon_patch target, const mcon_ma
     require(std::isfinite(o.world_frame_anchor) && o.world_frame_anchor >= 0, MCON_ERROR_INVALID_ARGUMENT,
             "world_frame_anchor must be finite and >= 0 (0 = no anchor)");
     po.world_frame_anchor = o.world_frame_anchor;
+    if (o.use_up_hints != 0) {
+      po.source_up = Vec3(o.source_up[0], o.source_up[1], o.source_up[2]);
+      po.target_up = Vec3(o.target_up[0], o.target_up[1], o.target_up[2]);
+    }
     Eigen::MatrixXd source_guidance, target_guidance;
     if (o.guidance_dimension == 0) {
       require(o.source_guidance == nullptr && o.target_guidance == nullptr, MCON_ERROR_INVALID_ARGUMENT,

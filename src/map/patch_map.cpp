@@ -1,6 +1,8 @@
 #include "map/patch_map.h"
 
 #include <cmath>
+#include <limits>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -98,6 +100,53 @@ WorldFrame world_frame(const Patch& source, const Patch& target, bool mirror_x) 
   return frame;
 }
 
+Vec2 up_direction_in_uv(const Patch& patch, const Vec3& up, const char* what) {
+  const std::string name(what);
+  require(up.allFinite(), MCON_ERROR_INVALID_ARGUMENT, name + ": the up vector must be finite");
+  require(up.norm() > 0, MCON_ERROR_INVALID_ARGUMENT, name + ": the up vector must not be zero");
+  const TriMesh& m = patch.mesh;
+  // Triangles near the center (all of them if the innermost ring is wider than 0.3).
+  std::vector<int> near;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (int t = 0; t < m.num_triangles(); ++t) {
+    const Tri& tri = m.triangles[t];
+    const double r = ((m.positions[tri[0]] + m.positions[tri[1]] + m.positions[tri[2]]) / 3).norm();
+    nearest = std::min(nearest, r);
+    if (r < 0.3) near.push_back(t);
+  }
+  if (near.empty())
+    for (int t = 0; t < m.num_triangles(); ++t) near.push_back(t);
+  Vec3 normal = Vec3::Zero();
+  // The least-squares linear map J (2x3) with J e ~ u for the edges (e in 3D, u in uv) of those
+  // triangles, area-weighted: the normal equations J (sum a e e^T) = sum a u e^T.
+  Eigen::Matrix3d PP = Eigen::Matrix3d::Zero();
+  Eigen::Matrix<double, 2, 3> UP = Eigen::Matrix<double, 2, 3>::Zero();
+  for (const int t : near) {
+    const Tri& tri = m.triangles[t];
+    const Vec3 e1 = m.positions[tri[1]] - m.positions[tri[0]], e2 = m.positions[tri[2]] - m.positions[tri[0]];
+    const Vec2 u1 = patch.uv[tri[1]] - patch.uv[tri[0]], u2 = patch.uv[tri[2]] - patch.uv[tri[0]];
+    const Vec3 n = e1.cross(e2);
+    const double a = 0.5 * n.norm();
+    normal += n;
+    PP += a * (e1 * e1.transpose() + e2 * e2.transpose());
+    UP += a * (u1 * e1.transpose() + u2 * e2.transpose());
+  }
+  require(normal.norm() > 0, MCON_ERROR_INVALID_ARGUMENT, name + ": the patch has no area at its center");
+  normal.normalize();
+  const Vec3 d = up.normalized();
+  const Vec3 tangent = d - d.dot(normal) * normal;
+  // Within ~11.5 degrees of the normal (|tangent| < 0.2) the projection is dominated by noise.
+  require(tangent.norm() >= 0.2, MCON_ERROR_INVALID_ARGUMENT,
+          name + ": the up vector is (nearly) normal to the patch at its center, so it gives no direction "
+                 "in the patch; give the host's up axis only for patches that face sideways, or omit both");
+  // PP is rank 2 (tangent edges): regularize its normal direction.
+  const Eigen::Matrix3d A = PP + (PP.trace() * 1e-9 + 1e-300) * normal * normal.transpose();
+  const Eigen::Matrix<double, 2, 3> J = UP * A.inverse();
+  const Vec2 u = J * tangent;
+  require(u.allFinite() && u.norm() > 0, MCON_ERROR_NUMERICAL, name + ": the patch's uv is degenerate at its center");
+  return u.normalized();
+}
+
 RigidTransform2D world_frame_start(const Patch& source, const Patch& target, bool mirror_x) {
   return world_frame(source, target, mirror_x).start;
 }
@@ -152,6 +201,20 @@ SurfaceMap map_patches(const Patch& source, const Patch& target, const PatchMapO
   const std::vector<Eigen::MatrixXd> target_levels = descriptor_pyramid(target.mesh, t, options.pyramid_sigmas);
   SurfaceMapOptions map_options = options.map;
   if (!chiral_columns.empty()) map_options.chiral_columns = chiral_columns;
+  require(options.source_up.has_value() == options.target_up.has_value(), MCON_ERROR_INVALID_ARGUMENT,
+          "map_patches: up hints need both a source_up and a target_up (or neither)");
+  if (options.source_up) {
+    // The rotation turning the source's up (mirrored (x, -y) for a mirrored candidate) onto the target's.
+    const Vec2 us = up_direction_in_uv(source, *options.source_up, "source_up");
+    const Vec2 ut = up_direction_in_uv(target, *options.target_up, "target_up");
+    RigidAlignmentOptions& a = map_options.alignment;
+    a.use_up_prior = true;
+    a.up_angle_unreflected = std::atan2(ut.y(), ut.x()) - std::atan2(us.y(), us.x());
+    a.up_angle_reflected = std::atan2(ut.y(), ut.x()) - std::atan2(-us.y(), us.x());
+    require(options.up_start_anchor >= 0 && std::isfinite(options.up_start_anchor), MCON_ERROR_INVALID_ARGUMENT,
+            "map_patches: up_start_anchor must be finite and >= 0");
+    if (map_options.start_anchor == 0) map_options.start_anchor = options.up_start_anchor;
+  }
   require(options.world_frame_anchor >= 0 && std::isfinite(options.world_frame_anchor), MCON_ERROR_INVALID_ARGUMENT,
           "map_patches: the world-frame anchor weight must be finite and >= 0");
   if (options.use_world_frame) {

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 
 #include <functional>
+#include <optional>
 
 #include "patch/geodesic_disk_patch.h"
 #include "map/surface_map.h"
@@ -58,7 +59,26 @@ struct PatchMapOptions {
   // turns it off. Ignored without use_world_frame. 10 (with SurfaceMapOptions::anchor_decay
   // 0.25): chosen among five settings on eval-mapping, in-family and --cross-family (docs/design.md §11).
   double world_frame_anchor = 10.0;
+  // Up hints: the up direction of each patch's host in its own coordinates (a DCC's up axis; the
+  // two need not share a world frame). Both or neither. Each is projected onto its patch's tangent
+  // plane at the center and carried into the patch's uv (up_direction_in_uv); the rotation taking
+  // the source's onto the target's becomes a prior of the rigid search (RigidAlignmentOptions::
+  // use_up_prior: no candidate turned more than 60 degrees from it), so an upside-down start is
+  // never chosen. INVALID_ARGUMENT for a zero or non-finite vector, or one within about 11
+  // degrees of the patch normal at the center (no direction in the patch).
+  std::optional<Vec3> source_up;
+  std::optional<Vec3> target_up;
+  // With up hints (and no world-frame anchor): SurfaceMapOptions::start_anchor, the pull towards
+  // the hint-respecting rigid start that keeps the optimization from turning away from it
+  // (docs/design.md §12). 0 turns it off.
+  double up_start_anchor = 1.0;
 };
+
+// The unit direction in the patch's uv of the 3D direction `up` at the patch's center: `up`
+// projected onto the tangent plane (area-weighted normal of the triangles within 0.3 of the
+// center, normalized units) and mapped by the least-squares linear map from 3D edge vectors to uv
+// edge vectors of those triangles. `what` names the argument in errors.
+Vec2 up_direction_in_uv(const Patch& patch, const Vec3& up, const char* what);
 
 // The world frame's view of a pair: the rigid start and, per source vertex, the target uv of its
 // closest point after the ICP (weight 0 where that point lies on the target's rim: the source

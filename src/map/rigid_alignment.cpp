@@ -153,6 +153,12 @@ double wrapped_angle_difference(double a, double b) {
 
 Vec2 RigidTransform2D::apply(const Vec2& p) const { return rotation(angle) * mirror(p, reflected) + translation; }
 
+bool within_up_prior(const RigidAlignmentOptions& o, const RigidTransform2D& T) {
+  if (!o.use_up_prior) return true;
+  const double prior = T.reflected ? o.up_angle_reflected : o.up_angle_unreflected;
+  return wrapped_angle_difference(T.angle, prior) <= o.up_tolerance;
+}
+
 RigidTransform2D rigid_candidate(const RigidAlignmentOptions& o, int index) {
   RigidTransform2D T;
   T.reflected = (index % 2) == 1;
@@ -190,6 +196,10 @@ void check_alignment_inputs(const std::vector<Vec2>& uv, const std::vector<doubl
   require(options.samples >= 1 && options.subsample >= 1 && options.refine_count >= 1 &&
               options.translation_sigma > 0 && options.translation_bound >= 0,
           MCON_ERROR_INVALID_ARGUMENT, "rigid alignment: invalid options");
+  require(!options.use_up_prior || (std::isfinite(options.up_angle_unreflected) &&
+                                    std::isfinite(options.up_angle_reflected) && options.up_tolerance > 0 &&
+                                    options.up_tolerance <= 3.2),
+          MCON_ERROR_INVALID_ARGUMENT, "rigid alignment: invalid up prior");
 }
 
 // The subsample of the cheap score and its smoothest-level values, row-major (m x d), as a plain
@@ -237,6 +247,10 @@ std::vector<double> sampled_scores(const std::vector<Vec2>& uv, const std::vecto
       std::vector<double> value(d);
       for (int i = start + begin; i < start + end; ++i) {
         const RigidTransform2D T = rigid_candidate(options, i);
+        if (!within_up_prior(options, T)) {
+          scores[i] = -1;  // outside the up hint: sorted last, never chosen
+          continue;
+        }
         const Eigen::Matrix2d R = rotation(T.angle);
         const std::vector<double>& pv = T.reflected ? sample.values_reflected : sample.values;
         double sum = 0;
@@ -271,7 +285,7 @@ std::vector<int> distinct_best(const std::vector<int>& order, const RigidAlignme
     for (int i : order) {
       if (taken >= per_class) break;
       const RigidTransform2D Ti = rigid_candidate(options, i);
-      if (static_cast<int>(Ti.reflected) != cls) continue;
+      if (static_cast<int>(Ti.reflected) != cls || !within_up_prior(options, Ti)) continue;
       bool distinct = true;
       for (int j : chosen) {
         const RigidTransform2D Tj = rigid_candidate(options, j);
@@ -384,6 +398,7 @@ void refine_candidates(const FineSample& fine, const std::vector<int>& chosen, c
       refine_transform(rest, fine.weight, neutral, options.refine_iterations, T);
       T.angle = std::fmod(T.angle, kTwoPi);
       if (T.angle < 0) T.angle += kTwoPi;
+      if (!within_up_prior(options, T)) T = rigid_candidate(options, chosen[c]);  // drifted off the hint
       refined[c] = T;
       refined_score[c] = full_score(rest, fine.weight, exact, T.angle, T.translation, nullptr, nullptr);
     }

@@ -58,7 +58,18 @@ struct RigidAlignmentOptions {
   int refine_iterations = 20;
   bool allow_reflection = true;      // false: only orientation-preserving motions win
   double reflection_margin = 0.01;   // a mirrored motion must out-score the best plain one by this
+  // An up hint (PatchMapOptions::source_up / target_up): per orientation, the rotation that turns
+  // the source's up direction in uv onto the target's. Candidates whose angle is farther than
+  // up_tolerance from their orientation's are not considered, and a refinement that drifts
+  // beyond it keeps its candidate's motion: the search stays within the hint's half-plane.
+  bool use_up_prior = false;
+  double up_angle_unreflected = 0;
+  double up_angle_reflected = 0;
+  double up_tolerance = 1.0471975511965976;  // 60 degrees
 };
+
+// Whether T's rotation lies within the up prior's tolerance (always true without a prior).
+bool within_up_prior(const RigidAlignmentOptions& options, const RigidTransform2D& T);
 
 struct RigidAlignmentResult {
   RigidTransform2D transform;

@@ -114,6 +114,8 @@ void check_inputs(const MapDomain& source, const MapDomain& target, const Surfac
           "invalid map options: the anchor weight must be finite and >= 0");
   require(options.anchor_decay > 0 && options.anchor_decay <= 1, MCON_ERROR_INVALID_ARGUMENT,
           "invalid map options: anchor_decay must be in (0, 1]");
+  require(options.start_anchor >= 0 && std::isfinite(options.start_anchor), MCON_ERROR_INVALID_ARGUMENT,
+          "invalid map options: start_anchor must be finite and >= 0");
   if (options.weights.anchor > 0) {
     const std::size_t n = source.uv.size();
     require(options.anchor.position.size() == n && options.anchor.weight.size() == n, MCON_ERROR_INVALID_ARGUMENT,
@@ -248,14 +250,20 @@ ScoreSettings stage_score(const Stages& st, int s) {
 
 // Runs stage s from x; its iterations map into the progress range [progress_from, progress_to].
 // energy_scale: the first level's start energy, the tolerance scale of later stages.
-NewtonReport run_level(const Stages& st, int s, const SourceDisk& disk, Eigen::VectorXd& x, double energy_scale,
-                       double progress_from, double progress_to) {
+// start_anchor: the candidate's own start positions when SurfaceMapOptions::start_anchor > 0.
+NewtonReport run_level(const Stages& st, int s, const SourceDisk& disk, const MapAnchor* start_anchor,
+                       Eigen::VectorXd& x, double energy_scale, double progress_from, double progress_to) {
   const SurfaceMapOptions& options = st.options;
   const int l = std::min(s, st.L - 1);
   MapEnergyWeights weights = options.weights;
+  const MapAnchor* anchor = &options.anchor;
+  if (start_anchor && options.weights.anchor == 0) {
+    weights.anchor = options.start_anchor;
+    anchor = start_anchor;
+  }
   weights.anchor *= std::pow(options.anchor_decay, s);
   const MapEnergy energy(disk, *st.levels.fields[l], source_values(st.source, st.levels, l, disk.reflected),
-                         stage_score(st, s), weights, &options.anchor);
+                         stage_score(st, s), weights, anchor);
   bool cancelled = false;
   NewtonOptions newton = options.newton;
   if (s >= st.L) newton.max_iterations = std::min(newton.max_iterations, options.refine_max_iterations);
@@ -283,12 +291,26 @@ struct Candidate {
   Eigen::VectorXd x;
   std::vector<NewtonReport> reports;
   double energy_scale = 0;
+  MapAnchor start_anchor;  // its start positions, when SurfaceMapOptions::start_anchor > 0
 };
+
+// A candidate from its rigid start (and, with start_anchor > 0, that start as its anchor).
+Candidate make_candidate(const Stages& st, const SourceDisk* disk, const RigidTransform2D& T) {
+  Candidate c{disk, start_from(st.source, T), {}, 0, {}};
+  if (st.options.start_anchor > 0) {
+    const int n = static_cast<int>(c.x.size() / 2);
+    c.start_anchor.position.resize(n);
+    for (int v = 0; v < n; ++v) c.start_anchor.position[v] = c.x.segment<2>(2 * v);
+    c.start_anchor.weight.assign(n, 1.0);
+  }
+  return c;
+}
 
 // Runs the candidate's next level in the progress range [p0, p1].
 void advance(const Stages& st, Candidate& c, double p0, double p1) {
   const int l = static_cast<int>(c.reports.size());
-  c.reports.push_back(run_level(st, l, *c.disk, c.x, c.energy_scale, p0, p1));
+  c.reports.push_back(run_level(st, l, *c.disk, c.start_anchor.position.empty() ? nullptr : &c.start_anchor, c.x,
+                                c.energy_scale, p0, p1));
   if (l == 0) c.energy_scale = c.reports.back().energy.front();
 }
 
@@ -296,8 +318,8 @@ void advance(const Stages& st, Candidate& c, double p0, double p1) {
 // decides, the mirrored one only by the relative margin.
 Candidate better_orientation(const Stages& st, const RigidAlignmentResult& init, const SourceDisk& plain,
                              const SourceDisk& mirrored, SurfaceMap& out) {
-  Candidate cp{&plain, start_from(st.source, init.best_unreflected), {}, 0};
-  Candidate cm{&mirrored, start_from(st.source, init.best_reflected), {}, 0};
+  Candidate cp = make_candidate(st, &plain, init.best_unreflected);
+  Candidate cm = make_candidate(st, &mirrored, init.best_reflected);
   const int upto = std::clamp(st.options.compared_levels, 1, st.L);
   for (int l = 0; l < upto; ++l) {
     const double mid = st.level_from(l) + 0.5 * st.level_share;
@@ -410,8 +432,7 @@ SurfaceMap compute_surface_map(const MapDomain& source, const MapDomain& target,
   const SourceDisk mirrored = (compare || init.transform.reflected) ? make_source_disk(source.mesh, source.uv, true)
                                                                     : SourceDisk{};
   Candidate chosen = compare ? better_orientation(stages, init, plain, mirrored, out)
-                             : Candidate{init.transform.reflected ? &mirrored : &plain,
-                                         start_from(source, init.transform), {}, 0};
+                             : make_candidate(stages, init.transform.reflected ? &mirrored : &plain, init.transform);
   const SourceDisk& disk = *chosen.disk;
   out.reflected = disk.reflected;
   run_remaining_levels(stages, chosen);

@@ -84,6 +84,10 @@ struct SurfaceMapOptions {
   // smoothest level keeps the map in the anchor's basin, the finer stages let the descriptors
   // move it (in (0, 1]; docs/design.md §11).
   double anchor_decay = 0.25;
+  // Without anchor positions (weights.anchor 0): the anchor term's weight towards each
+  // candidate's own rigid start (0 = off), with the same decay; keeps the optimization in the
+  // start's basin when the start is trusted (up hints, PatchMapOptions::up_start_anchor).
+  double start_anchor = 0.0;
   // Progress in [0, 1] on the calling thread; returning false throws MCON_ERROR_CANCELLED.
   std::function<bool(double)> progress;
 };

@@ -745,6 +745,39 @@ TEST_F(CapiMapArgs, WorldFrameAnchorIsCheckedAndDefaulted) {
   }
 }
 
+TEST_F(CapiMapArgs, UpHintsAreCheckedAndOptIn) {
+  mcon_map_options o;
+  ASSERT_EQ(mcon_map_options_init(&o), MCON_OK);
+  EXPECT_EQ(o.use_up_hints, 0u);
+  mcon_map_options up = fast_options();
+  up.use_up_hints = 1;
+  const double y[3] = {0, 1, 0};
+  std::copy(y, y + 3, up.source_up);
+  std::copy(y, y + 3, up.target_up);
+  mcon_map m = nullptr;
+  ASSERT_EQ(mcon_map_compute(source_, target_, &up, &m), MCON_OK) << last_message();
+  mcon_map_release(m);
+  // Zero and non-finite (the core test covers a vector normal to its patch).
+  const double inf = std::numeric_limits<double>::infinity();
+  const double bad[3][3] = {{0, 0, 0}, {0, kNaN, 0}, {inf, 0, 0}};
+  for (const auto& b : bad) {
+    mcon_map_options x = up;
+    std::copy(b, b + 3, x.source_up);
+    mcon_map n = reinterpret_cast<mcon_map>(&n);
+    EXPECT_EQ(mcon_map_compute(source_, target_, &x, &n), MCON_ERROR_INVALID_ARGUMENT) << b[0] << " " << b[1] << " " << b[2];
+    if (n != nullptr && n != reinterpret_cast<mcon_map>(&n)) mcon_map_release(n);
+    EXPECT_TRUE(mentions("source_up")) << last_message();
+  }
+  // A caller compiled before the fields: the garbage beyond its struct_size is not read.
+  mcon_map_options old = fast_options();
+  old.struct_size = static_cast<uint32_t>(offsetof(mcon_map_options, use_up_hints));
+  old.use_up_hints = 1;
+  old.source_up[0] = old.source_up[1] = old.source_up[2] = 0;
+  mcon_map k = nullptr;
+  EXPECT_EQ(mcon_map_compute(source_, target_, &old, &k), MCON_OK) << last_message();
+  mcon_map_release(k);
+}
+
 // A disk from arrays whose triangles disagree is repaired to the majority (a disk has no inside:
 // an all-reversed disk stays as given), the center stays the caller's point, and the patch info
 // reports the repair.

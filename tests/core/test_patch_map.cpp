@@ -247,3 +247,52 @@ TEST(PatchMap, AnchorPullsTheMapTowardsItsPositions) {
   w.world_frame_anchor = std::numeric_limits<double>::quiet_NaN();
   EXPECT_EQ(map_status(p, p, w), MCON_ERROR_INVALID_ARGUMENT);
 }
+
+// The up direction in uv turns with the parametrization (and mirrors with it); zero, non-finite
+// and normal vectors are refused.
+TEST(PatchMap, UpDirectionInUvFollowsTheParametrization) {
+  const Patch p = flat_patch();
+  const Vec3 up(0, 1, 0);
+  const Vec2 u = up_direction_in_uv(p, up, "up");
+  EXPECT_NEAR(u.norm(), 1.0, 1e-12);
+  for (const bool mirror : {false, true})
+    for (const double angle : {0.9, -2.2}) {
+      const Vec2 m(u.x(), mirror ? -u.y() : u.y());
+      const Vec2 expected(std::cos(angle) * m.x() - std::sin(angle) * m.y(), std::sin(angle) * m.x() + std::cos(angle) * m.y());
+      EXPECT_LT((up_direction_in_uv(with_rotated_uv(p, angle, mirror), up, "up") - expected).norm(), 1e-6)
+          << angle << " " << mirror;
+    }
+  // Length does not matter; the normal component is dropped.
+  EXPECT_LT((up_direction_in_uv(p, Vec3(0, 7, 3), "up") - u).norm(), 1e-9);
+  for (const Vec3& bad : {Vec3(0, 0, 0), Vec3(0, std::nan(""), 0), Vec3(0, 0, 1), Vec3(0.05, 0, 1)}) {
+    try {
+      up_direction_in_uv(p, bad, "source_up");
+      ADD_FAILURE() << "accepted " << bad.transpose();
+    } catch (const Error& e) {
+      EXPECT_EQ(e.status(), MCON_ERROR_INVALID_ARGUMENT);
+      EXPECT_NE(std::string(e.what()).find("source_up"), std::string::npos) << e.what();
+    }
+  }
+}
+
+// A flat disk's descriptors cannot tell rotations apart; with up hints the rigid start turns the
+// source's up onto the target's (within the prior's 60 degrees), whatever the parametrizations.
+TEST(PatchMap, UpHintsDecideTheRotationTheDescriptorsCannot) {
+  const Patch p = flat_patch();
+  for (const double angle : {2.5, -1.4}) {
+    const Patch q = with_rotated_uv(p, angle, false);
+    PatchMapOptions o = quick_options();
+    o.source_up = Vec3(0, 1, 0);
+    o.target_up = Vec3(0, 1, 0);
+    const SurfaceMap m = map_patches(p, q, o);
+    EXPECT_FALSE(m.reflected);
+    EXPECT_LT(angle_difference(m.alignment.transform.angle, angle), 1.05) << angle;
+    // Every candidate outside the hint was excluded: both orientations' bests respect it.
+    EXPECT_LT(angle_difference(m.alignment.best_unreflected.angle, angle), 1.05) << angle;
+  }
+  PatchMapOptions one = quick_options();
+  one.source_up = Vec3(0, 1, 0);
+  EXPECT_EQ(map_status(p, p, one), MCON_ERROR_INVALID_ARGUMENT);
+  one.target_up = Vec3(0, 0, 2);  // normal to the disk
+  EXPECT_EQ(map_status(p, p, one), MCON_ERROR_INVALID_ARGUMENT);
+}

@@ -199,7 +199,7 @@ void validate_mapping_options(const MappingEvalOptions& options) {
           MCON_ERROR_INVALID_ARGUMENT, "eval-mapping: invalid options");
   for (const std::string& m : options.methods)
     require(m == "macrocon" || m == "rigid" || m == "thesis" || m == "proximity" || m == "macrocon-frame" ||
-                m == "frame-rigid" || m == "oracle" || m == "landmarks",
+                m == "frame-rigid" || m == "macrocon-up" || m == "oracle" || m == "landmarks",
             MCON_ERROR_INVALID_ARGUMENT, "eval-mapping: unknown method '" + m + "'");
 }
 
@@ -443,6 +443,37 @@ void run_frame(const MappingEvalOptions& options, const PairPatches& pp, bool mi
   res["frame-rigid"].seconds = fm.alignment_seconds;
 }
 
+// macrocon-up: the frame-free map with both up hints +y (the models' up axis; PatchMapOptions::
+// source_up / target_up). An up direction cannot tell a part from its mirror image, so a mirrored
+// pair is mapped with the orientation reversed, as a host that knows the sides would (the same
+// knowledge proximity gets). A patch whose normal at the center is (nearly) +y gets no hint, as a
+// host would omit it (noted in the pair's orientation note).
+void run_up(const MappingEvalOptions& options, const PairPatches& pp, bool mirrored, PairMaps& maps,
+            std::map<std::string, MethodPairResult>& res, std::string& note) {
+  PatchMapOptions uo;
+  uo.map.alignment = maps.alignment;
+  if (mirrored) uo.map.orientation = MapOrientation::reverse;
+  if (options.up_anchor >= 0) uo.up_start_anchor = options.up_anchor;
+  uo.source_up = Vec3(0, 1, 0);
+  uo.target_up = Vec3(0, 1, 0);
+  const auto t0 = std::chrono::steady_clock::now();
+  SurfaceMap um;
+  try {
+    um = map_patches(pp.src.patch, pp.dst.patch, uo);
+  } catch (const Error& e) {
+    if (e.status() != MCON_ERROR_INVALID_ARGUMENT || std::string(e.what()).find("up vector") == std::string::npos) throw;
+    note += note.empty() ? "no up hint (normal)" : "; no up hint (normal)";
+    uo.source_up.reset();
+    uo.target_up.reset();
+    um = map_patches(pp.src.patch, pp.dst.patch, uo);
+  }
+  maps.phi["macrocon-up"] = um.phi;
+  maps.reflected["macrocon-up"] = um.reflected;
+  maps.signals["macrocon-up"] = map_signals(um);
+  res["macrocon-up"].seconds = seconds_since(t0);
+  res["macrocon-up"].iterations = um.iterations;
+}
+
 // A guided method: the SDK's map with host guidance channels (PatchMapOptions).
 void run_guided(const char* name, const PairPatches& pp, const Eigen::MatrixXd& gs, const Eigen::MatrixXd& gt,
                 double weight, PairMaps& maps, MappingPairResult& res) {
@@ -583,6 +614,7 @@ void evaluate_pair(const Model& model, const MappingSlot& slot, int i, const Map
   if (wants(options, "proximity")) run_proximity(pp, slot.mirrored, maps, res);
   if (wants(options, "macrocon-frame") || wants(options, "frame-rigid"))
     run_frame(options, pp, slot.mirrored, maps, res.methods);
+  if (wants(options, "macrocon-up")) run_up(options, pp, slot.mirrored, maps, res.methods, res.orientation_note);
   if (wants(options, "oracle"))
     run_guided("oracle", pp, oracle_guidance(model, pp.src.host, slot.mirrored), oracle_guidance(model, pp.dst.host, false),
                kOracleGuidanceWeight, maps, res);
@@ -848,6 +880,7 @@ void evaluate_cross_family_pair(const Model& src_model, const Model& dst_model, 
   if (wants(options, "proximity")) run_proximity(pp, res.slot.mirrored, maps, scratch);
   if (wants(options, "macrocon-frame") || wants(options, "frame-rigid"))
     run_frame(options, pp, res.slot.mirrored, maps, scratch.methods);
+  if (wants(options, "macrocon-up")) run_up(options, pp, res.slot.mirrored, maps, scratch.methods, scratch.orientation_note);
   res.orientation_note = scratch.orientation_note;
   const TriangleLocator2D locator(pp.dst.patch.uv, pp.dst.patch.mesh.triangles);
   const HeatGeodesics heat(pp.dst.patch.mesh);
@@ -888,7 +921,7 @@ std::vector<CrossFamilyPairResult> run_cross_family_evaluation(const MappingEval
   validate_mapping_options(options);
   for (const std::string& m : options.methods)
     require(m == "macrocon" || m == "rigid" || m == "thesis" || m == "proximity" || m == "macrocon-frame" ||
-                m == "frame-rigid",
+                m == "frame-rigid" || m == "macrocon-up",
             MCON_ERROR_INVALID_ARGUMENT,
             "eval-mapping --cross-family: method '" + m + "' needs in-family ground truth");
   const std::vector<CrossFamilySlot> slots = cross_family_slots(options.parts);

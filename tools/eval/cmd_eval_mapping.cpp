@@ -29,7 +29,8 @@ const char* kUsage =
     "and reflection; a mirrored pair's source mirrored x -> -x first), beside the frame-free macrocon;\n"
     "frame-rigid = that start alone (what rigid is to macrocon). --frame-anchor W: macrocon-frame's\n"
     "anchor weight (world_frame_anchor; default the SDK's, 0 = no anchor), --frame-anchor-decay D its\n"
-    "factor per stage (default the SDK's).\n"
+    "factor per stage (default the SDK's). macrocon-up = the frame-free map with up hints +y on both\n"
+    "patches (source_up/target_up); --up-anchor W its pull towards the rigid start (start_anchor).\n"
     "Diagnostic method, only when asked for (--method macrocon,oracle): oracle = the SDK's map with\n"
     "the ground-truth correspondents' base-mesh positions as extra guidance channels, i.e. what the\n"
     "optimizer and its distortion prior reach when the descriptors are unambiguous; landmarks = the\n"
@@ -95,7 +96,7 @@ int run_eval_mapping(const Args& args) {
   }
   const ArgParser p(args,
                     {"shared", "seed", "pairs", "classes", "method", "samples", "thesis-iterations", "eval-vertices",
-                     "threads", "landmarks", "noise", "density", "frame-anchor", "frame-anchor-decay"},
+                     "threads", "landmarks", "noise", "density", "frame-anchor", "frame-anchor-decay", "up-anchor"},
                     {"json", "quiet", "cross-family", "flip-winding"});
   tools::MappingEvalOptions o;
   o.shared_dir = p.required("shared");
@@ -126,6 +127,11 @@ int run_eval_mapping(const Args& args) {
     o.frame_anchor_decay = p.number("frame-anchor-decay", 1.0);
     require(o.frame_anchor_decay > 0 && o.frame_anchor_decay <= 1, MCON_ERROR_INVALID_ARGUMENT,
             "--frame-anchor-decay must be in (0, 1]");
+  }
+  if (p.has("up-anchor")) {
+    o.up_anchor = p.number("up-anchor", 0.0);
+    require(o.up_anchor >= 0 && std::isfinite(o.up_anchor), MCON_ERROR_INVALID_ARGUMENT,
+            "--up-anchor must be a finite number >= 0");
   }
   o.perturbation.noise = p.number("noise", 0.0);
   o.perturbation.density = p.number("density", 1.0);

@@ -532,6 +532,11 @@ static class Tests
                 Check(Array.Exists(unanchored.EnergyTerms, e => e.Name == "anchor" && e.Value == 0), "anchor 0: the term is off");
             var badAnchor = Expect<MacroconException>(() => Map.Compute(source, target, new MapSettings { UseWorldFrame = true, WorldFrameAnchor = -1 }));
             Check(badAnchor.Status == Status.InvalidArgument && badAnchor.Message.Contains("world_frame_anchor"), "negative anchor: " + badAnchor.Message);
+            using (var hinted = Map.Compute(source, target, new MapSettings { Seed = 3, AlignmentSamples = 400, MaxIterations = 30, SourceUp = new[] { 0.0, 1, 0 }, TargetUp = new[] { 0.0, 1, 0 } }))
+                Check(hinted.Info.FlippedTriangles == 0, "up hints: a map");
+            Expect<ArgumentException>(() => Map.Compute(source, target, new MapSettings { SourceUp = new[] { 0.0, 1, 0 } }));
+            var zeroUp = Expect<MacroconException>(() => Map.Compute(source, target, new MapSettings { SourceUp = new[] { 0.0, 0, 0 }, TargetUp = new[] { 0.0, 1, 0 } }));
+            Check(zeroUp.Status == Status.InvalidArgument && zeroUp.Message.Contains("source_up"), "zero up: " + zeroUp.Message);
             Check(a.AlignmentScoreUnreflected >= 0 && a.AlignmentScoreReflected >= 0, "both rigid scores");
             Check(a.AlignmentScore == (a.Reflected != 0 ? a.AlignmentScoreReflected : a.AlignmentScoreUnreflected), "winner's score");
             Check(a.OrientationCompared != 0
@@ -695,7 +700,9 @@ static class Tests
             foreach (var f in kv.Value.GetFields(System.Reflection.BindingFlags.Instance | System.Reflection.BindingFlags.Public))
             {
                 string snake = System.Text.RegularExpressions.Regex.Replace(f.Name, "(?<=[a-z0-9])([A-Z])", "_$1").ToLowerInvariant();
-                string[] notInC = { "b0", "b1", "b2", "source_origin_x", "source_origin_y", "source_origin_z" };
+                // C arrays (double x[3]) mirrored as three fields; sizeof still checks them.
+                string[] notInC = { "b0", "b1", "b2", "source_origin_x", "source_origin_y", "source_origin_z",
+                                    "source_up_x", "source_up_y", "source_up_z", "target_up_x", "target_up_y", "target_up_z" };
                 if (Array.IndexOf(notInC, snake) >= 0) continue;
                 probe.Append($"  printf(\"{kv.Key}.{snake} %zu\\n\", offsetof({kv.Key}, {snake}));\n");
                 expected.Add(kv.Key + "." + snake + " " + (long)Marshal.OffsetOf(kv.Value, f.Name));

@@ -257,6 +257,9 @@ class MapOptions(Struct):
         ("use_world_frame", ctypes.c_uint32),
         ("world_frame_mirror", ctypes.c_uint32),
         ("world_frame_anchor", ctypes.c_double),
+        ("use_up_hints", ctypes.c_uint32),
+        ("source_up", ctypes.c_double * 3),
+        ("target_up", ctypes.c_double * 3),
     ]
 
 

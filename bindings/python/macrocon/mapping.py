@@ -157,6 +157,8 @@ class Map(_Handle):
         use_world_frame: bool = False,
         world_frame_mirror: bool = False,
         world_frame_anchor: Optional[float] = None,
+        source_up=None,
+        target_up=None,
     ) -> "Map":
         """orientation: "automatic" (the descriptors decide; allow_reflection restricts it),
         "preserve" or "reverse" (forced, e.g. a "flip" that recomputes with the orientation
@@ -178,6 +180,10 @@ class Map(_Handle):
         world_frame_anchor: with use_world_frame, the weight (finite, >= 0; 0 = off) of the term
         that keeps each source point near the target point closest to it in 3D after that alignment.
 
+        source_up / target_up: up directions (3 finite numbers each, in each host's own
+        coordinates; give both or neither) that the rigid start must respect, so the map is never
+        upside down; a vector (nearly) normal to its patch at the center is an InvalidArgumentError.
+
         Options left at None keep mcon_map_options_init's defaults."""
         require_type(source, Patch, "source")
         require_type(target, Patch, "target")
@@ -196,6 +202,16 @@ class Map(_Handle):
         o.world_frame_mirror = 1 if world_frame_mirror else 0
         if world_frame_anchor is not None:
             o.world_frame_anchor = float(world_frame_anchor)
+        if (source_up is None) != (target_up is None):
+            raise ValueError("source_up and target_up must be given together")
+        if source_up is not None:
+            for name, up, field in (("source_up", source_up, o.source_up), ("target_up", target_up, o.target_up)):
+                v = np.asarray(up, dtype=np.float64).reshape(-1)
+                if v.shape != (3,):
+                    raise ValueError(f"{name} must have 3 components, got shape {np.shape(up)}")
+                for k in range(3):
+                    field[k] = float(v[k])
+            o.use_up_hints = 1
         if refine_sigma_factor is not None:
             o.refine_sigma_factor = float(refine_sigma_factor)
         if (source_guidance is None) != (target_guidance is None):

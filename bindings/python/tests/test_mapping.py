@@ -415,3 +415,12 @@ def test_world_frame_start_is_opt_in_and_reported(host):
         for bad in (-1.0, float("nan")):
             with pytest.raises(macrocon.InvalidArgumentError):
                 macrocon.Map.compute(a, b, use_world_frame=True, world_frame_anchor=bad, **FAST)
+        # Up hints: both or neither, 3 components, not normal to the patch.
+        with macrocon.Map.compute(a, b, seed=3, source_up=(0, 1, 0), target_up=[0.0, 2.0, 0.0], **FAST) as hinted:
+            assert hinted.info.flipped_triangles == 0
+        with pytest.raises(ValueError):
+            macrocon.Map.compute(a, b, source_up=(0, 1, 0), **FAST)
+        with pytest.raises(ValueError):
+            macrocon.Map.compute(a, b, source_up=(0, 1), target_up=(0, 1, 0), **FAST)
+        with pytest.raises(macrocon.InvalidArgumentError):
+            macrocon.Map.compute(a, b, source_up=(0, 0, 0), target_up=(0, 1, 0), **FAST)
