@@ -186,6 +186,7 @@ namespace Macrocon
         {
             public uint struct_size; public IntPtr positions; public uint position_type; public UIntPtr position_stride;
             public UIntPtr vertex_count; public IntPtr indices; public UIntPtr index_stride; public UIntPtr triangle_count;
+            public uint index_format;  // appended: mcon_index_format (0 uint32, 1 int32, 2 int64)
         }
 
         [StructLayout(LayoutKind.Sequential)]
@@ -359,6 +360,8 @@ namespace Macrocon
             [Out] double[] barycentric, [Out] double[] xyz, UIntPtr capacity);
         [DllImport(Lib)] internal static extern Status mcon_map_transfer_field(MapHandle map, FieldKind kind, uint dimension, IntPtr values,
             UIntPtr valueCount, [Out] double[] outValues, UIntPtr capacity);
+        [DllImport(Lib)] internal static extern Status mcon_map_transfer_field_f32(MapHandle map, FieldKind kind, uint dimension, IntPtr values,
+            UIntPtr valueCount, [Out] float[] outValues, UIntPtr capacity);
         [DllImport(Lib)] internal static extern Status mcon_map_transfer_labels(MapHandle map, uint dimension, IntPtr labels, UIntPtr labelCount,
             int outsideLabel, [Out] int[] outLabels, UIntPtr capacity);
         [DllImport(Lib)] internal static extern Status mcon_cross_field_options_init(ref CrossFieldOptions options);
@@ -699,16 +702,57 @@ namespace Macrocon
         public int OutwardTurnedComponents { get; }
     }
 
+    /// <summary>A triangle index array of any accepted element type as bytes plus its
+    /// mcon_index_format, so every Mesh/Patch overload shares one native call.</summary>
+    internal readonly ref struct Indices
+    {
+        public readonly ReadOnlySpan<byte> Bytes;
+        public readonly uint Format;      // mcon_index_format
+        public readonly int TriangleCount;
+
+        public Indices(ReadOnlySpan<uint> t) : this(MemoryMarshal.AsBytes(t), 0, t.Length) { }
+        public Indices(ReadOnlySpan<int> t) : this(MemoryMarshal.AsBytes(t), 1, t.Length) { }
+        public Indices(ReadOnlySpan<long> t) : this(MemoryMarshal.AsBytes(t), 2, t.Length) { }
+
+        private Indices(ReadOnlySpan<byte> bytes, uint format, int length)
+        {
+            if (length % 3 != 0) throw new ArgumentException("triangles must hold 3 indices per triangle");
+            Bytes = bytes; Format = format; TriangleCount = length / 3;
+        }
+
+        public void Fill(ref Native.MeshDesc desc, IntPtr pinned)
+        {
+            desc.indices = pinned;
+            desc.index_format = Format;
+            desc.triangle_count = (UIntPtr)TriangleCount;
+        }
+    }
+
     public sealed class Mesh : IDisposable
     {
         internal readonly MeshHandle Handle;
 
         /// <summary>positions: 3 per vertex; triangles: 3 indices per triangle (copied by the library).</summary>
         public Mesh(Context context, ReadOnlySpan<double> positions, ReadOnlySpan<uint> triangles)
-            : this(context, MemoryMarshal.AsBytes(positions), 2, triangles) { }
+            : this(context, MemoryMarshal.AsBytes(positions), 2, new Indices(triangles)) { }
 
         public Mesh(Context context, ReadOnlySpan<float> positions, ReadOnlySpan<uint> triangles)
-            : this(context, MemoryMarshal.AsBytes(positions), 1, triangles) { }
+            : this(context, MemoryMarshal.AsBytes(positions), 1, new Indices(triangles)) { }
+
+        /// <summary>int indices (Unity's Mesh.triangles), passed as they are (MCON_INDEX_FORMAT_INT32, no
+        /// copy to uint); a negative index is a MacroconException with Status.IndexOutOfRange.</summary>
+        public Mesh(Context context, ReadOnlySpan<double> positions, ReadOnlySpan<int> triangles)
+            : this(context, MemoryMarshal.AsBytes(positions), 2, new Indices(triangles)) { }
+
+        public Mesh(Context context, ReadOnlySpan<float> positions, ReadOnlySpan<int> triangles)
+            : this(context, MemoryMarshal.AsBytes(positions), 1, new Indices(triangles)) { }
+
+        /// <summary>long indices (MCON_INDEX_FORMAT_INT64), passed as they are.</summary>
+        public Mesh(Context context, ReadOnlySpan<double> positions, ReadOnlySpan<long> triangles)
+            : this(context, MemoryMarshal.AsBytes(positions), 2, new Indices(triangles)) { }
+
+        public Mesh(Context context, ReadOnlySpan<float> positions, ReadOnlySpan<long> triangles)
+            : this(context, MemoryMarshal.AsBytes(positions), 1, new Indices(triangles)) { }
 
         /// <summary>A mesh from an interleaved vertex buffer, read in place (no copy in the binding):
         /// vertex i's 3 coordinates (doubles if doublePrecision, else floats) start at byte
@@ -718,43 +762,48 @@ namespace Macrocon
         /// ArgumentException before the call unless vertexStride &gt; 0, the position fits inside the
         /// stride, offset and stride are multiples of the scalar size and vertexCount vertices fit in
         /// the buffer.</summary>
-        public unsafe Mesh(Context context, ReadOnlySpan<byte> vertexBytes, int positionOffset, int vertexStride, int vertexCount,
-                           bool doublePrecision, ReadOnlySpan<uint> triangles)
+        public Mesh(Context context, ReadOnlySpan<byte> vertexBytes, int positionOffset, int vertexStride, int vertexCount,
+                    bool doublePrecision, ReadOnlySpan<uint> triangles)
+            : this(context, vertexBytes, positionOffset, vertexStride, vertexCount, doublePrecision, new Indices(triangles)) { }
+
+        /// <summary>The interleaved constructor with int indices (Unity), passed as they are.</summary>
+        public Mesh(Context context, ReadOnlySpan<byte> vertexBytes, int positionOffset, int vertexStride, int vertexCount,
+                    bool doublePrecision, ReadOnlySpan<int> triangles)
+            : this(context, vertexBytes, positionOffset, vertexStride, vertexCount, doublePrecision, new Indices(triangles)) { }
+
+        private unsafe Mesh(Context context, ReadOnlySpan<byte> vertexBytes, int positionOffset, int vertexStride, int vertexCount,
+                            bool doublePrecision, Indices triangles)
         {
             if (context == null) throw new ArgumentNullException(nameof(context));
             int scalar = doublePrecision ? 8 : 4;
             Interleaved.Check("vertexBytes", vertexBytes.Length, positionOffset, vertexStride, vertexCount, 3 * scalar, scalar);
-            if (triangles.Length % 3 != 0) throw new ArgumentException("triangles must hold 3 indices per triangle");
             var desc = new Native.MeshDesc();
             Native.Check(Native.mcon_mesh_desc_init(ref desc));
             fixed (byte* p = &MemoryMarshal.GetReference(vertexBytes))
-            fixed (uint* t = &MemoryMarshal.GetReference(triangles))
+            fixed (byte* t = &MemoryMarshal.GetReference(triangles.Bytes))
             {
                 desc.positions = vertexCount == 0 ? (IntPtr)p : Interleaved.Start("vertexBytes", (IntPtr)p, positionOffset, scalar);
                 desc.position_type = doublePrecision ? 2u : 1u;
                 desc.position_stride = (UIntPtr)vertexStride;
                 desc.vertex_count = (UIntPtr)vertexCount;
-                desc.indices = (IntPtr)t;
-                desc.triangle_count = (UIntPtr)(triangles.Length / 3);
+                triangles.Fill(ref desc, (IntPtr)t);
                 Native.Check(Native.mcon_mesh_create(context.Handle, ref desc, out Handle));
             }
         }
 
-        private unsafe Mesh(Context context, ReadOnlySpan<byte> positionBytes, uint type, ReadOnlySpan<uint> triangles)
+        private unsafe Mesh(Context context, ReadOnlySpan<byte> positionBytes, uint type, Indices triangles)
         {
             int scalar = type == 1 ? 4 : 8;
             if (positionBytes.Length % (3 * scalar) != 0) throw new ArgumentException("positions must hold 3 values per vertex");
-            if (triangles.Length % 3 != 0) throw new ArgumentException("triangles must hold 3 indices per triangle");
             var desc = new Native.MeshDesc();
             Native.Check(Native.mcon_mesh_desc_init(ref desc));
             fixed (byte* p = &MemoryMarshal.GetReference(positionBytes))
-            fixed (uint* t = &MemoryMarshal.GetReference(triangles))
+            fixed (byte* t = &MemoryMarshal.GetReference(triangles.Bytes))
             {
                 desc.positions = (IntPtr)p;
                 desc.position_type = type;
                 desc.vertex_count = (UIntPtr)(positionBytes.Length / (3 * scalar));
-                desc.indices = (IntPtr)t;
-                desc.triangle_count = (UIntPtr)(triangles.Length / 3);
+                triangles.Fill(ref desc, (IntPtr)t);
                 Native.Check(Native.mcon_mesh_create(context.Handle, ref desc, out Handle));
             }
         }
@@ -835,12 +884,27 @@ namespace Macrocon
 
         /// <summary>A patch from an already normalized disk mesh (e.g. a library entry); nothing is cut.
         /// host = origin + scale * p places it in its own host units.</summary>
-        public static unsafe Patch FromArrays(Context context, ReadOnlySpan<double> positions, ReadOnlySpan<uint> triangles,
-                                              uint centerTriangle, double[] centerBarycentric = null, double[] origin = null,
-                                              double scale = 1.0)
+        public static Patch FromArrays(Context context, ReadOnlySpan<double> positions, ReadOnlySpan<uint> triangles,
+                                       uint centerTriangle, double[] centerBarycentric = null, double[] origin = null,
+                                       double scale = 1.0)
+            => FromArrays(context, positions, new Indices(triangles), centerTriangle, centerBarycentric, origin, scale);
+
+        /// <summary>FromArrays with int indices (Unity), passed as they are (MCON_INDEX_FORMAT_INT32).</summary>
+        public static Patch FromArrays(Context context, ReadOnlySpan<double> positions, ReadOnlySpan<int> triangles,
+                                       uint centerTriangle, double[] centerBarycentric = null, double[] origin = null,
+                                       double scale = 1.0)
+            => FromArrays(context, positions, new Indices(triangles), centerTriangle, centerBarycentric, origin, scale);
+
+        /// <summary>FromArrays with long indices (MCON_INDEX_FORMAT_INT64).</summary>
+        public static Patch FromArrays(Context context, ReadOnlySpan<double> positions, ReadOnlySpan<long> triangles,
+                                       uint centerTriangle, double[] centerBarycentric = null, double[] origin = null,
+                                       double scale = 1.0)
+            => FromArrays(context, positions, new Indices(triangles), centerTriangle, centerBarycentric, origin, scale);
+
+        private static unsafe Patch FromArrays(Context context, ReadOnlySpan<double> positions, Indices triangles,
+                                               uint centerTriangle, double[] centerBarycentric, double[] origin, double scale)
         {
             if (positions.Length % 3 != 0) throw new ArgumentException("positions must hold 3 values per vertex");
-            if (triangles.Length % 3 != 0) throw new ArgumentException("triangles must hold 3 indices per triangle");
             if (centerBarycentric != null && centerBarycentric.Length != 3) throw new ArgumentException("centerBarycentric needs 3 values");
             if (origin != null && origin.Length != 3) throw new ArgumentException("origin needs 3 values");
             var desc = new Native.MeshDesc();
@@ -855,13 +919,12 @@ namespace Macrocon
             }
             frame.scale = scale;
             fixed (double* p = &MemoryMarshal.GetReference(positions))
-            fixed (uint* t = &MemoryMarshal.GetReference(triangles))
+            fixed (byte* t = &MemoryMarshal.GetReference(triangles.Bytes))
             {
                 desc.positions = (IntPtr)p;
                 desc.position_type = 2;
                 desc.vertex_count = (UIntPtr)(positions.Length / 3);
-                desc.indices = (IntPtr)t;
-                desc.triangle_count = (UIntPtr)(triangles.Length / 3);
+                triangles.Fill(ref desc, (IntPtr)t);
                 Native.Check(Native.mcon_patch_create_from_arrays(context.Handle, ref desc, ref frame, out PatchHandle handle));
                 return new Patch(handle);
             }

@@ -251,6 +251,20 @@ namespace Macrocon
             return o;
         }
 
+        /// <summary>The same with float values (Unity): mcon_map_transfer_field_f32, computed in double
+        /// and rounded once, so it equals the double overload on the widened values, cast to float.</summary>
+        public unsafe float[] TransferField(FieldKind kind, int dimension, ReadOnlySpan<float> values)
+        {
+            if (kind == FieldKind.IntegerLabel) throw new ArgumentException("integer labels go through TransferLabels");
+            if (dimension < 1 || values.Length != dimension * sourceVertices)
+                throw new ArgumentException($"values must hold {dimension} per source vertex ({sourceVertices})");
+            var o = new float[dimension * targetVertices];
+            fixed (float* v = &MemoryMarshal.GetReference(values))
+                Native.Check(Native.mcon_map_transfer_field_f32(Handle, kind, checked((uint)dimension), (IntPtr)v, (UIntPtr)values.Length, o,
+                                                                (UIntPtr)o.Length));
+            return o;
+        }
+
         /// <summary>A field that lives inside interleaved per-source-vertex records: vertex v's
         /// `dimension` doubles start at byte fieldOffset + v * recordStride of recordBytes (e.g.
         /// <c>MemoryMarshal.AsBytes(records.AsSpan())</c>). mcon_map_transfer_field takes packed rows

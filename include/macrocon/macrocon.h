@@ -142,6 +142,13 @@ typedef enum mcon_scalar_type {
   MCON_SCALAR_FLOAT64 = 2
 } mcon_scalar_type;
 
+/* The element type of mcon_mesh_desc.indices (as Embree's RTC_FORMAT_UINT3 and friends). */
+typedef enum mcon_index_format {
+  MCON_INDEX_FORMAT_UINT32 = 0, /* uint32_t: the default and the only format before index_format */
+  MCON_INDEX_FORMAT_INT32 = 1,  /* int32_t (C# int[], Maya, USD); negative values are out of range */
+  MCON_INDEX_FORMAT_INT64 = 2   /* int64_t (numpy's default integer); negative values are out of range */
+} mcon_index_format;
+
 typedef struct mcon_mesh_desc {
   uint32_t struct_size;
   /* vertex_count positions, 3 scalars each, `position_stride` bytes apart (0 = 3 * scalar size) */
@@ -149,19 +156,23 @@ typedef struct mcon_mesh_desc {
   uint32_t position_type; /* mcon_scalar_type */
   size_t position_stride;
   size_t vertex_count;
-  /* triangle_count triangles, 3 uint32 indices each, `index_stride` bytes apart (0 = 12) */
+  /* triangle_count triangles, 3 indices each of type index_format (cast the pointer: it is read as
+   * that type), `index_stride` bytes apart (0 = 3 * index size: 12, or 24 for INT64) */
   const uint32_t* indices;
   size_t index_stride;
   size_t triangle_count;
+  /* (appended) mcon_index_format of `indices`; default UINT32 (also for an older struct_size). */
+  uint32_t index_format;
 } mcon_mesh_desc;
 
 MCON_API mcon_status mcon_mesh_desc_init(mcon_mesh_desc* desc);
 
 /* Validates, copies and orients: each connected component is made consistent and outward
  * (docs/api.md "Input orientation"; mcon_mesh_get_orientation reports what changed). Errors:
- * NON_FINITE, INDEX_OUT_OF_RANGE, REPEATED_INDEX, DEGENERATE_TRIANGLE, NON_MANIFOLD_EDGE,
- * NON_ORIENTABLE, NON_MANIFOLD_VERTEX, ISOLATED_VERTEX, EMPTY_MESH, each with a message naming the
- * first offending vertex or triangle. */
+ * NON_FINITE, INDEX_OUT_OF_RANGE (also a negative INT32/INT64 index), REPEATED_INDEX,
+ * DEGENERATE_TRIANGLE, NON_MANIFOLD_EDGE, NON_ORIENTABLE, NON_MANIFOLD_VERTEX, ISOLATED_VERTEX,
+ * EMPTY_MESH, each with a message naming the first offending vertex or triangle; an unknown
+ * index_format is INVALID_ARGUMENT. */
 MCON_API mcon_status mcon_mesh_create(mcon_context context, const mcon_mesh_desc* desc, mcon_mesh* out_mesh);
 MCON_API mcon_status mcon_mesh_retain(mcon_mesh mesh);
 MCON_API mcon_status mcon_mesh_release(mcon_mesh mesh);
@@ -767,6 +778,11 @@ MCON_API mcon_status mcon_polyline_set_get_points(mcon_polyline_set polylines, u
 MCON_API mcon_status mcon_map_transfer_field(mcon_map map, mcon_field_kind kind, uint32_t dimension,
                                              const double* source_values, size_t value_count, double* out_values,
                                              size_t capacity);
+/* mcon_map_transfer_field with float32 values in and out (computed in double, rounded once at the
+ * end: equal to the double call on the widened values, then cast). Counts and capacity in floats. */
+MCON_API mcon_status mcon_map_transfer_field_f32(mcon_map map, mcon_field_kind kind, uint32_t dimension,
+                                                 const float* source_values, size_t value_count, float* out_values,
+                                                 size_t capacity);
 /* Integer labels, never blended: each target vertex takes the label of the source corner with the
  * largest barycentric weight; vertices outside the overlap get outside_label. Counts in int32. */
 MCON_API mcon_status mcon_map_transfer_labels(mcon_map map, uint32_t dimension, const int32_t* source_labels,

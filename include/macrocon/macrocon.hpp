@@ -16,6 +16,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -186,6 +187,17 @@ class Mesh {
     check_flat(positions.size(), indices.size());
     return from_arrays(context, positions.data(), 0, positions.size() / 3, indices.data(), 0, indices.size() / 3);
   }
+  // int32 (MCON_INDEX_FORMAT_INT32) or int64 (INT64) indices, read as they are.
+  template <typename Scalar>
+  static Mesh from_arrays(const Context& context, const std::vector<Scalar>& positions,
+                          const std::vector<std::int32_t>& indices) {
+    return from_signed(context, positions, indices.data(), indices.size(), MCON_INDEX_FORMAT_INT32);
+  }
+  template <typename Scalar>
+  static Mesh from_arrays(const Context& context, const std::vector<Scalar>& positions,
+                          const std::vector<std::int64_t>& indices) {
+    return from_signed(context, positions, indices.data(), indices.size(), MCON_INDEX_FORMAT_INT64);
+  }
   // Strided arrays: strides in bytes, 0 = tightly packed.
   static Mesh from_arrays(const Context& context, const float* positions, std::size_t position_stride,
                           std::size_t vertex_count, const std::uint32_t* indices, std::size_t index_stride,
@@ -261,6 +273,18 @@ class Mesh {
     d.index_stride = index_stride;
     d.triangle_count = triangle_count;
     return d;
+  }
+  template <typename Scalar>
+  static Mesh from_signed(const Context& context, const std::vector<Scalar>& positions, const void* indices,
+                          std::size_t index_count, mcon_index_format format) {
+    static_assert(std::is_same<Scalar, float>::value || std::is_same<Scalar, double>::value,
+                  "positions are float or double");
+    check_flat(positions.size(), index_count);
+    mcon_mesh_desc d = desc(positions.data(),
+                            std::is_same<Scalar, float>::value ? MCON_SCALAR_FLOAT32 : MCON_SCALAR_FLOAT64, 0,
+                            positions.size() / 3, static_cast<const std::uint32_t*>(indices), 0, index_count / 3);
+    d.index_format = format;
+    return from_desc(context, d);
   }
   std::pair<std::size_t, std::size_t> counts() const {
     std::size_t v = 0, t = 0;
@@ -895,6 +919,14 @@ class Map {
     std::vector<double> out(info().target_vertex_count * dimension);
     check(mcon_map_transfer_field(handle(), kind, dimension, source_values.data(), source_values.size(), out.data(),
                                   out.size()));
+    return out;
+  }
+  // The same in float32 (mcon_map_transfer_field_f32: computed in double, rounded once).
+  std::vector<float> transfer_field(mcon_field_kind kind, std::uint32_t dimension,
+                                    const std::vector<float>& source_values) const {
+    std::vector<float> out(info().target_vertex_count * dimension);
+    check(mcon_map_transfer_field_f32(handle(), kind, dimension, source_values.data(), source_values.size(),
+                                      out.data(), out.size()));
     return out;
   }
   std::vector<std::int32_t> transfer_labels(std::uint32_t dimension, const std::vector<std::int32_t>& labels,

@@ -1,5 +1,6 @@
 // Meshes: strided caller arrays -> a copied, oriented, validated mcon::TriMesh (orient_and_validate).
 #include <algorithm>
+#include <cstddef>
 #include <limits>
 
 #include "capi/capi_handles.h"
@@ -10,6 +11,9 @@ using namespace mcon::capi;
 mcon_mesh_t::~mcon_mesh_t() { release_owned(context); }
 
 namespace {
+
+// The first published mcon_mesh_desc ended with triangle_count; index_format was appended.
+constexpr std::size_t kMeshDescMinSize = offsetof(mcon_mesh_desc, index_format);
 
 // The last byte read is (count - 1) * stride + element bytes: it must be addressable.
 void require_addressable(std::size_t count, std::size_t stride, std::size_t element, const char* what) {
@@ -25,7 +29,15 @@ std::unique_ptr<mcon_mesh_t> mcon::capi::make_mesh(mcon_context context, const m
                                                    OrientationRule rule) {
   require_pointer(desc, "desc");
   auto defaults = zeroed_struct<mcon_mesh_desc>();
-  const auto d = read_options(desc, sizeof(mcon_mesh_desc), "mcon_mesh_desc", defaults);
+  auto d = read_options(desc, kMeshDescMinSize, "mcon_mesh_desc", defaults);
+  // An older caller's struct ends before index_format (or inside it): its indices are uint32.
+  if (desc->struct_size < offsetof(mcon_mesh_desc, index_format) + sizeof(d.index_format))
+    d.index_format = MCON_INDEX_FORMAT_UINT32;
+  require(d.index_format == MCON_INDEX_FORMAT_UINT32 || d.index_format == MCON_INDEX_FORMAT_INT32 ||
+              d.index_format == MCON_INDEX_FORMAT_INT64,
+          MCON_ERROR_INVALID_ARGUMENT,
+          "index_format " + std::to_string(d.index_format) +
+              " is not an mcon_index_format (MCON_INDEX_FORMAT_UINT32 = 0, INT32 = 1, INT64 = 2)");
   require(d.position_type == MCON_SCALAR_FLOAT32 || d.position_type == MCON_SCALAR_FLOAT64, MCON_ERROR_INVALID_ARGUMENT,
           "position_type " + std::to_string(d.position_type) +
               " is not an mcon_scalar_type (set MCON_SCALAR_FLOAT32 = 1 or MCON_SCALAR_FLOAT64 = 2)");
@@ -36,11 +48,15 @@ std::unique_ptr<mcon_mesh_t> mcon::capi::make_mesh(mcon_context context, const m
   arrays.position_stride = d.position_stride;
   arrays.vertex_count = d.vertex_count;
   arrays.indices = d.indices;
+  arrays.index_type = d.index_format == MCON_INDEX_FORMAT_INT64   ? IndexType::int64
+                      : d.index_format == MCON_INDEX_FORMAT_INT32 ? IndexType::int32
+                                                                  : IndexType::uint32;
   arrays.index_stride = d.index_stride;
   arrays.triangle_count = d.triangle_count;
   const std::size_t scalar = arrays.positions_are_double ? sizeof(double) : sizeof(float);
   require_addressable(d.vertex_count, d.position_stride ? d.position_stride : 3 * scalar, 3 * scalar, "positions");
-  require_addressable(d.triangle_count, d.index_stride ? d.index_stride : 12, 12, "indices");
+  const std::size_t triangle_bytes = 3 * index_size(arrays.index_type);
+  require_addressable(d.triangle_count, d.index_stride ? d.index_stride : triangle_bytes, triangle_bytes, "indices");
 
   auto mesh = std::make_unique<mcon_mesh_t>();
   run_in_arena(context, [&] {

@@ -53,6 +53,52 @@ VertexCounts require_vertex_array_sizes(const mcon_map_t& map, std::uint32_t dim
   return n;
 }
 
+// mcon_map_transfer_field for double or float values: checked, widened to double, transferred in
+// double and written back as Scalar (so the float call equals the double call on the widened input,
+// rounded once).
+template <typename Scalar>
+void transfer_field(const mcon_map_t& map, mcon_field_kind kind, std::uint32_t dimension, const Scalar* source_values,
+                    std::size_t value_count, Scalar* out_values, std::size_t capacity, const char* capacity_name) {
+  const std::int32_t k = enum_bits(kind);
+  require(k != MCON_FIELD_INTEGER_LABEL, MCON_ERROR_INVALID_ARGUMENT,
+          "integer labels are never interpolated: use mcon_map_transfer_labels");
+  require(k == MCON_FIELD_SCALAR || k == MCON_FIELD_VECTOR3 || k == MCON_FIELD_TANGENT_VECTOR || k == MCON_FIELD_UV,
+          MCON_ERROR_INVALID_ARGUMENT, "kind " + std::to_string(k) + " is not an mcon_field_kind");
+  const std::uint32_t needed_dim = k == MCON_FIELD_UV ? 2u : (k == MCON_FIELD_SCALAR ? 0u : 3u);
+  if (needed_dim == 0)
+    require(dimension >= 1, MCON_ERROR_INVALID_ARGUMENT, "a scalar field needs dimension >= 1");
+  else
+    require(dimension == needed_dim, MCON_ERROR_INVALID_ARGUMENT,
+            "this field kind has dimension " + std::to_string(needed_dim) + ", not " + std::to_string(dimension));
+  require_pointer(source_values, "source_values");
+  require_pointer(out_values, "out_values");
+  const auto [ns, nt] =
+      require_vertex_array_sizes(map, dimension, value_count, "value_count", capacity, capacity_name);
+  for (std::size_t i = 0; i < value_count; ++i)
+    require(std::isfinite(source_values[i]), MCON_ERROR_NON_FINITE,
+            "source_values[" + std::to_string(i) + "] is not finite");
+  const MapView view = map.view();
+  if (k == MCON_FIELD_TANGENT_VECTOR) {
+    std::vector<Vec3> v(ns);
+    for (std::size_t i = 0; i < ns; ++i)
+      v[i] = Vec3(static_cast<double>(source_values[3 * i]), static_cast<double>(source_values[3 * i + 1]),
+                  static_cast<double>(source_values[3 * i + 2]));
+    const std::vector<Vec3> out = transfer_tangent_vectors(view, v);
+    for (std::size_t w = 0; w < nt; ++w)
+      for (int c = 0; c < 3; ++c) out_values[3 * w + c] = static_cast<Scalar>(out[w][c]);
+    return;
+  }
+  const Eigen::MatrixXd in =
+      Eigen::Map<const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+          source_values, static_cast<Eigen::Index>(ns), static_cast<Eigen::Index>(dimension))
+          .template cast<double>();
+  const Eigen::MatrixXd out = transfer_interpolated(view, in);
+  for (std::size_t w = 0; w < nt; ++w)
+    for (std::size_t c = 0; c < dimension; ++c)
+      out_values[dimension * w + c] =
+          static_cast<Scalar>(out(static_cast<Eigen::Index>(w), static_cast<Eigen::Index>(c)));
+}
+
 }  // namespace
 
 extern "C" {
@@ -178,39 +224,17 @@ mcon_status mcon_map_transfer_field(mcon_map map, mcon_field_kind kind, uint32_t
                                     const double* source_values, size_t value_count, double* out_values,
                                     size_t capacity) {
   return guard_object("mcon_map_transfer_field", map, "map", [&] {
-    const std::int32_t k = enum_bits(kind);
-    require(k != MCON_FIELD_INTEGER_LABEL, MCON_ERROR_INVALID_ARGUMENT,
-            "integer labels are never interpolated: use mcon_map_transfer_labels");
-    require(k == MCON_FIELD_SCALAR || k == MCON_FIELD_VECTOR3 || k == MCON_FIELD_TANGENT_VECTOR || k == MCON_FIELD_UV,
-            MCON_ERROR_INVALID_ARGUMENT, "kind " + std::to_string(k) + " is not an mcon_field_kind");
-    const std::uint32_t needed_dim = k == MCON_FIELD_UV ? 2u : (k == MCON_FIELD_SCALAR ? 0u : 3u);
-    if (needed_dim == 0)
-      require(dimension >= 1, MCON_ERROR_INVALID_ARGUMENT, "a scalar field needs dimension >= 1");
-    else
-      require(dimension == needed_dim, MCON_ERROR_INVALID_ARGUMENT,
-              "this field kind has dimension " + std::to_string(needed_dim) + ", not " + std::to_string(dimension));
-    require_pointer(source_values, "source_values");
-    require_pointer(out_values, "out_values");
-    const auto [ns, nt] = require_vertex_array_sizes(*map, dimension, value_count, "value_count", capacity,
-                                                     "out_values (capacity in doubles)");
-    for (std::size_t i = 0; i < value_count; ++i)
-      require(std::isfinite(source_values[i]), MCON_ERROR_NON_FINITE,
-              "source_values[" + std::to_string(i) + "] is not finite");
-    const MapView view = map->view();
-    if (k == MCON_FIELD_TANGENT_VECTOR) {
-      std::vector<Vec3> v(ns);
-      for (std::size_t i = 0; i < ns; ++i) v[i] = Vec3(source_values[3 * i], source_values[3 * i + 1], source_values[3 * i + 2]);
-      const std::vector<Vec3> out = transfer_tangent_vectors(view, v);
-      for (std::size_t w = 0; w < nt; ++w)
-        for (int c = 0; c < 3; ++c) out_values[3 * w + c] = out[w][c];
-      return;
-    }
-    const Eigen::MatrixXd in = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
-        source_values, static_cast<Eigen::Index>(ns), static_cast<Eigen::Index>(dimension));
-    const Eigen::MatrixXd out = transfer_interpolated(view, in);
-    for (std::size_t w = 0; w < nt; ++w)
-      for (std::size_t c = 0; c < dimension; ++c)
-        out_values[dimension * w + c] = out(static_cast<Eigen::Index>(w), static_cast<Eigen::Index>(c));
+    transfer_field(*map, kind, dimension, source_values, value_count, out_values, capacity,
+                   "out_values (capacity in doubles)");
+  });
+}
+
+mcon_status mcon_map_transfer_field_f32(mcon_map map, mcon_field_kind kind, uint32_t dimension,
+                                        const float* source_values, size_t value_count, float* out_values,
+                                        size_t capacity) {
+  return guard_object("mcon_map_transfer_field_f32", map, "map", [&] {
+    transfer_field(*map, kind, dimension, source_values, value_count, out_values, capacity,
+                   "out_values (capacity in floats)");
   });
 }
 

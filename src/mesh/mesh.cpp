@@ -5,6 +5,7 @@
 #include <cstring>
 #include <numeric>
 #include <string>
+#include <type_traits>
 #include <unordered_map>
 
 #include "base/error.h"
@@ -160,6 +161,27 @@ Vec3 read_position(const unsigned char* base, std::size_t stride, std::size_t i)
   return Vec3(static_cast<double>(xyz[0]), static_cast<double>(xyz[1]), static_cast<double>(xyz[2]));
 }
 
+// Reads 3 indices of type Index per row (memcpy: rows need no alignment) and checks each against
+// [0, vertex_count): a negative signed index and one too large are INDEX_OUT_OF_RANGE alike.
+template <typename Index>
+void read_triangles(const unsigned char* base, std::size_t stride, std::size_t vertex_count,
+                    std::vector<Tri>& triangles) {
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    Index idx[3];
+    std::memcpy(idx, base + t * stride, sizeof(idx));
+    for (int k = 0; k < 3; ++k) {
+      bool in_range = true;
+      if constexpr (std::is_signed_v<Index>) in_range = idx[k] >= 0;
+      in_range = in_range && static_cast<std::uint64_t>(idx[k]) < vertex_count;
+      require(in_range, MCON_ERROR_INDEX_OUT_OF_RANGE,
+              "triangle " + std::to_string(t) + " uses vertex index " + std::to_string(idx[k]) +
+                  ", outside the valid range [0, " + std::to_string(vertex_count) + "): the mesh has " +
+                  std::to_string(vertex_count) + " vertices");
+      triangles[t][k] = static_cast<int>(idx[k]);
+    }
+  }
+}
+
 }  // namespace
 
 void validate_mesh(const TriMesh& mesh) { validate_impl(mesh, false); }
@@ -182,12 +204,14 @@ TriMesh copy_mesh_arrays(const MeshArrays& in) {
           "meshes are limited to 2^31 - 1 vertices and triangles");
   const std::size_t scalar = in.positions_are_double ? sizeof(double) : sizeof(float);
   const std::size_t pstride = in.position_stride ? in.position_stride : 3 * scalar;
-  const std::size_t istride = in.index_stride ? in.index_stride : 3 * sizeof(std::uint32_t);
+  const std::size_t isize = index_size(in.index_type);
+  const std::size_t istride = in.index_stride ? in.index_stride : 3 * isize;
   require(pstride >= 3 * scalar, MCON_ERROR_INVALID_ARGUMENT,
           "position_stride " + std::to_string(pstride) + " is smaller than one position (" +
               std::to_string(3 * scalar) + " bytes)");
-  require(istride >= 3 * sizeof(std::uint32_t), MCON_ERROR_INVALID_ARGUMENT,
-          "index_stride " + std::to_string(istride) + " is smaller than one triangle (12 bytes)");
+  require(istride >= 3 * isize, MCON_ERROR_INVALID_ARGUMENT,
+          "index_stride " + std::to_string(istride) + " is smaller than one triangle (" + std::to_string(3 * isize) +
+              " bytes)");
 
   TriMesh mesh;
   mesh.positions.resize(in.vertex_count);
@@ -196,16 +220,11 @@ TriMesh copy_mesh_arrays(const MeshArrays& in) {
     mesh.positions[i] = in.positions_are_double ? read_position<double>(pbase, pstride, i)
                                                 : read_position<float>(pbase, pstride, i);
   mesh.triangles.resize(in.triangle_count);
-  const auto* ibase = reinterpret_cast<const unsigned char*>(in.indices);
-  for (std::size_t t = 0; t < in.triangle_count; ++t) {
-    std::uint32_t idx[3];
-    std::memcpy(idx, ibase + t * istride, sizeof(idx));
-    for (int k = 0; k < 3; ++k) {
-      require(idx[k] < in.vertex_count, MCON_ERROR_INDEX_OUT_OF_RANGE,
-              "triangle " + std::to_string(t) + " uses vertex index " + std::to_string(idx[k]) + " but the mesh has " +
-                  std::to_string(in.vertex_count) + " vertices");
-      mesh.triangles[t][k] = static_cast<int>(idx[k]);
-    }
+  const auto* ibase = static_cast<const unsigned char*>(in.indices);
+  switch (in.index_type) {
+    case IndexType::uint32: read_triangles<std::uint32_t>(ibase, istride, in.vertex_count, mesh.triangles); break;
+    case IndexType::int32: read_triangles<std::int32_t>(ibase, istride, in.vertex_count, mesh.triangles); break;
+    case IndexType::int64: read_triangles<std::int64_t>(ibase, istride, in.vertex_count, mesh.triangles); break;
   }
   return mesh;
 }

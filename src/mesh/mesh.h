@@ -27,13 +27,20 @@ struct TriMesh {
   int num_triangles() const { return static_cast<int>(triangles.size()); }
 };
 
-// Strided input, as the C API receives it. A stride of 0 means tightly packed.
+// The element type of an index array (the C API's mcon_index_format).
+enum class IndexType { uint32, int32, int64 };
+
+inline std::size_t index_size(IndexType type) { return type == IndexType::int64 ? 8 : 4; }
+
+// Strided input, as the C API receives it. A stride of 0 means tightly packed (3 positions or 3
+// indices of their type per row).
 struct MeshArrays {
   const void* positions = nullptr;
   bool positions_are_double = true;
   std::size_t position_stride = 0;
   std::size_t vertex_count = 0;
-  const std::uint32_t* indices = nullptr;
+  const void* indices = nullptr;
+  IndexType index_type = IndexType::uint32;
   std::size_t index_stride = 0;
   std::size_t triangle_count = 0;
 };

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -492,4 +493,73 @@ TEST(CapiMapTransfer, CrossFieldFollowsTheGuidesAndTheRosyFileReadsBack) {
       for (int k = 0; k < 3; ++k) EXPECT_NEAR(back[f][k], dir[3 * f + k], 1e-6);
     std::remove(path.c_str());
   }
+}
+
+// mcon_map_transfer_field_f32: float in, float out; computed in double and rounded once, so it is
+// the double transfer of the widened values cast to float (bit for bit), and within float
+// precision of the double transfer of the unrounded values. Every interpolated kind.
+TEST(CapiMapTransfer, Float32FieldsEqualTheRoundedDoubleTransfer) {
+  MapSetup& x = setup();
+  const auto ns = normals_of(x.s);
+  struct Case {
+    mcon_field_kind kind;
+    uint32_t dim;
+    std::vector<double> values;
+  };
+  std::vector<Case> cases;
+  Case scalar{MCON_FIELD_SCALAR, 2, {}}, vec{MCON_FIELD_VECTOR3, 3, {}}, tangent{MCON_FIELD_TANGENT_VECTOR, 3, {}};
+  for (size_t v = 0; v < x.s.nv(); ++v) {
+    scalar.values.insert(scalar.values.end(), {x.s.xyz[3 * v] * 7.25 + 0.1, std::sin(3 * x.s.xyz[3 * v + 1])});
+    for (int k = 0; k < 3; ++k) vec.values.push_back(x.s.info.center[k] + x.s.info.radius * x.s.xyz[3 * v + k]);
+    const double a[3] = {1, 0.2, 0};
+    const double d = a[0] * ns[v][0] + a[1] * ns[v][1] + a[2] * ns[v][2];
+    for (int k = 0; k < 3; ++k) tangent.values.push_back(a[k] - d * ns[v][k]);
+  }
+  cases = {scalar, vec, tangent, Case{MCON_FIELD_UV, 2, x.s.uv}};
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.kind);
+    std::vector<float> f32(c.values.begin(), c.values.end());
+    const std::vector<double> widened(f32.begin(), f32.end());
+    const size_t n = c.dim * x.t.nv();
+    std::vector<float> out32(n, 9.0f);
+    std::vector<double> ref(n), full(n);
+    ASSERT_EQ(mcon_map_transfer_field_f32(x.map.get(), c.kind, c.dim, f32.data(), f32.size(), out32.data(), n),
+              MCON_OK)
+        << last_message();
+    ASSERT_EQ(mcon_map_transfer_field(x.map.get(), c.kind, c.dim, widened.data(), widened.size(), ref.data(), n),
+              MCON_OK);
+    ASSERT_EQ(mcon_map_transfer_field(x.map.get(), c.kind, c.dim, c.values.data(), c.values.size(), full.data(), n),
+              MCON_OK);
+    double scale = 0;
+    for (double v : full) scale = std::max(scale, std::abs(v));
+    for (size_t i = 0; i < n; ++i) {
+      ASSERT_EQ(out32[i], static_cast<float>(ref[i])) << i;
+      // float inputs (relative error 2^-24 each) and one rounding of the result.
+      ASSERT_NEAR(out32[i], full[i], 4e-7 * std::max(1.0, scale)) << i;
+    }
+  }
+  // Errors as in the double function, in float units.
+  std::vector<float> f(3 * x.s.nv(), 0.5f), out(3 * x.t.nv());
+  EXPECT_EQ(mcon_map_transfer_field_f32(x.map.get(), MCON_FIELD_VECTOR3, 3, f.data(), f.size(), out.data(), out.size() - 1),
+            MCON_ERROR_BUFFER_TOO_SMALL);
+  EXPECT_NE(last_message().find("capacity in floats"), std::string::npos) << last_message();
+  EXPECT_NE(last_message().find("mcon_map_transfer_field_f32"), std::string::npos) << last_message();
+  EXPECT_EQ(mcon_map_transfer_field_f32(x.map.get(), MCON_FIELD_VECTOR3, 3, f.data(), f.size() - 3, out.data(), out.size()),
+            MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(mcon_map_transfer_field_f32(x.map.get(), MCON_FIELD_INTEGER_LABEL, 1, f.data(), x.s.nv(), out.data(),
+                                        out.size()),
+            MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(mcon_map_transfer_field_f32(x.map.get(), MCON_FIELD_UV, 3, f.data(), f.size(), out.data(), out.size()),
+            MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(mcon_map_transfer_field_f32(x.map.get(), MCON_FIELD_VECTOR3, 3, nullptr, f.size(), out.data(), out.size()),
+            MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_map_transfer_field_f32(nullptr, MCON_FIELD_VECTOR3, 3, f.data(), f.size(), out.data(), out.size()),
+            MCON_ERROR_NULL_POINTER);
+  f[7] = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_EQ(mcon_map_transfer_field_f32(x.map.get(), MCON_FIELD_VECTOR3, 3, f.data(), f.size(), out.data(), out.size()),
+            MCON_ERROR_NON_FINITE);
+  EXPECT_NE(last_message().find("source_values[7]"), std::string::npos) << last_message();
+  f[7] = std::numeric_limits<float>::infinity();
+  EXPECT_EQ(mcon_map_transfer_field_f32(x.map.get(), MCON_FIELD_VECTOR3, 3, f.data(), f.size(), out.data(), out.size()),
+            MCON_ERROR_NON_FINITE);
 }

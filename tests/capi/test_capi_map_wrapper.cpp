@@ -66,6 +66,10 @@ TEST(CppMap, ComputeTransferAndCrossField) {
   const std::vector<double> ones(source.vertex_count(), 1.0);
   const std::vector<double> f = map.transfer_field(MCON_FIELD_SCALAR, 1, ones);
   for (size_t w = 0; w < f.size(); ++w) EXPECT_NEAR(f[w], mask[w] ? 0.0 : 1.0, 1e-12);
+  // float values: the double transfer rounded once.
+  const std::vector<float> f32 = map.transfer_field(MCON_FIELD_SCALAR, 1, std::vector<float>(source.vertex_count(), 1.0f));
+  ASSERT_EQ(f32.size(), f.size());
+  for (size_t w = 0; w < f.size(); ++w) EXPECT_EQ(f32[w], static_cast<float>(f[w]));
   const std::vector<int32_t> labels(source.vertex_count(), 5);
   const std::vector<int32_t> l = map.transfer_labels(1, labels, -2);
   for (size_t w = 0; w < l.size(); ++w) EXPECT_EQ(l[w], mask[w] ? -2 : 5);

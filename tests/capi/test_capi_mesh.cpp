@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <limits>
 #include <memory>
@@ -282,7 +283,7 @@ TEST(CapiMesh, RejectsNullPointersStridesAndStructSize) {
   EXPECT_NE(last_message().find("indices"), std::string::npos) << last_message();
 
   d = desc_of(a);
-  for (uint32_t size : {0u, 8u, static_cast<uint32_t>(sizeof(mcon_mesh_desc) - 1)}) {
+  for (uint32_t size : {0u, 8u, static_cast<uint32_t>(offsetof(mcon_mesh_desc, index_format) - 1)}) {
     d.struct_size = size;
     EXPECT_EQ(mcon_mesh_create(ctx.get(), &d, &m), MCON_ERROR_STRUCT_SIZE) << size;
     EXPECT_NE(last_message().find("mcon_mesh_desc.struct_size"), std::string::npos) << last_message();

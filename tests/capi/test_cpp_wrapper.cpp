@@ -87,6 +87,24 @@ TEST(CppWrapper, MeshFromVectorsAndStridedPointers) {
             MCON_ERROR_NON_FINITE);
 }
 
+TEST(CppWrapper, MeshFromInt32AndInt64Vectors) {
+  macrocon::Context ctx;
+  const Flat g = flat(mcon::test_meshes::make_grid(5));
+  const macrocon::Mesh ref = macrocon::Mesh::from_arrays(ctx, g.xyz, g.tris);
+  std::vector<std::int32_t> t32(g.tris.begin(), g.tris.end());
+  const std::vector<std::int64_t> t64(g.tris.begin(), g.tris.end());
+  EXPECT_EQ(macrocon::Mesh::from_arrays(ctx, g.xyz, t32).triangles(), ref.triangles());
+  EXPECT_EQ(macrocon::Mesh::from_arrays(ctx, g.xyz, t64).triangles(), ref.triangles());
+  const std::vector<float> xyz_f(g.xyz.begin(), g.xyz.end());
+  EXPECT_EQ(macrocon::Mesh::from_arrays(ctx, xyz_f, t32).triangles(), ref.triangles());
+  t32[7] = -3;
+  const macrocon::Error e = error_of([&] { macrocon::Mesh::from_arrays(ctx, g.xyz, t32); });
+  EXPECT_EQ(e.status(), MCON_ERROR_INDEX_OUT_OF_RANGE);
+  EXPECT_NE(std::string(e.what()).find("triangle 2 uses vertex index -3"), std::string::npos) << e.what();
+  t32.pop_back();
+  EXPECT_EQ(error_of([&] { macrocon::Mesh::from_arrays(ctx, g.xyz, t32); }).status(), MCON_ERROR_INVALID_ARGUMENT);
+}
+
 TEST(CppWrapper, ErrorsCarryStatusAndLibraryMessage) {
   macrocon::Context ctx;
   Flat g = flat(mcon::test_meshes::make_grid(4));

@@ -739,7 +739,7 @@ static class Tests
     // No tuple deconstruction (`var (a, b) = ...`) anywhere here: mcs 6.8 silently drops a lambda that
     // contains one (which hid most of this runner's tests before) or crashes when a lambda captures
     // a deconstructed variable. The runner also checks how many tests ran.
-    const int ExpectedTests = 19;
+    const int ExpectedTests = 20;
 
     // The log callback receives the status and the message of the exception (mesh and patch
     // errors of the context); other contexts do not log; a disposed context drops late messages.
@@ -844,6 +844,71 @@ static class Tests
         var ha = a.HostVertices(); var hb = b.HostVertices();
         Check(Same(ha.V0, hb.V0) && Same(ha.V1, hb.V1) && SameBits(ha.T, hb.T) && Same(a.HostTriangles(), b.HostTriangles()), what + ": host");
         Check(SameBits(a.Descriptors(Descriptor.Curv9), b.Descriptors(Descriptor.Curv9)), what + ": descriptors");
+    }
+
+    // int[] and long[] triangles (Unity's int[]): the same meshes and patches bit for bit as uint[],
+    // negative indices throw IndexOutOfRange; float[] fields transfer like the widened doubles
+    static void TestIndexFormats()
+    {
+        var r = Bumpy(41); var p = r.Item1; var t = r.Item2;
+        var ti = Array.ConvertAll(t, v => (int)v);
+        var tl = Array.ConvertAll(t, v => (long)v);
+        using (var ctx = new Context())
+        using (var mu = new Mesh(ctx, p, t))
+        using (var mi = new Mesh(ctx, p, ti))
+        using (var ml = new Mesh(ctx, p, tl))
+        using (var mf = new Mesh(ctx, Array.ConvertAll(p, v => (float)v), ti))
+        using (var target = Patch.Extract(mu, 21 * 41 + 20, 0.25))
+        using (var fromInt = Patch.Extract(mi, 21 * 41 + 20, 0.25))
+        using (var fromLong = Patch.Extract(ml, 21 * 41 + 20, 0.25))
+        {
+            Check(Same(mu.Triangles(), mi.Triangles()) && Same(mu.Triangles(), ml.Triangles()), "mesh triangles");
+            Check(mf.Counts.Vertices == 41 * 41 && mf.Counts.Triangles == t.Length / 3, "float positions, int indices");
+            SamePatch(target, fromInt, "extract from int[] mesh");
+            SamePatch(target, fromLong, "extract from long[] mesh");
+            var tt = target.Triangles();
+            using (var su = Patch.FromArrays(ctx, target.Positions(), tt, target.CenterPatchTriangle, target.CenterBarycentric,
+                                             target.Center, target.Radius))
+            using (var si = Patch.FromArrays(ctx, target.Positions(), Array.ConvertAll(tt, v => (int)v), target.CenterPatchTriangle,
+                                             target.CenterBarycentric, target.Center, target.Radius))
+            using (var sl = Patch.FromArrays(ctx, target.Positions(), Array.ConvertAll(tt, v => (long)v), target.CenterPatchTriangle,
+                                             target.CenterBarycentric, target.Center, target.Radius))
+            {
+                SamePatch(su, si, "from arrays, int[]");
+                SamePatch(su, sl, "from arrays, long[]");
+                using (var map = Map.Compute(si, target, new MapSettings { Seed = 3, AlignmentSamples = 400, MaxIterations = 30 }))
+                {
+                    var spos = su.Positions();
+                    var f32 = Array.ConvertAll(spos, v => (float)v);
+                    float[] moved32 = map.TransferField(FieldKind.Vector3, 3, f32);
+                    double[] widened = map.TransferField(FieldKind.Vector3, 3, Array.ConvertAll(f32, v => (double)v));
+                    double[] full = map.TransferField(FieldKind.Vector3, 3, spos);
+                    Check(moved32.Length == widened.Length, "float transfer size");
+                    for (int i = 0; i < moved32.Length; ++i)
+                    {
+                        Check(moved32[i] == (float)widened[i], "float transfer = rounded double transfer of the widened values");
+                        Near(moved32[i], full[i], 1e-5, "float transfer near the double transfer");
+                    }
+                    Expect<ArgumentException>(() => map.TransferField(FieldKind.Scalar, 1, new float[3]));
+                    Check(Expect<MacroconException>(() => map.TransferField(FieldKind.Vector3, 2, new float[2 * su.VertexCount])).Status
+                          == Status.InvalidArgument, "float vector3 needs 3");
+                }
+            }
+            var bad = (int[])ti.Clone();
+            bad[3 * 3 + 1] = -1;
+            var e = Expect<InvalidMeshException>(() => new Mesh(ctx, p, bad));
+            Check(e.Status == Status.IndexOutOfRange && e.Message.Contains("triangle 3") && e.Message.Contains("-1"), "negative int: " + e.Message);
+            var badLong = (long[])tl.Clone();
+            badLong[5] = 1L << 33;
+            e = Expect<InvalidMeshException>(() => Patch.FromArrays(ctx, p, badLong, 0));
+            Check(e.Status == Status.IndexOutOfRange && e.Message.Contains((1L << 33).ToString()), "too large long: " + e.Message);
+            Expect<ArgumentException>(() => new Mesh(ctx, p, new int[4]));
+            // The interleaved constructor with int[] equals the uint[] one.
+            var recs = Records(p);
+            using (var a = new Mesh(ctx, Bytes(recs), OffsetOf("X"), VertexSize, p.Length / 3, true, t))
+            using (var b = new Mesh(ctx, Bytes(recs), OffsetOf("X"), VertexSize, p.Length / 3, true, ti))
+                Check(Same(a.Triangles(), b.Triangles()) && Same(a.Triangles(), mu.Triangles()), "interleaved, int[]");
+        }
     }
 
     // interleaved vertex buffers: meshes equal the packed ones bit for bit; bad layouts throw
@@ -1018,6 +1083,7 @@ static class Tests
         Run("throwing log callback: error surfaces, nothing crosses into native code", TestLogThrows);
         Run("interleaved vertex buffers: meshes equal packed; bad offset/stride throw", TestInterleavedMesh);
         Run("interleaved fields and descriptors: library, query, transfer equal packed", TestInterleavedFields);
+        Run("int[] and long[] triangles equal uint[]; float[] fields transfer like doubles", TestIndexFormats);
         Run("heavy parallel work then shutdown", Test10);
         GC.Collect();
         GC.WaitForPendingFinalizers();

@@ -78,7 +78,12 @@ class MeshDesc(Struct):
         ("indices", ctypes.c_void_p),
         ("index_stride", c_size),
         ("triangle_count", c_size),
+        ("index_format", ctypes.c_uint32),  # appended: mcon_index_format
     ]
+
+
+#: mcon_index_format values (mcon_mesh_desc.index_format).
+INDEX_FORMAT_UINT32, INDEX_FORMAT_INT32, INDEX_FORMAT_INT64 = 0, 1, 2
 
 
 class PatchOptions(Struct):
@@ -457,6 +462,8 @@ _SIGNATURES = {
     "mcon_polyline_set_get_points": [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_void_p, ctypes.c_void_p, c_size],
     "mcon_map_transfer_field": [ctypes.c_void_p, ctypes.c_int32, ctypes.c_uint32, ctypes.c_void_p, c_size,
                                 ctypes.c_void_p, c_size],
+    "mcon_map_transfer_field_f32": [ctypes.c_void_p, ctypes.c_int32, ctypes.c_uint32, ctypes.c_void_p, c_size,
+                                    ctypes.c_void_p, c_size],
     "mcon_map_transfer_labels": [ctypes.c_void_p, ctypes.c_uint32, ctypes.c_void_p, c_size, ctypes.c_int32,
                                  ctypes.c_void_p, c_size],
     "mcon_cross_field_options_init": [ctypes.POINTER(CrossFieldOptions)],

@@ -242,17 +242,28 @@ def _mesh_desc(positions, triangles) -> tuple:
     index_stride): e.g. ``vertices[:, 0:3]`` of a wider (n, k) vertex buffer or ``rec["pos"]`` of an
     aligned structured array are read in place, see ``_arrays.strided_rows``."""
     p, p_stride = strided_rows("positions", positions, (np.float32, np.float64), 3)
-    t, t_stride = strided_rows("triangles", triangles, np.uint32, 3)
+    t, t_stride = strided_rows("triangles", triangles, tuple(_INDEX_FORMATS), 3)
     desc = _native.MeshDesc()
     check(_native.lib.mcon_mesh_desc_init(ctypes.byref(desc)))
     desc.positions, desc.position_type = p.ctypes.data, 1 if p.dtype == np.float32 else 2
     desc.position_stride, desc.vertex_count = p_stride, p.shape[0]
     desc.indices, desc.index_stride, desc.triangle_count = t.ctypes.data, t_stride, t.shape[0]
+    # Read in place in its own format: no conversion to uint32 (== rather than a dict lookup: numpy's
+    # longlong and long are equal int64 dtypes but need not hash alike).
+    desc.index_format = next(f for d, f in _INDEX_FORMATS.items() if t.dtype == d)
     return desc, (p, t)
 
 
+#: Triangle dtypes passed as they are (mcon_index_format): uint32, int32 (Maya, USD) and int64
+#: (numpy's default integer). Native byte order only; anything else is a TypeError naming these.
+_INDEX_FORMATS = {np.dtype(np.uint32): _native.INDEX_FORMAT_UINT32, np.dtype(np.int32): _native.INDEX_FORMAT_INT32,
+                  np.dtype(np.int64): _native.INDEX_FORMAT_INT64}
+
+
 class Mesh(_Handle):
-    """A validated triangle mesh. ``positions``: (n, 3) float32/float64, ``triangles``: (m, 3) uint32.
+    """A validated triangle mesh. ``positions``: (n, 3) float32/float64, ``triangles``: (m, 3) uint32,
+    int32 or int64 (read as they are, no conversion; a negative or too large index is an
+    InvalidMeshError, any other dtype a TypeError).
 
     Both may be row-strided views (interleaved vertex records, column slices, structured array
     fields) as long as each row's 3 values are contiguous and aligned; they are read in place.

@@ -108,7 +108,7 @@ class PolylineSet(_Handle):
                 for a, b, c in zip(starts[:-1], starts[1:], closed)]
 
 
-def _unstrided_rows(name: str, array, dtype, copy: bool) -> np.ndarray:
+def _unstrided_rows(name: str, array, dtype, copy: bool, accepted: Optional[str] = None) -> np.ndarray:
     """Per-vertex input of a C function that takes no stride (mcon_map_transfer_field and
     _labels read vertex-major packed rows): a row-strided array cannot be passed in place, so it is
     a ValueError unless the caller asked for ``copy=True``, which packs it once."""
@@ -118,6 +118,8 @@ def _unstrided_rows(name: str, array, dtype, copy: bool) -> np.ndarray:
     elif not a.flags.c_contiguous:
         raise ValueError(f"{name} must be C-contiguous: the C function takes no row stride (pass copy=True to pack "
                          "a strided array, or use numpy.ascontiguousarray)")
+    if accepted is not None and a.dtype != np.dtype(dtype):
+        raise TypeError(f"{name} must have dtype {accepted}, got {a.dtype}")
     return rows(name, a, dtype)
 
 
@@ -309,20 +311,24 @@ class Map(_Handle):
         return PolylineSet(handle)
 
     def transfer_field(self, values, kind: FieldKind = FieldKind.SCALAR, copy: bool = False) -> np.ndarray:
-        """A per-source-vertex float64 field (n,) or (n, d) -> (target vertices, d); outside gets 0.
+        """A per-source-vertex float64 or float32 field (n,) or (n, d) -> (target vertices, d) of the
+        same dtype; outside gets 0. float32 goes through mcon_map_transfer_field_f32 (computed in
+        double, rounded once), so it is the float64 result of the widened values, cast to float32.
 
         ``values`` must be C-contiguous: mcon_map_transfer_field has no stride. ``copy=True`` packs
         a strided array (a field inside interleaved records) once before the call instead of
-        raising ValueError.
+        raising ValueError. Any other dtype is a TypeError (no silent conversion).
         """
         k = FieldKind(kind)
         if k == FieldKind.INTEGER_LABEL:
             raise ValueError("integer labels go through transfer_labels (never blended)")
-        v = _unstrided_rows("values", values, np.float64, copy)
+        dtype = np.float32 if np.asarray(values).dtype == np.float32 else np.float64
+        v = _unstrided_rows("values", values, dtype, copy, accepted="float64 or float32")
         if v.shape[0] != self._source_vertices:
             raise ValueError(f"values has {v.shape[0]} rows, the source {self._source_vertices} vertices")
-        out = np.zeros((self._target_vertices, v.shape[1]))
-        check(_native.lib.mcon_map_transfer_field(self.handle, int(k), v.shape[1], ptr(v), v.size, ptr(out), out.size))
+        out = np.zeros((self._target_vertices, v.shape[1]), dtype)
+        fn = _native.lib.mcon_map_transfer_field_f32 if dtype == np.float32 else _native.lib.mcon_map_transfer_field
+        check(fn(self.handle, int(k), v.shape[1], ptr(v), v.size, ptr(out), out.size))
         return out
 
     def transfer_labels(self, labels, outside_label: int = -1, copy: bool = False) -> np.ndarray:

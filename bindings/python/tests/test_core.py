@@ -40,8 +40,8 @@ def test_mesh_errors_carry_status_and_message(context):
 
 def test_array_checks_happen_before_the_call(context):
     p, t = grid(5)
-    with pytest.raises(TypeError):
-        macrocon.Mesh(context, p, t.astype(np.int64))
+    with pytest.raises(TypeError, match="uint32 or int32 or int64"):
+        macrocon.Mesh(context, p, t.astype(np.int16))
     with pytest.raises(ValueError):
         macrocon.Mesh(context, p[:, :2].copy(), t)
     with pytest.raises(ValueError):
@@ -173,3 +173,42 @@ def test_reversed_triangles_are_repaired_and_reported(context):
         assert pb.info.host_reoriented_triangles == b.orientation.reoriented_triangles
         assert pb.info.host_inconsistent_components == 1
         np.testing.assert_array_equal(pa.descriptors("curv9"), pb.descriptors("curv9"))
+
+
+@pytest.mark.parametrize("dtype", [np.uint32, np.int32, np.int64, np.intc, np.longlong])
+def test_mesh_and_patch_accept_uint32_int32_and_int64_triangles(context, dtype):
+    """Triangles pass in their own dtype (mcon_mesh_desc.index_format): the same mesh from every
+    accepted dtype is the same mesh, and the same patch bit for bit."""
+    p, t = grid(9)
+    with macrocon.Mesh(context, p, t) as ref, macrocon.Mesh(context, p, t.astype(dtype)) as mesh:
+        assert mesh.counts == ref.counts == (81, 128)
+        assert np.array_equal(mesh.triangles, ref.triangles)
+    with macrocon.Patch.from_arrays(context, p, t, 60) as ref, \
+            macrocon.Patch.from_arrays(context, p, t.astype(dtype), 60) as patch:
+        assert np.array_equal(patch.triangles, ref.triangles)
+        assert np.array_equal(patch.positions, ref.positions) and np.array_equal(patch.uv, ref.uv)
+
+
+def test_int64_triangles_are_read_in_place_strided_and_range_checked(context):
+    p, t = grid(5)
+    wide = np.zeros((t.shape[0], 5), np.int64)  # int64 rows with a tag column either side
+    wide[:, 0], wide[:, 4] = -1, 1 << 40
+    wide[:, 1:4] = t
+    with macrocon.Mesh(context, p, wide[:, 1:4]) as mesh:  # a strided view: 40-byte rows
+        assert np.array_equal(mesh.triangles, t)
+    for dtype in (np.int32, np.int64):
+        bad = t.astype(dtype)
+        bad[3, 1] = -2
+        with pytest.raises(macrocon.InvalidMeshError) as err:
+            macrocon.Mesh(context, p, bad)
+        assert err.value.status == 11 and "triangle 3" in err.value.message and "-2" in err.value.message
+    big = t.astype(np.int64)
+    big[5, 0] = 1 << 33  # would be vertex 0 if truncated to 32 bits
+    with pytest.raises(macrocon.InvalidMeshError) as err:
+        macrocon.Mesh(context, p, big)
+    assert err.value.status == 11 and str(1 << 33) in err.value.message and "[0, 25)" in err.value.message
+    for bad_dtype in (np.int16, np.uint64, np.float64, np.dtype(">i4")):
+        with pytest.raises(TypeError, match="uint32 or int32 or int64"):
+            macrocon.Mesh(context, p, t.astype(bad_dtype))
+        with pytest.raises(TypeError, match="uint32 or int32 or int64"):
+            macrocon.Patch.from_arrays(context, p, t.astype(bad_dtype), 0)

@@ -58,8 +58,8 @@ def test_patch_from_arrays_errors(context, target):
     with pytest.raises(macrocon.NotADiskError) as err:
         macrocon.Patch.from_arrays(context, octa, faces, 0)
     assert err.value.status == 20
-    with pytest.raises(TypeError):
-        macrocon.Patch.from_arrays(context, pos, tri.astype(np.int32), 0)
+    with pytest.raises(TypeError, match="uint32 or int32 or int64"):  # int32/int64 are accepted, not int16
+        macrocon.Patch.from_arrays(context, pos, tri.astype(np.int16), 0)
 
 
 def test_map_info_and_correspondences(phi, source, target):
@@ -130,8 +130,10 @@ def test_transfer_points_fields_and_labels(phi, source, target):
     assert np.all(out[outside, 0] == -7)
     assert set(np.unique(out[~outside, 0])) <= set(range(5))  # never blended
 
-    with pytest.raises(TypeError):
-        phi.transfer_field(pos.astype(np.float32))
+    with pytest.raises(TypeError, match="float64 or float32"):
+        phi.transfer_field(pos.astype(np.float16))
+    with pytest.raises(TypeError, match="float64 or float32"):
+        phi.transfer_field(pos.astype(np.int64))
     with pytest.raises(ValueError, match="rows"):
         phi.transfer_field(pos[:-1].copy())
     with pytest.raises(ValueError):
@@ -424,3 +426,24 @@ def test_world_frame_start_is_opt_in_and_reported(host):
             macrocon.Map.compute(a, b, source_up=(0, 1), target_up=(0, 1, 0), **FAST)
         with pytest.raises(macrocon.InvalidArgumentError):
             macrocon.Map.compute(a, b, source_up=(0, 0, 0), target_up=(0, 1, 0), **FAST)
+
+
+@pytest.mark.parametrize("kind", [macrocon.FieldKind.SCALAR, macrocon.FieldKind.VECTOR3,
+                                  macrocon.FieldKind.TANGENT_VECTOR, macrocon.FieldKind.UV])
+def test_float32_transfer_matches_the_float64_one(phi, source, kind):
+    """float32 values (mcon_map_transfer_field_f32) come back float32: the float64 transfer of the
+    widened values rounded once, and within float precision of the float64 transfer of the originals."""
+    values = source.uv if kind == macrocon.FieldKind.UV else source.positions
+    if kind == macrocon.FieldKind.SCALAR:
+        values = np.stack([values[:, 0], values[:, 1] ** 2], axis=1)
+    if kind == macrocon.FieldKind.TANGENT_VECTOR:
+        values = np.zeros_like(values)
+        values[:, 0] = 1.0
+    v32 = np.ascontiguousarray(values, np.float32)
+    out32 = phi.transfer_field(v32, kind)
+    assert out32.dtype == np.float32
+    ref = phi.transfer_field(v32.astype(np.float64), kind)
+    assert np.array_equal(out32, ref.astype(np.float32))
+    full = phi.transfer_field(np.ascontiguousarray(values, np.float64), kind)
+    assert np.allclose(out32, full, rtol=1e-5, atol=1e-5)
+    assert np.all(out32[phi.outside_mask] == 0)
