@@ -135,3 +135,23 @@ run_checked(WHAT "a landmark outside the target patch" EXPECT_FAILURE "target ve
 run_checked(WHAT "a malformed --landmarks" EXPECT_FAILURE "expects S:T pairs"
   COMMAND ${CLI} embed --source ${MESH} --target ${MESH} --center-vertex 297 --radius 0.55
           --source-center-vertex 297 --landmarks 6974-5 --out ${OUT}/bad)
+
+# Up hints: both meshes +y up (the file's axes); the summary says so and the map stays flip-free.
+# A zero vector, a malformed one and a lone --source-up are refused by name.
+run_checked(WHAT "macrocon embed --up" OUTPUT_VARIABLE up_out
+  COMMAND ${CLI} embed --source ${MESH} --target ${MESH} --center-vertex 297 --radius 0.55
+          --source-center-vertex 297 --source-radius 0.45 --samples 500 --seed 1 --up 0,1,0 --out ${OUT}/up --json)
+string(JSON up_hints GET "${up_out}" up_hints)
+string(JSON up_flips GET "${up_out}" flips)
+if(NOT up_hints OR NOT up_flips EQUAL 0)
+  message(FATAL_ERROR "--up: up_hints ${up_hints}, flips ${up_flips}")
+endif()
+run_checked(WHAT "a zero --up" EXPECT_FAILURE "source_up: the up vector must not be zero"
+  COMMAND ${CLI} embed --source ${MESH} --target ${MESH} --center-vertex 297 --radius 0.55
+          --source-center-vertex 297 --up 0,0,0 --out ${OUT}/bad)
+run_checked(WHAT "a malformed --up" EXPECT_FAILURE "--up expects X,Y,Z"
+  COMMAND ${CLI} embed --source ${MESH} --target ${MESH} --center-vertex 297 --radius 0.55
+          --source-center-vertex 297 --up 0,1 --out ${OUT}/bad)
+run_checked(WHAT "--source-up alone" EXPECT_FAILURE "--source-up and --target-up go together"
+  COMMAND ${CLI} embed --source ${MESH} --target ${MESH} --center-vertex 297 --radius 0.55
+          --source-center-vertex 297 --source-up 0,1,0 --out ${OUT}/bad)

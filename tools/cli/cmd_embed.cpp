@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <map>
 #include <sstream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,7 +34,7 @@ const char* kUsage =
     "                      [--source-center-vertex M --source-radius Q] [--face-range A:B]\n"
     "                      [--source-face-range A:B] [--seed S] [--samples K] [--iterations I]\n"
     "                      [--orientation auto|preserve|reverse] [--landmarks S:T,S:T,...]\n"
-    "                      [--out DIR] [--json]\n"
+    "                      [--up X,Y,Z | --source-up X,Y,Z --target-up X,Y,Z] [--out DIR] [--json]\n"
     "Maps a source patch onto the geodesic disk of radius R around vertex N of the target mesh and\n"
     "transfers the source's constraints. With --source-center-vertex the source patch is cut the same\n"
     "way from the source mesh (radius Q, default R); without it the source file must already be one\n"
@@ -51,7 +52,11 @@ const char* kUsage =
     "--landmarks pairs source vertex S with target vertex T (file numbers, both inside their patches),\n"
     "e.g. points an artist clicked on both meshes; the map is guided by the geodesic distances from\n"
     "them (mcon_map_options guidance channels), which settles what the geometry cannot (orientation,\n"
-    "which finger is which).\n";
+    "which finger is which).\n"
+    "--up gives both meshes' up direction in their file coordinates (e.g. 0,1,0 for Y-up hosts);\n"
+    "--source-up and --target-up give them apart. The map's rigid start then turns the source's up onto\n"
+    "the target's (within 60 degrees), so it is never upside down; a reflection stays --orientation's.\n"
+    "An up direction (nearly) normal to a patch at its center is refused: omit it for such patches.\n";
 
 void parse_range(const std::string& key, const std::string& s, long& begin, long& end) {
   const auto colon = s.find(':');
@@ -241,7 +246,21 @@ struct EmbedOptions {
   std::string out_dir;
   long samples = 0, iterations = 0, seed = 0;
   std::string orientation;
+  std::optional<Vec3> source_up, target_up;
 };
+
+// "X,Y,Z" as a vector of three finite numbers.
+Vec3 parse_vec3(const std::string& key, const std::string& s) {
+  std::vector<std::string> parts;
+  std::size_t begin = 0;
+  for (std::size_t comma; (comma = s.find(',', begin)) != std::string::npos; begin = comma + 1)
+    parts.push_back(s.substr(begin, comma - begin));
+  parts.push_back(s.substr(begin));
+  require(parts.size() == 3, MCON_ERROR_INVALID_ARGUMENT, "--" + key + " expects X,Y,Z (three numbers), got '" + s + "'");
+  Vec3 v;
+  for (int k = 0; k < 3; ++k) v[k] = ArgParser::parse_number(key, parts[static_cast<std::size_t>(k)]);
+  return v;
+}
 
 EmbedOptions embed_options(const ArgParser& p) {
   require(p.has("center-vertex"), MCON_ERROR_INVALID_ARGUMENT, "missing required option --center-vertex");
@@ -257,6 +276,15 @@ EmbedOptions embed_options(const ArgParser& p) {
   o.orientation = p.get("orientation", "auto");
   require(o.orientation == "auto" || o.orientation == "preserve" || o.orientation == "reverse",
           MCON_ERROR_INVALID_ARGUMENT, "--orientation must be auto, preserve or reverse, got '" + o.orientation + "'");
+  require(!p.has("up") || (!p.has("source-up") && !p.has("target-up")), MCON_ERROR_INVALID_ARGUMENT,
+          "give --up (both meshes) or --source-up and --target-up, not both");
+  require(p.has("source-up") == p.has("target-up"), MCON_ERROR_INVALID_ARGUMENT,
+          "--source-up and --target-up go together (or give --up for both)");
+  if (p.has("up")) o.source_up = o.target_up = parse_vec3("up", p.get("up"));
+  if (p.has("source-up")) {
+    o.source_up = parse_vec3("source-up", p.get("source-up"));
+    o.target_up = parse_vec3("target-up", p.get("target-up"));
+  }
   return o;
 }
 
@@ -300,6 +328,8 @@ EmbedMap map_embed_patches(const ArgParser& p, const EmbedOptions& o, const Embe
   options.map.orientation = o.orientation == "preserve"  ? MapOrientation::preserve
                             : o.orientation == "reverse" ? MapOrientation::reverse
                                                          : MapOrientation::automatic;
+  options.source_up = o.source_up;
+  options.target_up = o.target_up;
   // Landmarks: one guidance column per pair, the geodesic distance from it on each patch.
   const std::vector<std::pair<long, long>> landmarks =
       p.has("landmarks") ? parse_landmarks(p.get("landmarks")) : std::vector<std::pair<long, long>>{};
@@ -484,6 +514,7 @@ tools::Json embed_summary(const EmbedOptions& o, const EmbedPatches& e, const Em
   // The evidence of the orientation call, for a host that offers a "flip" (--orientation).
   summary.set("orientation", o.orientation);
   summary.set("landmarks", static_cast<double>(m.landmarks));
+  summary.set("up_hints", o.source_up.has_value());
   summary.set("alignment_score_unreflected", map.alignment.score_unreflected);
   summary.set("alignment_score_reflected", map.alignment.score_reflected);
   summary.set("orientation_compared", map.orientation_compared);
@@ -507,7 +538,7 @@ int run_embed(const Args& args) {
   const ArgParser p(args,
                     {"source", "target", "center-vertex", "radius", "source-center-vertex", "source-radius",
                      "face-range", "source-face-range", "seed", "samples", "iterations", "orientation", "landmarks",
-                     "out"},
+                     "up", "source-up", "target-up", "out"},
                     {"json"});
   const auto t_start = std::chrono::steady_clock::now();
   const EmbedOptions o = embed_options(p);
