@@ -56,10 +56,11 @@ VertexCounts require_vertex_array_sizes(const mcon_map_t& map, std::uint32_t dim
 // mcon_map_transfer_field for double or float values: checked, widened to double, transferred in
 // double and written back as Scalar (so the float call equals the double call on the widened input,
 // rounded once).
+// k: the caller's mcon_field_kind as its bits (enum_bits at the entry point: a value outside the
+// enum must not be loaded as the enum type).
 template <typename Scalar>
-void transfer_field(const mcon_map_t& map, mcon_field_kind kind, std::uint32_t dimension, const Scalar* source_values,
+void transfer_field(const mcon_map_t& map, std::int32_t k, std::uint32_t dimension, const Scalar* source_values,
                     std::size_t value_count, Scalar* out_values, std::size_t capacity, const char* capacity_name) {
-  const std::int32_t k = enum_bits(kind);
   require(k != MCON_FIELD_INTEGER_LABEL, MCON_ERROR_INVALID_ARGUMENT,
           "integer labels are never interpolated: use mcon_map_transfer_labels");
   require(k == MCON_FIELD_SCALAR || k == MCON_FIELD_VECTOR3 || k == MCON_FIELD_TANGENT_VECTOR || k == MCON_FIELD_UV,
@@ -223,8 +224,9 @@ mcon_status mcon_polyline_set_get_points(mcon_polyline_set polylines, uint32_t* 
 mcon_status mcon_map_transfer_field(mcon_map map, mcon_field_kind kind, uint32_t dimension,
                                     const double* source_values, size_t value_count, double* out_values,
                                     size_t capacity) {
+  const std::int32_t k = enum_bits(kind);
   return guard_object("mcon_map_transfer_field", map, "map", [&] {
-    transfer_field(*map, kind, dimension, source_values, value_count, out_values, capacity,
+    transfer_field(*map, k, dimension, source_values, value_count, out_values, capacity,
                    "out_values (capacity in doubles)");
   });
 }
@@ -232,8 +234,9 @@ mcon_status mcon_map_transfer_field(mcon_map map, mcon_field_kind kind, uint32_t
 mcon_status mcon_map_transfer_field_f32(mcon_map map, mcon_field_kind kind, uint32_t dimension,
                                         const float* source_values, size_t value_count, float* out_values,
                                         size_t capacity) {
+  const std::int32_t k = enum_bits(kind);
   return guard_object("mcon_map_transfer_field_f32", map, "map", [&] {
-    transfer_field(*map, kind, dimension, source_values, value_count, out_values, capacity,
+    transfer_field(*map, k, dimension, source_values, value_count, out_values, capacity,
                    "out_values (capacity in floats)");
   });
 }

@@ -107,11 +107,9 @@ Vec2 up_direction_in_uv(const Patch& patch, const Vec3& up, const char* what) {
   const TriMesh& m = patch.mesh;
   // Triangles near the center (all of them if the innermost ring is wider than 0.3).
   std::vector<int> near;
-  double nearest = std::numeric_limits<double>::infinity();
   for (int t = 0; t < m.num_triangles(); ++t) {
     const Tri& tri = m.triangles[t];
     const double r = ((m.positions[tri[0]] + m.positions[tri[1]] + m.positions[tri[2]]) / 3).norm();
-    nearest = std::min(nearest, r);
     if (r < 0.3) near.push_back(t);
   }
   if (near.empty())
