@@ -35,6 +35,17 @@ function(macrocon_exported_mcon lib nm out_var)
   set(${out_var} "${names}" PARENT_SCOPE)
 endfunction()
 
+# FATAL_ERROR if SECTIONS (a `readelf -S -W` listing of WHAT) still has a .debug_info or .symtab
+# section.
+function(macrocon_require_stripped sections what)
+  foreach(section .debug_info .symtab)
+    string(FIND "${sections}" " ${section} " at)
+    if(NOT at EQUAL -1)
+      message(FATAL_ERROR "${what} still has a ${section} section (not stripped)")
+    endif()
+  endforeach()
+endfunction()
+
 # PACKED (the library inside a package) against BUILT (the build's library): with a strip tool,
 # no .debug_info section and the same exported mcon_ symbols; without one, identical bytes.
 function(macrocon_check_packaged_library packed built strip readelf nm)
@@ -57,12 +68,7 @@ function(macrocon_check_packaged_library packed built strip readelf nm)
     if(at EQUAL -1)
       message(FATAL_ERROR "${packed} has no .dynsym section: not a shared library?")
     endif()
-    foreach(section .debug_info .symtab)
-      string(FIND "${sections}" " ${section} " at)
-      if(NOT at EQUAL -1)
-        message(FATAL_ERROR "${packed} still has a ${section} section (not stripped)")
-      endif()
-    endforeach()
+    macrocon_require_stripped("${sections}" "${packed}")
   else()
     message(STATUS "SKIPPED the .debug_info check of ${packed}: readelf not found (CMAKE_READELF='${readelf}')")
   endif()
