@@ -46,8 +46,8 @@ PointLocation DescriptorField2D::evaluate(const Vec2& p, double max_outside, dou
   return loc;
 }
 
-PointLocation DescriptorField2D::locate(const Vec2& p, double max_outside) const {
-  return max_outside > 0 ? locator_->locate_nearest(p, max_outside) : locator_->locate(p);
+PointLocation DescriptorField2D::locate(const Vec2& p, double max_outside, int hint) const {
+  return max_outside > 0 ? locator_->locate_nearest(p, max_outside, hint) : locator_->locate(p, hint);
 }
 
 void DescriptorField2D::evaluate_at(const PointLocation& loc, double* value, double* grad_x, double* grad_y) const {

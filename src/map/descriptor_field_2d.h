@@ -31,7 +31,8 @@ class DescriptorField2D {
 
   // The two halves of evaluate, so fields on the same triangulation (the levels of a pyramid)
   // can share one lookup. evaluate_at requires loc.triangle >= 0.
-  PointLocation locate(const Vec2& p, double max_outside) const;
+  // `hint`: the triangle of a nearby earlier query, or -1 (TriangleLocator2D::locate).
+  PointLocation locate(const Vec2& p, double max_outside, int hint = -1) const;
   void evaluate_at(const PointLocation& loc, double* value, double* grad_x, double* grad_y) const;
   const TriangleLocator2D& locator() const { return *locator_; }
 

@@ -165,6 +165,11 @@ class MapEnergy {
   const SourceDisk* source_;
   const DescriptorField2D* field_;
   std::vector<double> values_;  // source descriptors, row-major n * d for contiguous access
+  // Per source vertex, the target triangle where its last evaluation read the field: the start
+  // of the next lookup's walk (iterates move little). Only a speed-up: lookups return the same
+  // answer with or without it. Written by evaluate/derivatives, one slot per vertex, so one
+  // MapEnergy must not be evaluated from two threads at once.
+  mutable std::vector<int> location_hint_;
   ScoreSettings score_;
   MapEnergyWeights weights_;
   const MapAnchor* anchor_ = nullptr;  // null when weights_.anchor == 0

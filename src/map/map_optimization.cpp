@@ -114,6 +114,38 @@ Eigen::VectorXd newton_direction(HessianPattern& pattern, Ldlt& ldlt, const Eige
   return dir;
 }
 
+// Inexact Newton step: solves (H + shift I) dir = -gradient by conjugate gradients preconditioned
+// with an earlier factorization (of a nearby Hessian), to a residual <= tolerance |gradient|.
+// Started at 0, every CG iterate decreases the quadratic model, so dir is a descent direction
+// (Nocedal & Wright, Numerical Optimization, §7.1). Returns false (dir unusable) if the residual
+// is not reached within max_iterations or the matrix shows a non-positive curvature.
+bool preconditioned_direction(const HessianPattern& pattern, const Ldlt& preconditioner,
+                              const Eigen::VectorXd& gradient, double shift, double tolerance, int max_iterations,
+                              Eigen::VectorXd& dir, int& iterations) {
+  const auto H = pattern.matrix.selfadjointView<Eigen::Lower>();
+  Eigen::VectorXd r = -gradient;
+  const double target = tolerance * r.norm();
+  dir.setZero(r.size());
+  Eigen::VectorXd z = preconditioner.solve(r), p = z, Ap(r.size());
+  double rz = r.dot(z);
+  for (iterations = 1; iterations <= max_iterations; ++iterations) {
+    Ap.noalias() = H * p;
+    Ap += shift * p;
+    const double pAp = p.dot(Ap);
+    if (!(pAp > 0)) return false;
+    const double step = rz / pAp;
+    dir += step * p;
+    r -= step * Ap;
+    if (r.norm() <= target) return dir.allFinite();
+    z = preconditioner.solve(r);
+    const double rz_next = r.dot(z);
+    p = z + (rz_next / rz) * p;
+    rz = rz_next;
+  }
+  iterations = max_iterations;
+  return false;
+}
+
 // Line search inside the flip-free region: halves the step from the largest flip-free one until
 // the Armijo condition holds. Returns false if no step was accepted.
 bool line_search(const MapEnergy& energy, const Eigen::VectorXd& x, const Eigen::VectorXd& dir, double E,
@@ -156,6 +188,9 @@ NewtonReport minimize_map_energy(const MapEnergy& energy, Eigen::VectorXd& x, co
                                  const std::function<bool(int, double)>& keep_going) {
   const SourceDisk& src = energy.source();
   require(x.size() == energy.num_variables(), MCON_ERROR_INVALID_ARGUMENT, "newton: wrong variable count");
+  require(!options.reuse_factorization || (options.inexact_tolerance > 0 && options.inexact_tolerance < 1 &&
+                                            options.max_inner_iterations >= 1),
+          MCON_ERROR_INVALID_ARGUMENT, "newton: inexact_tolerance must be in (0, 1) and max_inner_iterations >= 1");
   require(count_inverted(src.triangles, x) == 0, MCON_ERROR_NUMERICAL, "newton: the start has inverted triangles");
 
   NewtonReport report;
@@ -172,11 +207,22 @@ NewtonReport minimize_map_energy(const MapEnergy& energy, Eigen::VectorXd& x, co
   const double tolerance =
       options.relative_decrease * std::max(std::abs(E), options.energy_scale) + options.absolute_decrease;
   double shift_scale = 1.0;  // grows if factorizations fail, shrinks back after successes
+  bool factorized = false;   // ldlt holds a factorization (the preconditioner of later steps)
 
   for (int iter = 0; iter < options.max_iterations; ++iter) {
     const double mean_diag = assemble_hessian(der, src, pattern);
-    const Eigen::VectorXd dir =
-        newton_direction(pattern, ldlt, der.gradient, mean_diag, options.regularization, shift_scale);
+    Eigen::VectorXd dir;
+    int inner = 0;
+    const bool reused = factorized && options.reuse_factorization &&
+                        preconditioned_direction(pattern, ldlt, der.gradient,
+                                                 options.regularization * shift_scale * mean_diag,
+                                                 options.inexact_tolerance, options.max_inner_iterations, dir, inner);
+    report.inner_iterations += inner;
+    if (!reused) {
+      dir = newton_direction(pattern, ldlt, der.gradient, mean_diag, options.regularization, shift_scale);
+      factorized = true;
+      ++report.factorizations;
+    }
     const double slope = der.gradient.dot(dir);  // < 0 for a positive definite model
     if (!(slope < 0)) {
       report.reason = StopReason::converged;  // zero gradient

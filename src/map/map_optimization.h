@@ -1,6 +1,7 @@
 // Projected Newton minimization of the map energy (docs/design.md §2): per-element Hessians with
 // negative eigenvalues clamped (map_energy.h), assembled into one sparse matrix whose pattern is
-// analyzed once, a tiny diagonal regularization, SimplicialLDLT; the line search starts at
+// analyzed once, a tiny diagonal regularization, SimplicialLDLT (its factorization reused as the
+// preconditioner of an inexact Newton solve while that converges fast; docs/design.md §13); the line search starts at
 // min(1, 0.9 t_max) with t_max the largest flip-free step (injective_step.h) and backtracks
 // until Armijo's condition holds, so every iterate is free of inverted triangles and the energy
 // decreases monotonically.
@@ -46,6 +47,13 @@ struct NewtonOptions {
   int max_backtracks = 40;
   double step_fraction = 0.9;       // first trial step = min(1, step_fraction * t_max)
   double regularization = 1e-8;     // diagonal shift, relative to the mean diagonal entry
+  // Inexact Newton: while a factorization is at hand, the step solves the current system by
+  // conjugate gradients preconditioned with it, to a residual of inexact_tolerance |g| within
+  // max_inner_iterations; only if that fails is the current Hessian factorized. Factorizing is
+  // most of a map's time (docs/design.md §13). false: factorize every iteration.
+  bool reuse_factorization = true;
+  double inexact_tolerance = 0.1;
+  int max_inner_iterations = 10;
 };
 
 struct NewtonReport {
@@ -53,6 +61,8 @@ struct NewtonReport {
   StopReason reason = StopReason::iteration_cap;
   std::vector<double> energy;       // energy[0] at the start, energy[k] after iteration k
   MapEnergyTerms terms;             // at the returned x
+  int factorizations = 0;           // numeric factorizations of the Hessian
+  int inner_iterations = 0;         // preconditioned conjugate-gradient iterations
 };
 
 // Minimizes energy from x (which must have no inverted triangle) in place. keep_going(iteration,

@@ -21,7 +21,7 @@ void rim_window(double radius, double band, double& w, double& dw, double& d2w) 
 
 ScoreSample match_score(const DescriptorField2D& field, const double* source_value, const Vec2& x,
                         const ScoreSettings& settings, bool derivatives, double* scratch,
-                        const PointLocation* known_location) {
+                        const PointLocation* known_location, int location_hint) {
   ScoreSample out;
   const int d = field.dimension();
   double* value = scratch;
@@ -35,7 +35,7 @@ ScoreSample match_score(const DescriptorField2D& field, const double* source_val
   if (settings.outside == OutsideRule::zero) {
     rim_window(r, settings.band, w, dw, d2w);
     if (w <= 0) {
-      out.inside = field.locate(x, 0.0).triangle >= 0;
+      out.inside = field.locate(x, 0.0, location_hint).triangle >= 0;
       return out;
     }
   } else if (beyond) {
@@ -43,7 +43,7 @@ ScoreSample match_score(const DescriptorField2D& field, const double* source_val
   }
   // Points between the boundary polygon and the unit circle read the nearest triangle.
   const PointLocation loc =
-      known_location && known_location->triangle >= 0 ? *known_location : field.locate(p, 2.0);
+      known_location && known_location->triangle >= 0 ? *known_location : field.locate(p, 2.0, location_hint);
   out.location = loc;
   if (loc.triangle < 0) return out;
   field.evaluate_at(loc, value, gx, gy);

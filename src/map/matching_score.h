@@ -49,9 +49,10 @@ void rim_window(double radius, double band, double& w, double& dw, double& d2w);
 // `scratch` must hold 3 * field.dimension() doubles. Derivatives only if `derivatives`.
 // `known_location`: the `location` of an earlier call with the same x and outside rule on a
 // field over the same triangulation (skips the lookup; ignored if its triangle is -1).
+// `location_hint`: the triangle of an earlier call with a nearby x (speeds up the lookup only).
 ScoreSample match_score(const DescriptorField2D& field, const double* source_value, const Vec2& x,
                         const ScoreSettings& settings, bool derivatives, double* scratch,
-                        const PointLocation* known_location = nullptr);
+                        const PointLocation* known_location = nullptr, int location_hint = -1);
 
 // sigma for a level per thesis §4.1.5: the standard deviation of all descriptor values of both
 // patches around their joint mean (root mean squared distance to the mean, over d dimensions);

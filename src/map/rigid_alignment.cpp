@@ -102,9 +102,10 @@ void subsample_source(const std::vector<Vec2>& uv, const std::vector<double>& we
 
 // The full score of one transform, mean over levels, with derivatives with respect to
 // (angle, tx, ty) if requested: gradient g and a positive semi-definite model of -Hessian.
+// hints: per point, the target triangle of its previous lookup (updated; a speed-up only).
 double full_score(const std::vector<Vec2>& rest, const std::vector<double>& weight,
                   const std::vector<MatchLevel>& levels, double angle, const Vec2& t, Eigen::Vector3d* g,
-                  Eigen::Matrix3d* negH) {
+                  Eigen::Matrix3d* negH, std::vector<int>& hints) {
   const Eigen::Matrix2d R = rotation(angle);
   const bool derivs = g != nullptr;
   if (derivs) {
@@ -126,9 +127,10 @@ double full_score(const std::vector<Vec2>& rest, const std::vector<double>& weig
       scratch.resize(3 * static_cast<std::size_t>(d));
       value.resize(d);
       for (int k = 0; k < d; ++k) value[k] = (*level.source_values)(static_cast<Eigen::Index>(v), k);
-      const ScoreSample s =
-          match_score(*level.target_field, value.data(), x, level.score, derivs, scratch.data(), &location);
+      const ScoreSample s = match_score(*level.target_field, value.data(), x, level.score, derivs, scratch.data(),
+                                        &location, hints[v]);
       location = s.location;
+      if (location.triangle >= 0) hints[v] = location.triangle;
       total += weight[v] * s.score;
       if (derivs && s.score > 0) {
         *g += weight[v] * Jp.transpose() * s.gradient;
@@ -352,10 +354,11 @@ FineSample fine_sample(const std::vector<Vec2>& uv, const std::vector<double>& v
 // Damped Newton steps over (angle, translation) on the full score of `rest` (the fine
 // subsample, mirrored for a mirrored T), each step backtracked until the score rises.
 void refine_transform(const std::vector<Vec2>& rest, const std::vector<double>& weight,
-                      const std::vector<MatchLevel>& neutral, int iterations, RigidTransform2D& T) {
+                      const std::vector<MatchLevel>& neutral, int iterations, RigidTransform2D& T,
+                      std::vector<int>& hints) {
   Eigen::Vector3d g;
   Eigen::Matrix3d negH;
-  double S = full_score(rest, weight, neutral, T.angle, T.translation, &g, &negH);
+  double S = full_score(rest, weight, neutral, T.angle, T.translation, &g, &negH, hints);
   double damping = 1e-3;
   for (int it = 0; it < iterations; ++it) {
     const double scale = std::max(negH.trace() / 3, 1e-12);
@@ -367,12 +370,12 @@ void refine_transform(const std::vector<Vec2>& rest, const std::vector<double>& 
     for (int k = 0; k < 12; ++k) {
       const double a = T.angle + alpha * step[0];
       const Vec2 t = T.translation + alpha * step.tail<2>();
-      const double Sn = full_score(rest, weight, neutral, a, t, nullptr, nullptr);
+      const double Sn = full_score(rest, weight, neutral, a, t, nullptr, nullptr, hints);
       if (Sn > S) {
         const double gain = Sn - S;
         T.angle = a;
         T.translation = t;
-        S = full_score(rest, weight, neutral, T.angle, T.translation, &g, &negH);
+        S = full_score(rest, weight, neutral, T.angle, T.translation, &g, &negH, hints);
         improved = gain > 1e-10 * std::max(S, 1e-12);
         break;
       }
@@ -395,12 +398,13 @@ void refine_candidates(const FineSample& fine, const std::vector<int>& chosen, c
       const std::vector<MatchLevel>& exact = T.reflected ? fine.levels_reflected : fine.levels;
       std::vector<Vec2> rest(fine.uv.size());
       for (std::size_t v = 0; v < fine.uv.size(); ++v) rest[v] = mirror(fine.uv[v], T.reflected);
-      refine_transform(rest, fine.weight, neutral, options.refine_iterations, T);
+      std::vector<int> hints(rest.size(), -1);
+      refine_transform(rest, fine.weight, neutral, options.refine_iterations, T, hints);
       T.angle = std::fmod(T.angle, kTwoPi);
       if (T.angle < 0) T.angle += kTwoPi;
       if (!within_up_prior(options, T)) T = rigid_candidate(options, chosen[c]);  // drifted off the hint
       refined[c] = T;
-      refined_score[c] = full_score(rest, fine.weight, exact, T.angle, T.translation, nullptr, nullptr);
+      refined_score[c] = full_score(rest, fine.weight, exact, T.angle, T.translation, nullptr, nullptr, hints);
     }
   });
 }

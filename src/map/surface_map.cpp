@@ -350,6 +350,8 @@ void collect_reports(const std::vector<NewtonReport>& reports, int L, SurfaceMap
       out.energy_history_level.push_back(l);
     }
     out.iterations += r.iterations;
+    out.factorizations += r.factorizations;
+    out.inner_iterations += r.inner_iterations;
     if (l == L - 1) out.stop_reason = r.reason;  // a refinement pass ends at its short cap by design
     out.energy = r.terms;
   }

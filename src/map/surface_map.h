@@ -118,6 +118,9 @@ struct SurfaceMap {
   MapEnergyTerms energy;                          // final terms, with the finest level's Gaussian width
   double matching_score = 0;                      // 1 - energy.descriptor
   int iterations = 0;                             // Newton iterations over all stages
+  int factorizations = 0;                         // Hessian factorizations over all stages (of the
+                                                  // returned orientation, as iterations)
+  int inner_iterations = 0;                       // conjugate-gradient iterations, likewise
   StopReason stop_reason = StopReason::iteration_cap;  // of the finest descriptor level
   std::vector<LevelReport> levels;                // descriptor levels, then refinement passes
   std::vector<double> energy_history;             // energy after every iterate (starts of stages included)

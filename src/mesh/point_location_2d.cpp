@@ -45,6 +45,26 @@ Vec3 closest_barycentric(const Vec2& p, const Vec2& a, const Vec2& b, const Vec2
 }
 
 constexpr double kInsideTolerance = 1e-10;
+// A walk accepts a triangle only if p is inside it by this barycentric margin, far above both the
+// inside tolerance and rounding, so on an embedding no other triangle can be as deep.
+constexpr double kWalkMargin = 1e-7;
+constexpr int kWalkSteps = 16;
+
+// Whether segments [a, b] and [c, d] (sharing no endpoint) intersect, touching included.
+bool segments_intersect(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
+  auto orient = [](const Vec2& p, const Vec2& q, const Vec2& r) {
+    const double v = cross2(q - p, r - p);
+    return (v > 0) - (v < 0);
+  };
+  auto on_segment = [](const Vec2& p, const Vec2& q, const Vec2& r) {  // r on [p, q], given collinear
+    return r.x() >= std::min(p.x(), q.x()) && r.x() <= std::max(p.x(), q.x()) && r.y() >= std::min(p.y(), q.y()) &&
+           r.y() <= std::max(p.y(), q.y());
+  };
+  const int o1 = orient(a, b, c), o2 = orient(a, b, d), o3 = orient(c, d, a), o4 = orient(c, d, b);
+  if (o1 != o2 && o3 != o4) return true;
+  return (o1 == 0 && on_segment(a, b, c)) || (o2 == 0 && on_segment(a, b, d)) || (o3 == 0 && on_segment(c, d, a)) ||
+         (o4 == 0 && on_segment(c, d, b));
+}
 
 }  // namespace
 
@@ -90,6 +110,7 @@ TriangleLocator2D::TriangleLocator2D(const std::vector<Vec2>& points, const std:
   }
   std::sort(boundary_.begin(), boundary_.end());
   boundary_.erase(std::unique(boundary_.begin(), boundary_.end()), boundary_.end());
+  detect_embedding(edges);
   // A square root cell, slightly padded.
   const double size = std::max({hi.x() - lo.x(), hi.y() - lo.y(), 1e-12});
   const Vec2 mid = 0.5 * (lo + hi);
@@ -195,9 +216,111 @@ PointLocation TriangleLocator2D::locate(const Vec2& p) const {
   return best;
 }
 
-PointLocation TriangleLocator2D::locate_nearest(const Vec2& p, double max_distance) const {
-  PointLocation hit = locate(p);
+void TriangleLocator2D::detect_embedding(const std::vector<std::array<long long, 3>>& edges) {
+  const int n = static_cast<int>(triangles_.size());
+  int sign = 0;
+  for (const Tri& t : triangles_) {
+    const double a = cross2(points_[t[1]] - points_[t[0]], points_[t[2]] - points_[t[0]]);
+    const int s = (a > 0) - (a < 0);
+    if (s == 0 || (sign != 0 && s != sign)) return;
+    sign = s;
+  }
+  std::vector<std::array<int, 3>> nb(n, {-1, -1, -1});
+  std::vector<std::array<int, 2>> rim;  // unpaired edges
+  auto forward = [&](int t, long long a, long long b) {  // t runs a -> b
+    for (int k = 0; k < 3; ++k)
+      if (triangles_[t][k] == a && triangles_[t][(k + 1) % 3] == b) return true;
+    return false;
+  };
+  auto corner_opposite = [&](int t, long long a, long long b) {
+    for (int k = 0; k < 3; ++k)
+      if (triangles_[t][k] != a && triangles_[t][k] != b) return k;
+    return 0;
+  };
+  for (std::size_t k = 0; k < edges.size();) {
+    std::size_t e = k + 1;
+    while (e < edges.size() && edges[e][0] == edges[k][0] && edges[e][1] == edges[k][1]) ++e;
+    if (e - k > 2) return;  // non-manifold edge
+    // (Then: one consistent orientation, every triangle of the same sign and a simple rim loop
+    // make the number of triangles over a point the rim's winding number, at most 1.)
+    if (e - k == 1) {
+      rim.push_back({static_cast<int>(edges[k][0]), static_cast<int>(edges[k][1])});
+    } else {
+      const int t0 = static_cast<int>(edges[k][2]), t1 = static_cast<int>(edges[k + 1][2]);
+      if (forward(t0, edges[k][0], edges[k][1]) == forward(t1, edges[k][0], edges[k][1])) return;  // inconsistent
+      nb[t0][corner_opposite(t0, edges[k][0], edges[k][1])] = t1;
+      nb[t1][corner_opposite(t1, edges[k][0], edges[k][1])] = t0;
+    }
+    k = e;
+  }
+  // One loop: every rim vertex on exactly two rim edges, all reached from the first.
+  std::vector<std::vector<int>> at(points_.size());
+  for (std::size_t i = 0; i < rim.size(); ++i)
+    for (int v : rim[i]) at[v].push_back(static_cast<int>(i));
+  for (const auto& list : at)
+    if (!list.empty() && list.size() != 2) return;
+  if (rim.empty()) return;
+  std::size_t visited = 0;
+  int e = 0, v = rim[0][1];
+  do {
+    ++visited;
+    e = at[v][0] == e ? at[v][1] : at[v][0];
+    v = rim[e][0] == v ? rim[e][1] : rim[e][0];
+  } while (e != 0 && visited <= rim.size());
+  if (visited != rim.size()) return;
+  // The loop does not cross itself (edges sharing a vertex are adjacent in a loop and skipped).
+  for (std::size_t i = 0; i < rim.size(); ++i) {
+    const Vec2 &a = points_[rim[i][0]], &b = points_[rim[i][1]];
+    const Vec2 lo = a.cwiseMin(b), hi = a.cwiseMax(b);
+    for (std::size_t j = i + 1; j < rim.size(); ++j) {
+      if (rim[j][0] == rim[i][0] || rim[j][0] == rim[i][1] || rim[j][1] == rim[i][0] || rim[j][1] == rim[i][1])
+        continue;
+      const Vec2 &c = points_[rim[j][0]], &d = points_[rim[j][1]];
+      if (std::max(c.x(), d.x()) < lo.x() || std::min(c.x(), d.x()) > hi.x() || std::max(c.y(), d.y()) < lo.y() ||
+          std::min(c.y(), d.y()) > hi.y())
+        continue;
+      if (segments_intersect(a, b, c, d)) return;
+    }
+  }
+  neighbors_ = std::move(nb);
+}
+
+PointLocation TriangleLocator2D::locate(const Vec2& p, int hint) const {
+  if (neighbors_.empty() || hint < 0 || hint >= num_triangles() || !std::isfinite(p.x()) || !std::isfinite(p.y()))
+    return locate(p);
+  int t = hint;
+  for (int step = 0; step < kWalkSteps; ++step) {
+    const Tri& tri = triangles_[t];
+    Vec3 l = barycentric_2d(p, points_[tri[0]], points_[tri[1]], points_[tri[2]]);
+    Eigen::Index k = 0;
+    const double m = l.minCoeff(&k);
+    if (m > kWalkMargin) {  // as locate's result: clamped (a no-op here) and normalized
+      PointLocation hit;
+      hit.triangle = t;
+      l = l.cwiseMax(0.0);
+      l /= l.sum();
+      hit.barycentric = l;
+      return hit;
+    }
+    if (m > -kWalkMargin || neighbors_[t][k] < 0) break;  // near an edge, or towards the outside
+    t = neighbors_[t][k];
+  }
+  return locate(p);
+}
+
+PointLocation TriangleLocator2D::locate_nearest(const Vec2& p, double max_distance, int hint) const {
+  const PointLocation hit = locate(p, hint);
   if (hit.triangle >= 0 || !std::isfinite(p.x()) || !std::isfinite(p.y())) return hit;
+  return nearest_on_boundary(p, max_distance);
+}
+
+PointLocation TriangleLocator2D::locate_nearest(const Vec2& p, double max_distance) const {
+  const PointLocation hit = locate(p);
+  if (hit.triangle >= 0 || !std::isfinite(p.x()) || !std::isfinite(p.y())) return hit;
+  return nearest_on_boundary(p, max_distance);
+}
+
+PointLocation TriangleLocator2D::nearest_on_boundary(const Vec2& p, double max_distance) const {
   // Outside the triangulation the nearest point lies on its boundary. The triangles of the leaf
   // nearest to p bound the distance first, so most boundary triangles are skipped by their box.
   PointLocation best;

@@ -8,6 +8,7 @@
 // the triangulation find their nearest triangle among those on its boundary.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "mesh/mesh.h"
@@ -35,11 +36,23 @@ class TriangleLocator2D {
   // terms) are inside; among several hits the one where p lies deepest (largest smallest
   // barycentric) wins, then the lowest index, so the answer does not depend on the traversal.
   PointLocation locate(const Vec2& p) const;
+  // The same answer as locate(p), found faster when p lies near triangle `hint` (the triangle
+  // of a nearby earlier query): on an embedding (is_embedding()) a walk of a few steps from the
+  // hint towards p stops in the triangle that contains p with a margin, the only one that can;
+  // otherwise, or for hint -1, the full search runs.
+  PointLocation locate(const Vec2& p, int hint) const;
 
   // Like locate, but if no triangle contains p, the triangle nearest to p within max_distance
   // (barycentric coordinates of the nearest point, distance > 0; ties: lowest index); triangle
   // -1 if none.
   PointLocation locate_nearest(const Vec2& p, double max_distance) const;
+  PointLocation locate_nearest(const Vec2& p, double max_distance, int hint) const;
+
+  // The triangles cover their union once: all have the same orientation and area != 0, every
+  // edge has at most two triangles that run it in opposite directions, and the unpaired edges
+  // form one loop that does not cross itself. (Then the number of triangles over a point is the
+  // rim's winding number, 1 or 0.)
+  bool is_embedding() const { return !neighbors_.empty(); }
 
   int num_triangles() const { return static_cast<int>(triangles_.size()); }
   const std::vector<Vec2>& points() const { return points_; }
@@ -65,6 +78,11 @@ class TriangleLocator2D {
   std::vector<int> items_;             // triangle indices of the leaves, ascending per leaf
   std::vector<int> full_items_;        // triangles kept at inner nodes (Node::full_first)
   std::vector<int> boundary_;          // triangles with an edge used by no other triangle
+  // Only on an embedding: per triangle, the triangle across the edge opposite each corner
+  // (-1 on the boundary); empty otherwise.
+  std::vector<std::array<int, 3>> neighbors_;
+  PointLocation nearest_on_boundary(const Vec2& p, double max_distance) const;
+  void detect_embedding(const std::vector<std::array<long long, 3>>& sorted_edges);
 };
 
 }  // namespace mcon

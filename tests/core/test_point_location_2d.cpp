@@ -154,3 +154,69 @@ TEST(PointLocation2D, SqueezedClusterMatchesBruteForce) {
   }
   EXPECT_GT(inside, 2000);
 }
+
+// A walk from a hint must give exactly what the full search gives: same triangle, same
+// barycentric coordinates bit for bit, whatever the hint (a neighbour's answer, a random
+// triangle, -1, out of range), inside, on edges and outside.
+void expect_hinted_equals_full(const Planar& d, std::uint64_t seed) {
+  const TriangleLocator2D locator(d.points, d.triangles);
+  ASSERT_TRUE(locator.is_embedding());
+  CounterRng rng(seed, 0);
+  const int nt = static_cast<int>(d.triangles.size());
+  int previous = -1;
+  for (int i = 0; i < 3000; ++i) {
+    Vec2 p(2.4 * rng.uniform() - 1.2, 2.4 * rng.uniform() - 1.2);
+    if (i % 5 == 0) p = d.points[d.triangles[i % nt][0]];  // on a vertex
+    const int kind = i % 4;
+    const int hint = kind == 0 ? previous : kind == 1 ? static_cast<int>(rng.uniform() * nt) : kind == 2 ? -1 : nt + 3;
+    const PointLocation full = locator.locate(p), hinted = locator.locate(p, hint);
+    ASSERT_EQ(hinted.triangle, full.triangle) << "point " << p.transpose() << " hint " << hint;
+    EXPECT_EQ(hinted.barycentric, full.barycentric);
+    EXPECT_EQ(hinted.distance, full.distance);
+    const PointLocation near_full = locator.locate_nearest(p, 2.0), near_hinted = locator.locate_nearest(p, 2.0, hint);
+    ASSERT_EQ(near_hinted.triangle, near_full.triangle);
+    EXPECT_EQ(near_hinted.barycentric, near_full.barycentric);
+    EXPECT_EQ(near_hinted.distance, near_full.distance);
+    if (full.triangle >= 0) previous = full.triangle;
+  }
+}
+
+TEST(PointLocation2D, HintedLocateEqualsTheFullSearch) {
+  expect_hinted_equals_full(jittered_disk(), 11);
+  Planar squeezed = jittered_disk();
+  for (Vec2& p : squeezed.points) p *= std::pow(p.norm(), 5.0);
+  expect_hinted_equals_full(squeezed, 12);
+}
+
+// Only an embedding may take the walk's answer; anything that can cover a point twice is seen.
+TEST(PointLocation2D, EmbeddingIsDetected) {
+  const Planar d = jittered_disk();
+  EXPECT_TRUE(TriangleLocator2D(d.points, d.triangles).is_embedding());
+  Planar reversed = d;  // both orientations but still an embedding as a set: not accepted (no walk)
+  std::swap(reversed.triangles[5][0], reversed.triangles[5][1]);
+  EXPECT_FALSE(TriangleLocator2D(reversed.points, reversed.triangles).is_embedding());
+  Planar folded = d;  // an interior vertex pulled across its ring: flipped triangles
+  const int inner = d.triangles[d.triangles.size() / 2][0];
+  folded.points[inner] = Vec2(5, 5);
+  EXPECT_FALSE(TriangleLocator2D(folded.points, folded.triangles).is_embedding());
+  Planar twice = d;  // the same disk twice: two rim loops over each other
+  const int nv = static_cast<int>(d.points.size());
+  for (const Tri& t : d.triangles) twice.triangles.push_back({t[0] + nv, t[1] + nv, t[2] + nv});
+  twice.points.insert(twice.points.end(), d.points.begin(), d.points.end());
+  EXPECT_FALSE(TriangleLocator2D(twice.points, twice.triangles).is_embedding());
+  Planar stacked = d;  // a triangle repeated: an edge with three triangles
+  stacked.triangles.push_back(d.triangles[7]);
+  EXPECT_FALSE(TriangleLocator2D(stacked.points, stacked.triangles).is_embedding());
+  // A square whose two triangles overlap through a crossing rim (a bow tie): rejected.
+  const std::vector<Vec2> bow = {Vec2(0, 0), Vec2(1, 0), Vec2(0, 1), Vec2(1, 1)};
+  EXPECT_FALSE(TriangleLocator2D(bow, {{0, 1, 3}, {0, 3, 2}, {1, 2, 0}}).is_embedding());
+  // Without an embedding the hinted call still answers exactly as the full search.
+  const TriangleLocator2D locator(twice.points, twice.triangles);
+  CounterRng rng(13, 0);
+  for (int i = 0; i < 500; ++i) {
+    const Vec2 p(2 * rng.uniform() - 1, 2 * rng.uniform() - 1);
+    const PointLocation full = locator.locate(p), hinted = locator.locate(p, i % static_cast<int>(twice.triangles.size()));
+    EXPECT_EQ(hinted.triangle, full.triangle);
+    EXPECT_EQ(hinted.barycentric, full.barycentric);
+  }
+}

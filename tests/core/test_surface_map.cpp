@@ -388,3 +388,22 @@ TEST(SurfaceMap, RejectsBadInput) {
   for (auto& l : annulus_levels) l = l.bottomRows(l.rows() - 1).eval();  // vertex 0 was the center
   EXPECT_EQ(status_of([&] { compute_surface_map(src, {annulus, uv2, annulus_levels}, o); }), MCON_ERROR_NOT_A_DISK);
 }
+
+// The inexact Newton step (the last factorization preconditioning CG on the current Hessian)
+// needs fewer factorizations than plain Newton for the same map.
+TEST(SurfaceMap, ReusedFactorizationsGiveTheSameMapWithFewerFactorizations) {
+  const synthetic::Problem pr = problem(warped_partial_overlap());
+  SurfaceMapOptions newton;
+  newton.newton.reuse_factorization = false;
+  const SurfaceMap exact = run(pr, newton), reused = run(pr);
+  EXPECT_GE(exact.factorizations, exact.iterations);
+  EXPECT_EQ(exact.inner_iterations, 0);
+  EXPECT_GT(reused.inner_iterations, 0);
+  EXPECT_LT(reused.factorizations, exact.factorizations / 2) << reused.factorizations << " vs " << exact.factorizations;
+  EXPECT_EQ(inverted(pr, reused), 0);
+  EXPECT_NEAR(synthetic::mean_error(pr, reused.phi), synthetic::mean_error(pr, exact.phi), 0.002);
+  EXPECT_NEAR(reused.matching_score, exact.matching_score, 0.005);
+  SurfaceMapOptions bad;
+  bad.newton.inexact_tolerance = 1.5;
+  EXPECT_EQ(status_of([&] { run(pr, bad); }), MCON_ERROR_INVALID_ARGUMENT);
+}

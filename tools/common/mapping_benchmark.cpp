@@ -353,6 +353,7 @@ PairMaps unguided_maps(const PairPatches& pp, const MappingEvalOptions& options,
   PatchMapOptions mo;
   mo.map.alignment.samples = options.alignment_samples;
   mo.map.alignment.seed = options.seed;
+  mo.map.newton.reuse_factorization = !options.plain_newton;
   if (!wants(options, "macrocon")) mo.map.newton.max_iterations = 0;  // the rigid start only
   maps.alignment = mo.map.alignment;
   const auto t0 = std::chrono::steady_clock::now();
@@ -425,6 +426,7 @@ void run_frame(const MappingEvalOptions& options, const PairPatches& pp, bool mi
   PatchMapOptions fo;
   fo.map.alignment = maps.alignment;
   fo.use_world_frame = true;
+  fo.map.newton.reuse_factorization = !options.plain_newton;
   fo.world_frame_mirror = mirrored;
   if (options.frame_anchor >= 0) fo.world_frame_anchor = options.frame_anchor;
   if (options.frame_anchor_decay > 0) fo.map.anchor_decay = options.frame_anchor_decay;
@@ -455,6 +457,7 @@ void run_up(const MappingEvalOptions& options, const PairPatches& pp, bool mirro
   if (mirrored) uo.map.orientation = MapOrientation::reverse;
   if (options.up_anchor >= 0) uo.up_start_anchor = options.up_anchor;
   uo.source_up = Vec3(0, 1, 0);
+  uo.map.newton.reuse_factorization = !options.plain_newton;
   uo.target_up = Vec3(0, 1, 0);
   const auto t0 = std::chrono::steady_clock::now();
   SurfaceMap um;

@@ -25,14 +25,19 @@ namespace mcon::cli {
 namespace {
 
 const char* kUsage =
-    "usage: macrocon-eval bench --shared DIR [--runs N] [--threads T] [--seed S] [--json]\n"
+    "usage: macrocon-eval bench --shared DIR [--runs N] [--threads T] [--seed S] [--large] [--json]\n"
     "Times the re-embedding map (map_patches: descriptors, rigid initialization, optimization) and heat\n"
     "geodesics on MakeHuman patches between two random people: hand and face (about 1,700 and 2,800\n"
-    "vertices) on the body, and the same classes on the body subdivided once (about 6,700 and 11,000).\n"
-    "Medians over --runs runs (default 3) in a --threads arena (default 2). --json prints\n"
+    "vertices) on the body, and the same classes on the body subdivided once (about 6,700 and 11,000);\n"
+    "--large adds the face on the body subdivided twice (about 46,000). Each map runs with the default\n"
+    "inexact Newton (factorizations reused) and, side by side, with plain Newton (one factorization per\n"
+    "iteration). Medians over --runs runs (default 3) in a --threads arena (default 2). --json prints\n"
     "{\"map\": [{\"case\", \"source_vertices\", \"target_vertices\", \"seconds_median\", \"init_seconds_median\",\n"
-    "\"optimization_seconds_median\", \"cpu_seconds_median\", \"iterations\", \"stop_reason\",\n"
-    "\"orientation_compared\", \"level_iterations\" (per coarse-to-fine level), \"flips\"}, ...],\n"
+    "\"optimization_seconds_median\", \"cpu_seconds_median\", \"iterations\", \"factorizations\",\n"
+    "\"inner_iterations\" (conjugate gradients), \"stop_reason\", \"orientation_compared\", \"level_iterations\"\n"
+    "(per coarse-to-fine level), \"flips\", \"peak_rss_mib\" (the case's peak resident memory; \"peak_rss_scope\"\n"
+    "\"case\", or \"process\" where the kernel cannot reset the peak), \"plain_newton_seconds_median\",\n"
+    "\"plain_newton_iterations\", \"plain_newton_factorizations\", \"speedup_vs_plain_newton\"}, ...],\n"
     "\"heat_geodesics\": [{\"vertices\", \"factor_seconds_median\", \"solve_seconds_median\"}, ...], \"threads\", \"load_average\"}.\n";
 
 double median(std::vector<double> v) {
@@ -68,6 +73,26 @@ TriMesh subdivide(const TriMesh& mesh) {
   return out;
 }
 
+// Peak resident memory (VmHWM) in MiB since the last reset_peak_rss(); -1 if unknown.
+double peak_rss_mib() {
+  std::FILE* f = std::fopen("/proc/self/status", "r");
+  if (!f) return -1;
+  char line[256];
+  double kib = -1;
+  while (std::fgets(line, sizeof line, f))
+    if (std::sscanf(line, "VmHWM: %lf kB", &kib) == 1) break;
+  std::fclose(f);
+  return kib < 0 ? -1 : kib / 1024.0;
+}
+
+// Resets the peak to the current resident size (Linux >= 4.0: "5" to /proc/self/clear_refs).
+bool reset_peak_rss() {
+  std::FILE* f = std::fopen("/proc/self/clear_refs", "w");
+  if (!f) return false;
+  const bool ok = std::fputs("5", f) >= 0;
+  return std::fclose(f) == 0 && ok;
+}
+
 int count_flips(const TriMesh& mesh, const std::vector<Vec2>& phi, bool reflected) {
   int n = 0;
   for (const Tri& t : mesh.triangles) {
@@ -83,7 +108,7 @@ int run_bench(const Args& args) {
     std::fputs(kUsage, stdout);
     return 0;
   }
-  const ArgParser p(args, {"shared", "runs", "threads", "seed"}, {"json"});
+  const ArgParser p(args, {"shared", "runs", "threads", "seed"}, {"json", "large"});
   const std::string shared = p.required("shared");
   const int runs = static_cast<int>(p.integer("runs", 3));
   const int threads = static_cast<int>(p.integer("threads", 2));
@@ -95,11 +120,17 @@ int run_bench(const Args& args) {
   const TriMesh a = people.person(static_cast<std::uint64_t>(seed), 0);
   const TriMesh b = people.person(static_cast<std::uint64_t>(seed), 1);
   const TriMesh a2 = subdivide(a), b2 = subdivide(b);
+  const bool large = p.flag("large");
+  const TriMesh a4 = large ? subdivide(a2) : TriMesh{}, b4 = large ? subdivide(b2) : TriMesh{};
   tbb::task_arena arena(threads);
 
   tools::Json map_rows = tools::Json::array(), heat_rows = tools::Json::array();
-  for (const bool fine : {false, true}) {
+  for (const int fine : {0, 1, 2}) {
+    if (fine == 2 && !large) break;
     for (const char* name : {"hand_r", "face"}) {
+      if (fine == 2 && std::string(name) != "face") continue;
+      const TriMesh& host_a = fine == 0 ? a : fine == 1 ? a2 : a4;
+      const TriMesh& host_b = fine == 0 ? b : fine == 1 ? b2 : b4;
       const tools::BenchClass& cls = bench.spec.find(name);
       const std::vector<int>& verts = bench.patches.find(name).vertices;
       auto cut = [&](const TriMesh& coarse, const TriMesh& host) {
@@ -110,10 +141,11 @@ int run_bench(const Args& args) {
         po.fill_holes = cls.fill_holes;
         return extract_geodesic_disk(host, po);
       };
-      const Patch src = cut(a, fine ? a2 : a), dst = cut(b, fine ? b2 : b);
+      const Patch src = cut(a, host_a), dst = cut(b, host_b);
       std::vector<double> total, init, opt, cpu;
       SurfaceMap map;
       PatchMapOptions map_options;
+      const bool case_peak = reset_peak_rss();
       for (int r = 0; r < runs; ++r) {
         const auto t0 = std::chrono::steady_clock::now();
         const std::clock_t c0 = std::clock();
@@ -123,8 +155,19 @@ int run_bench(const Args& args) {
         init.push_back(map.alignment_seconds);
         opt.push_back(map.optimization_seconds);
       }
+      const double peak = peak_rss_mib();
+      // The same map with plain Newton, side by side.
+      PatchMapOptions plain_options = map_options;
+      plain_options.map.newton.reuse_factorization = false;
+      std::vector<double> plain_total;
+      SurfaceMap plain;
+      for (int r = 0; r < runs; ++r) {
+        const auto t0 = std::chrono::steady_clock::now();
+        arena.execute([&] { plain = map_patches(src, dst, plain_options); });
+        plain_total.push_back(since(t0));
+      }
       tools::Json row = tools::Json::object();
-      row.set("case", std::string(name) + (fine ? "_subdivided" : ""));
+      row.set("case", std::string(name) + (fine == 1 ? "_subdivided" : fine == 2 ? "_subdivided_twice" : ""));
       row.set("source_vertices", src.mesh.num_vertices());
       row.set("target_vertices", dst.mesh.num_vertices());
       row.set("seconds_median", median(total));
@@ -132,17 +175,28 @@ int run_bench(const Args& args) {
       row.set("optimization_seconds_median", median(opt));
       row.set("cpu_seconds_median", median(cpu));
       row.set("iterations", map.iterations);
+      row.set("factorizations", map.factorizations);
+      row.set("inner_iterations", map.inner_iterations);
       row.set("stop_reason", stop_reason_name(map.stop_reason));
       row.set("orientation_compared", map.orientation_compared);
       tools::Json level_iterations = tools::Json::array();
       for (const LevelReport& lr : map.levels) level_iterations.push_back(lr.iterations);
       row.set("level_iterations", level_iterations);
       row.set("flips", count_flips(src.mesh, map.phi, map.reflected));
+      row.set("peak_rss_mib", peak);
+      row.set("peak_rss_scope", case_peak ? "case" : "process");
+      row.set("plain_newton_seconds_median", median(plain_total));
+      row.set("plain_newton_iterations", plain.iterations);
+      row.set("plain_newton_factorizations", plain.factorizations);
+      row.set("speedup_vs_plain_newton", median(plain_total) / median(total));
       map_rows.push_back(row);
       if (!p.flag("json"))
-        std::fprintf(stderr, "map %s: %d -> %d vertices, %.3f s (init %.3f s), %d iterations\n",
+        std::fprintf(stderr,
+                     "map %s: %d -> %d vertices, %.3f s (init %.3f s), %d iterations, %d factorizations, "
+                     "peak %.0f MiB; plain Newton %.3f s, %d factorizations\n",
                      row.at("case").as_string().c_str(), src.mesh.num_vertices(), dst.mesh.num_vertices(),
-                     median(total), median(init), map.iterations);
+                     median(total), median(init), map.iterations, map.factorizations, peak, median(plain_total),
+                     plain.factorizations);
 
       std::vector<double> factor, solve;
       for (int r = 0; r < runs; ++r) {
