@@ -174,6 +174,22 @@ bool progress_stalled(const NewtonReport& report, const NewtonOptions& options) 
 
 }  // namespace
 
+struct NewtonWarmStart::State {
+  const std::vector<Tri>* triangles = nullptr;  // the disk it was built for
+  int num_vertices = 0;
+  HessianPattern pattern;
+  Ldlt ldlt;
+  bool factorized = false;
+  State(int n, const std::vector<Tri>& tris) : triangles(&tris), num_vertices(n), pattern(n, tris) {
+    ldlt.analyzePattern(pattern.matrix);
+  }
+};
+
+NewtonWarmStart::NewtonWarmStart() = default;
+NewtonWarmStart::~NewtonWarmStart() = default;
+NewtonWarmStart::NewtonWarmStart(NewtonWarmStart&&) noexcept = default;
+NewtonWarmStart& NewtonWarmStart::operator=(NewtonWarmStart&&) noexcept = default;
+
 const char* stop_reason_name(StopReason reason) {
   switch (reason) {
     case StopReason::converged: return "converged";
@@ -185,7 +201,7 @@ const char* stop_reason_name(StopReason reason) {
 }
 
 NewtonReport minimize_map_energy(const MapEnergy& energy, Eigen::VectorXd& x, const NewtonOptions& options,
-                                 const std::function<bool(int, double)>& keep_going) {
+                                 const std::function<bool(int, double)>& keep_going, NewtonWarmStart* warm) {
   const SourceDisk& src = energy.source();
   require(x.size() == energy.num_variables(), MCON_ERROR_INVALID_ARGUMENT, "newton: wrong variable count");
   require(!options.reuse_factorization || (options.inexact_tolerance > 0 && options.inexact_tolerance < 1 &&
@@ -194,9 +210,13 @@ NewtonReport minimize_map_energy(const MapEnergy& energy, Eigen::VectorXd& x, co
   require(count_inverted(src.triangles, x) == 0, MCON_ERROR_NUMERICAL, "newton: the start has inverted triangles");
 
   NewtonReport report;
-  HessianPattern pattern(src.num_vertices, src.triangles);
-  Ldlt ldlt;
-  ldlt.analyzePattern(pattern.matrix);
+  NewtonWarmStart local;
+  NewtonWarmStart& ws = warm ? *warm : local;
+  if (!ws.state || ws.state->triangles != &src.triangles || ws.state->num_vertices != src.num_vertices)
+    ws.state = std::make_unique<NewtonWarmStart::State>(src.num_vertices, src.triangles);
+  HessianPattern& pattern = ws.state->pattern;
+  Ldlt& ldlt = ws.state->ldlt;
+  bool& factorized = ws.state->factorized;  // ldlt holds a factorization (the preconditioner of later steps)
 
   MapEnergy::Derivatives der;
   energy.derivatives(x, der);
@@ -207,7 +227,6 @@ NewtonReport minimize_map_energy(const MapEnergy& energy, Eigen::VectorXd& x, co
   const double tolerance =
       options.relative_decrease * std::max(std::abs(E), options.energy_scale) + options.absolute_decrease;
   double shift_scale = 1.0;  // grows if factorizations fail, shrinks back after successes
-  bool factorized = false;   // ldlt holds a factorization (the preconditioner of later steps)
 
   for (int iter = 0; iter < options.max_iterations; ++iter) {
     const double mean_diag = assemble_hessian(der, src, pattern);

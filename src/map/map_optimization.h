@@ -8,6 +8,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include <Eigen/Core>
@@ -65,11 +66,27 @@ struct NewtonReport {
   int inner_iterations = 0;         // preconditioned conjugate-gradient iterations
 };
 
+// What one minimization leaves for the next on the same source disk (the stages of a
+// coarse-to-fine run): the Hessian's pattern and symbolic analysis, and the last factorization,
+// which then preconditions the next run's first steps (NewtonOptions::reuse_factorization).
+// Empty until a run has used it; a run on another disk starts afresh.
+class NewtonWarmStart {
+ public:
+  NewtonWarmStart();
+  ~NewtonWarmStart();
+  NewtonWarmStart(NewtonWarmStart&&) noexcept;
+  NewtonWarmStart& operator=(NewtonWarmStart&&) noexcept;
+  struct State;
+  std::unique_ptr<State> state;
+};
+
 // Minimizes energy from x (which must have no inverted triangle) in place. keep_going(iteration,
 // energy) runs on the calling thread after every iteration; returning false stops with
 // StopReason::cancelled (x is then the last accepted iterate). Throws NUMERICAL if the start is
 // infeasible or the linear solve keeps failing.
+// `warm`, if given, is read at the start and holds this run's factorization at the end.
 NewtonReport minimize_map_energy(const MapEnergy& energy, Eigen::VectorXd& x, const NewtonOptions& options,
-                                 const std::function<bool(int, double)>& keep_going = {});
+                                 const std::function<bool(int, double)>& keep_going = {},
+                                 NewtonWarmStart* warm = nullptr);
 
 }  // namespace mcon

@@ -251,8 +251,10 @@ ScoreSettings stage_score(const Stages& st, int s) {
 // Runs stage s from x; its iterations map into the progress range [progress_from, progress_to].
 // energy_scale: the first level's start energy, the tolerance scale of later stages.
 // start_anchor: the candidate's own start positions when SurfaceMapOptions::start_anchor > 0.
+// warm: the candidate's factorization, handed from stage to stage.
 NewtonReport run_level(const Stages& st, int s, const SourceDisk& disk, const MapAnchor* start_anchor,
-                       Eigen::VectorXd& x, double energy_scale, double progress_from, double progress_to) {
+                       Eigen::VectorXd& x, double energy_scale, double progress_from, double progress_to,
+                       NewtonWarmStart& warm) {
   const SurfaceMapOptions& options = st.options;
   const int l = std::min(s, st.L - 1);
   MapEnergyWeights weights = options.weights;
@@ -273,7 +275,7 @@ NewtonReport run_level(const Stages& st, int s, const SourceDisk& disk, const Ma
     const double f = progress_from + (progress_to - progress_from) * std::min(1.0, static_cast<double>(it) / cap);
     if (options.progress && !options.progress(std::min(f, 0.999))) cancelled = true;
     return !cancelled;
-  });
+  }, &warm);
   if (cancelled || r.reason == StopReason::cancelled) fail(MCON_ERROR_CANCELLED, "surface map cancelled");
   return r;
 }
@@ -292,11 +294,12 @@ struct Candidate {
   std::vector<NewtonReport> reports;
   double energy_scale = 0;
   MapAnchor start_anchor;  // its start positions, when SurfaceMapOptions::start_anchor > 0
+  NewtonWarmStart warm;    // its last factorization, for the next stage
 };
 
 // A candidate from its rigid start (and, with start_anchor > 0, that start as its anchor).
 Candidate make_candidate(const Stages& st, const SourceDisk* disk, const RigidTransform2D& T) {
-  Candidate c{disk, start_from(st.source, T), {}, 0, {}};
+  Candidate c{disk, start_from(st.source, T), {}, 0, {}, {}};
   if (st.options.start_anchor > 0) {
     const int n = static_cast<int>(c.x.size() / 2);
     c.start_anchor.position.resize(n);
@@ -310,7 +313,7 @@ Candidate make_candidate(const Stages& st, const SourceDisk* disk, const RigidTr
 void advance(const Stages& st, Candidate& c, double p0, double p1) {
   const int l = static_cast<int>(c.reports.size());
   c.reports.push_back(run_level(st, l, *c.disk, c.start_anchor.position.empty() ? nullptr : &c.start_anchor, c.x,
-                                c.energy_scale, p0, p1));
+                                c.energy_scale, p0, p1, c.warm));
   if (l == 0) c.energy_scale = c.reports.back().energy.front();
 }
 

@@ -137,6 +137,11 @@ run_checked(EXPECT_FAILURE "--top is out of range" COMMAND ${CLI} query
   --library ${LIB} --mesh ${MESH} --face-range ${RANGE} --center-vertex 297 --radius 0.5 --top 18446744073709551617)
 run_checked(EXPECT_FAILURE "--radius is out of range" COMMAND ${CLI} query
   --library ${LIB} --mesh ${MESH} --face-range ${RANGE} --center-vertex 297 --radius 1e999)
+# Entries are cut in parallel; a failing one is named (index, name, center, radius) in the error.
+run_checked(EXPECT_FAILURE "entry 1 'bad' \\(center vertex 99999999, radius 0.5\\): --center-vertex 99999999 is not a vertex"
+  COMMAND ${CLI} library build --out ${WORK}/x.mclb --mesh ${MESH} --face-range ${RANGE}
+  --center-vertex 297 --radius 0.5 --class nose --center-vertex 99999999 --radius 0.5 --class eye --name bad
+  --center-vertex 537 --radius 0.65 --class mouth)
 if(EXISTS ${WORK}/x.mclb)
   message(FATAL_ERROR "a failed build left a file behind")
 endif()

@@ -3,8 +3,11 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <new>
+#include <optional>
 #include <string>
 
+#include "base/parallel_blocks.h"
 #include "base/text.h"
 #include "library_cli.h"
 #include "library/library_file.h"
@@ -180,7 +183,43 @@ int run_build(const Args& args) {
   RetrievalConfig start;
   start.descriptor = options.descriptor;
   ConstraintLibrary lib{start};
-  for (const EntrySpec& s : p.entries) add_library_entry(lib, cut_patch(meshes, s), entry_content(s));
+  // The patches are cut in parallel (each entry on its own; meshes loaded first, then only read),
+  // and added in the spec's order, so the file does not depend on the thread count.
+  auto entry_error = [&](std::size_t i, const Error& e) {  // name the entry: a spec may list hundreds
+    const EntrySpec& s = p.entries[i];
+    fail(e.status(), "entry " + std::to_string(i) + (s.name.empty() ? "" : " '" + printable_text(s.name) + "'") +
+                         " (center vertex " + std::to_string(s.center_vertex) + ", radius " + number_text(s.radius) +
+                         "): " + e.what());
+  };
+  for (std::size_t i = 0; i < p.entries.size(); ++i) {
+    try {
+      if (!p.entries[i].mesh.empty()) meshes.get(p.entries[i].mesh, p.entries[i].face_range);
+    } catch (const Error& e) {
+      entry_error(i, e);
+    }
+  }
+  std::vector<std::optional<Patch>> patches(p.entries.size());
+  std::vector<std::optional<Error>> errors(p.entries.size());
+  for_each_block(p.entries.size(), 1, [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (std::size_t i = begin; i < end; ++i) {
+      try {
+        patches[i] = cut_patch(meshes, p.entries[i]);
+      } catch (const Error& e) {
+        errors[i] = e;
+      } catch (const std::bad_alloc&) {
+        errors[i] = Error(MCON_ERROR_OUT_OF_MEMORY, "out of memory cutting the patch");
+      }
+    }
+  });
+  for (std::size_t i = 0; i < p.entries.size(); ++i) {
+    if (errors[i]) entry_error(i, *errors[i]);
+    try {
+      add_library_entry(lib, *patches[i], entry_content(p.entries[i]));
+    } catch (const Error& e) {
+      entry_error(i, e);
+    }
+    patches[i].reset();
+  }
   const double patch_seconds = seconds_since(t0);
   const auto t1 = std::chrono::steady_clock::now();
   lib = build_library_retrieval(lib, options);

@@ -7,11 +7,25 @@
 #include <map>
 #include <set>
 #include <string>
+#include <vector>
+#include <algorithm>
 
 #include "command/command.h"
 #include "base/error.h"
 
 namespace mcon::cli {
+
+// "a,b,,c" -> {"a", "b", "c"}: a comma-separated list of names (empty items dropped).
+inline std::vector<std::string> split_names(const std::string& s) {
+  std::vector<std::string> out;
+  std::size_t begin = 0;
+  while (begin <= s.size()) {
+    const std::size_t end = std::min(s.find(',', begin), s.size());
+    if (end > begin) out.push_back(s.substr(begin, end - begin));
+    begin = end + 1;
+  }
+  return out;
+}
 
 class ArgParser {
  public:

@@ -1,7 +1,6 @@
 // `macrocon-eval eval-mapping`: map quality on ground truth (tools/common/mapping_benchmark.h).
 #include <cmath>
 #include <cstdio>
-#include <sstream>
 #include <string>
 
 #include "command/args.h"
@@ -65,15 +64,6 @@ const char* kUsage =
     "order); --json adds \"cross_family\": {\"pairs\", \"methods\": {m: {\"overall\": C, \"per_class\": {...}}},\n"
     "\"cases\": [...]} beside the in-family numbers, which stay as without the flag.\n";
 
-std::vector<std::string> split(const std::string& s) {
-  std::vector<std::string> out;
-  std::stringstream in(s);
-  std::string item;
-  while (std::getline(in, item, ','))
-    if (!item.empty()) out.push_back(item);
-  return out;
-}
-
 void print_cross_family(const tools::Json& cross, const std::vector<std::string>& methods) {
   std::printf("cross-family: %lld pairs\n%-9s %-6s %10s %10s %10s %6s %8s %9s\n", cross.at("pairs").as_int(), "method",
               "class", "eps100", "lm.eps100", "median100", "gross", "orient.", "seconds");
@@ -108,8 +98,8 @@ int run_eval_mapping(const Args& args) {
   o.pairs = static_cast<int>(p.integer("pairs", 0));
   require(o.pairs >= 0 && o.pairs <= 100000, MCON_ERROR_INVALID_ARGUMENT, "--pairs must be in [1, 100000]");
   require(!p.has("pairs") || o.pairs >= 1, MCON_ERROR_INVALID_ARGUMENT, "--pairs must be in [1, 100000]");
-  if (p.has("classes")) o.parts = split(p.get("classes"));
-  if (p.has("method")) o.methods = split(p.get("method"));
+  if (p.has("classes")) o.parts = split_names(p.get("classes"));
+  if (p.has("method")) o.methods = split_names(p.get("method"));
   o.alignment_samples = static_cast<int>(p.integer("samples", o.alignment_samples));
   o.thesis_iterations = static_cast<int>(p.integer("thesis-iterations", o.thesis_iterations));
   o.max_evaluated_vertices = static_cast<int>(p.integer("eval-vertices", o.max_evaluated_vertices));
