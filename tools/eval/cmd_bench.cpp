@@ -105,6 +105,91 @@ int count_flips(const TriMesh& mesh, const std::vector<Vec2>& phi, bool reflecte
   return n;
 }
 
+// Medians of one map case: the default map, then (unless skipped) plain Newton side by side.
+tools::Json map_case_row(const std::string& case_name, const Patch& src, const Patch& dst, int runs,
+                         bool plain_newton, tbb::task_arena& arena, bool quiet) {
+  std::vector<double> total, init, opt, cpu;
+  SurfaceMap map;
+  PatchMapOptions map_options;
+  const bool case_peak = reset_peak_rss();
+  for (int r = 0; r < runs; ++r) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::clock_t c0 = std::clock();
+    arena.execute([&] { map = map_patches(src, dst, map_options); });
+    cpu.push_back(static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC);
+    total.push_back(since(t0));
+    init.push_back(map.alignment_seconds);
+    opt.push_back(map.optimization_seconds);
+  }
+  const double peak = peak_rss_mib();
+  PatchMapOptions plain_options = map_options;
+  plain_options.map.newton.reuse_factorization = false;
+  std::vector<double> plain_total;
+  SurfaceMap plain;
+  for (int r = 0; r < (plain_newton ? runs : 0); ++r) {
+    const auto t0 = std::chrono::steady_clock::now();
+    arena.execute([&] { plain = map_patches(src, dst, plain_options); });
+    plain_total.push_back(since(t0));
+  }
+  tools::Json row = tools::Json::object();
+  row.set("case", case_name);
+  row.set("source_vertices", src.mesh.num_vertices());
+  row.set("target_vertices", dst.mesh.num_vertices());
+  row.set("seconds_median", median(total));
+  row.set("init_seconds_median", median(init));
+  row.set("optimization_seconds_median", median(opt));
+  row.set("cpu_seconds_median", median(cpu));
+  row.set("iterations", map.iterations);
+  row.set("factorizations", map.factorizations);
+  row.set("inner_iterations", map.inner_iterations);
+  row.set("stop_reason", stop_reason_name(map.stop_reason));
+  row.set("orientation_compared", map.orientation_compared);
+  tools::Json level_iterations = tools::Json::array();
+  for (const LevelReport& lr : map.levels) level_iterations.push_back(lr.iterations);
+  row.set("level_iterations", level_iterations);
+  row.set("flips", count_flips(src.mesh, map.phi, map.reflected));
+  row.set("peak_rss_mib", peak);
+  row.set("peak_rss_scope", case_peak ? "case" : "process");
+  if (!plain_total.empty()) {
+    row.set("plain_newton_seconds_median", median(plain_total));
+    row.set("plain_newton_iterations", plain.iterations);
+    row.set("plain_newton_factorizations", plain.factorizations);
+    row.set("speedup_vs_plain_newton", median(plain_total) / median(total));
+  }
+  if (!quiet) {
+    std::fprintf(stderr, "map %s: %d -> %d vertices, %.3f s (init %.3f s), %d iterations, %d factorizations, peak %.0f MiB",
+                 case_name.c_str(), src.mesh.num_vertices(), dst.mesh.num_vertices(), median(total), median(init),
+                 map.iterations, map.factorizations, peak);
+    if (!plain_total.empty())
+      std::fprintf(stderr, "; plain Newton %.3f s, %d factorizations", median(plain_total), plain.factorizations);
+    std::fprintf(stderr, "\n");
+  }
+  return row;
+}
+
+// Heat geodesics on the target patch: factorization and 5 solves per run.
+tools::Json heat_row(const Patch& dst, int runs, tbb::task_arena& arena) {
+  std::vector<double> factor, solve;
+  for (int r = 0; r < runs; ++r) {
+    arena.execute([&] {
+      const auto t0 = std::chrono::steady_clock::now();
+      const HeatGeodesics heat(dst.mesh);
+      factor.push_back(since(t0));
+      for (int k = 0; k < 5; ++k) {
+        const auto t1 = std::chrono::steady_clock::now();
+        const Eigen::VectorXd d = heat.from_vertices({(k * 7919) % dst.mesh.num_vertices()});
+        solve.push_back(since(t1));
+        require(d.allFinite(), MCON_ERROR_NUMERICAL, "bench: non-finite geodesic distance");
+      }
+    });
+  }
+  tools::Json h = tools::Json::object();
+  h.set("vertices", dst.mesh.num_vertices());
+  h.set("factor_seconds_median", median(factor));
+  h.set("solve_seconds_median", median(solve));
+  return h;
+}
+
 int run_bench(const Args& args) {
   if (!args.empty() && (args[0] == "--help" || args[0] == "-h")) {
     std::fputs(kUsage, stdout);
@@ -134,8 +219,6 @@ int run_bench(const Args& args) {
       if (fine == 2 && std::string(name) != "face") continue;
       const std::string case_name = std::string(name) + (fine == 1 ? "_subdivided" : fine == 2 ? "_subdivided_twice" : "");
       if (!cases.empty() && std::find(cases.begin(), cases.end(), case_name) == cases.end()) continue;
-      const TriMesh& host_a = fine == 0 ? a : fine == 1 ? a2 : a4;
-      const TriMesh& host_b = fine == 0 ? b : fine == 1 ? b2 : b4;
       const tools::BenchClass& cls = bench.spec.find(name);
       const std::vector<int>& verts = bench.patches.find(name).vertices;
       auto cut = [&](const TriMesh& coarse, const TriMesh& host) {
@@ -146,84 +229,9 @@ int run_bench(const Args& args) {
         po.fill_holes = cls.fill_holes;
         return extract_geodesic_disk(host, po);
       };
-      const Patch src = cut(a, host_a), dst = cut(b, host_b);
-      std::vector<double> total, init, opt, cpu;
-      SurfaceMap map;
-      PatchMapOptions map_options;
-      const bool case_peak = reset_peak_rss();
-      for (int r = 0; r < runs; ++r) {
-        const auto t0 = std::chrono::steady_clock::now();
-        const std::clock_t c0 = std::clock();
-        arena.execute([&] { map = map_patches(src, dst, map_options); });
-        cpu.push_back(static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC);
-        total.push_back(since(t0));
-        init.push_back(map.alignment_seconds);
-        opt.push_back(map.optimization_seconds);
-      }
-      const double peak = peak_rss_mib();
-      // The same map with plain Newton, side by side.
-      PatchMapOptions plain_options = map_options;
-      plain_options.map.newton.reuse_factorization = false;
-      std::vector<double> plain_total;
-      SurfaceMap plain;
-      for (int r = 0; r < (p.flag("no-plain-newton") ? 0 : runs); ++r) {
-        const auto t0 = std::chrono::steady_clock::now();
-        arena.execute([&] { plain = map_patches(src, dst, plain_options); });
-        plain_total.push_back(since(t0));
-      }
-      tools::Json row = tools::Json::object();
-      row.set("case", case_name);
-      row.set("source_vertices", src.mesh.num_vertices());
-      row.set("target_vertices", dst.mesh.num_vertices());
-      row.set("seconds_median", median(total));
-      row.set("init_seconds_median", median(init));
-      row.set("optimization_seconds_median", median(opt));
-      row.set("cpu_seconds_median", median(cpu));
-      row.set("iterations", map.iterations);
-      row.set("factorizations", map.factorizations);
-      row.set("inner_iterations", map.inner_iterations);
-      row.set("stop_reason", stop_reason_name(map.stop_reason));
-      row.set("orientation_compared", map.orientation_compared);
-      tools::Json level_iterations = tools::Json::array();
-      for (const LevelReport& lr : map.levels) level_iterations.push_back(lr.iterations);
-      row.set("level_iterations", level_iterations);
-      row.set("flips", count_flips(src.mesh, map.phi, map.reflected));
-      row.set("peak_rss_mib", peak);
-      row.set("peak_rss_scope", case_peak ? "case" : "process");
-      if (!plain_total.empty()) {
-        row.set("plain_newton_seconds_median", median(plain_total));
-        row.set("plain_newton_iterations", plain.iterations);
-        row.set("plain_newton_factorizations", plain.factorizations);
-        row.set("speedup_vs_plain_newton", median(plain_total) / median(total));
-      }
-      map_rows.push_back(row);
-      if (!p.flag("json"))
-        std::fprintf(stderr,
-                     "map %s: %d -> %d vertices, %.3f s (init %.3f s), %d iterations, %d factorizations, "
-                     "peak %.0f MiB; plain Newton %.3f s, %d factorizations\n",
-                     row.at("case").as_string().c_str(), src.mesh.num_vertices(), dst.mesh.num_vertices(),
-                     median(total), median(init), map.iterations, map.factorizations, peak, median(plain_total),
-                     plain.factorizations);
-
-      std::vector<double> factor, solve;
-      for (int r = 0; r < runs; ++r) {
-        arena.execute([&] {
-          const auto t0 = std::chrono::steady_clock::now();
-          const HeatGeodesics heat(dst.mesh);
-          factor.push_back(since(t0));
-          for (int k = 0; k < 5; ++k) {
-            const auto t1 = std::chrono::steady_clock::now();
-            const Eigen::VectorXd d = heat.from_vertices({(k * 7919) % dst.mesh.num_vertices()});
-            solve.push_back(since(t1));
-            require(d.allFinite(), MCON_ERROR_NUMERICAL, "bench: non-finite geodesic distance");
-          }
-        });
-      }
-      tools::Json h = tools::Json::object();
-      h.set("vertices", dst.mesh.num_vertices());
-      h.set("factor_seconds_median", median(factor));
-      h.set("solve_seconds_median", median(solve));
-      heat_rows.push_back(h);
+      const Patch src = cut(a, fine == 0 ? a : fine == 1 ? a2 : a4), dst = cut(b, fine == 0 ? b : fine == 1 ? b2 : b4);
+      map_rows.push_back(map_case_row(case_name, src, dst, runs, !p.flag("no-plain-newton"), arena, p.flag("json")));
+      heat_rows.push_back(heat_row(dst, runs, arena));
     }
   }
   tools::Json out = tools::Json::object();
