@@ -238,6 +238,7 @@ NewtonReport minimize_map_energy(const MapEnergy& energy, Eigen::VectorXd& x, co
                                                  options.inexact_tolerance, options.max_inner_iterations, dir, inner);
     report.inner_iterations += inner;
     if (!reused) {
+      factorized = false;  // until this factorization has succeeded
       dir = newton_direction(pattern, ldlt, der.gradient, mean_diag, options.regularization, shift_scale);
       factorized = true;
       ++report.factorizations;
