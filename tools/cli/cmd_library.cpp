@@ -152,6 +152,50 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// Cuts the entries' patches in parallel, a chunk at a time (each entry on its own; meshes are
+// loaded first, then only read), and adds them in the given order, so the file does not depend
+// on the thread count and at most one chunk of patches is held at once. A failing entry is named.
+void add_entries(ConstraintLibrary& lib, MeshCache& meshes, const std::vector<EntrySpec>& entries) {
+  auto entry_error = [&](std::size_t i, const Error& e) {
+    const EntrySpec& s = entries[i];
+    fail(e.status(), "entry " + std::to_string(i) + (s.name.empty() ? "" : " '" + printable_text(s.name) + "'") +
+                         " (center vertex " + std::to_string(s.center_vertex) + ", radius " + number_text(s.radius) +
+                         "): " + e.what());
+  };
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    try {
+      if (!entries[i].mesh.empty()) meshes.get(entries[i].mesh, entries[i].face_range);
+    } catch (const Error& e) {
+      entry_error(i, e);
+    }
+  }
+  constexpr std::size_t kChunk = 64;
+  for (std::size_t first = 0; first < entries.size(); first += kChunk) {
+    const std::size_t count = std::min(kChunk, entries.size() - first);
+    std::vector<std::optional<Patch>> patches(count);
+    std::vector<std::optional<Error>> errors(count);
+    for_each_block(count, 1, [&](std::size_t begin, std::size_t end, std::size_t) {
+      for (std::size_t k = begin; k < end; ++k) {
+        try {
+          patches[k] = cut_patch(meshes, entries[first + k]);
+        } catch (const Error& e) {
+          errors[k] = e;
+        } catch (const std::bad_alloc&) {
+          errors[k] = Error(MCON_ERROR_OUT_OF_MEMORY, "out of memory cutting the patch");
+        }
+      }
+    });
+    for (std::size_t k = 0; k < count; ++k) {
+      if (errors[k]) entry_error(first + k, *errors[k]);
+      try {
+        add_library_entry(lib, *patches[k], entry_content(entries[first + k]));
+      } catch (const Error& e) {
+        entry_error(first + k, e);
+      }
+    }
+  }
+}
+
 int run_build(const Args& args) {
   Parsed p = parse(args, {"out", "spec", "descriptor", "rings", "vocabulary", "seed", "sigma"});
   const std::string out = required(p, "out");
@@ -183,43 +227,7 @@ int run_build(const Args& args) {
   RetrievalConfig start;
   start.descriptor = options.descriptor;
   ConstraintLibrary lib{start};
-  // The patches are cut in parallel (each entry on its own; meshes loaded first, then only read),
-  // and added in the spec's order, so the file does not depend on the thread count.
-  auto entry_error = [&](std::size_t i, const Error& e) {  // name the entry: a spec may list hundreds
-    const EntrySpec& s = p.entries[i];
-    fail(e.status(), "entry " + std::to_string(i) + (s.name.empty() ? "" : " '" + printable_text(s.name) + "'") +
-                         " (center vertex " + std::to_string(s.center_vertex) + ", radius " + number_text(s.radius) +
-                         "): " + e.what());
-  };
-  for (std::size_t i = 0; i < p.entries.size(); ++i) {
-    try {
-      if (!p.entries[i].mesh.empty()) meshes.get(p.entries[i].mesh, p.entries[i].face_range);
-    } catch (const Error& e) {
-      entry_error(i, e);
-    }
-  }
-  std::vector<std::optional<Patch>> patches(p.entries.size());
-  std::vector<std::optional<Error>> errors(p.entries.size());
-  for_each_block(p.entries.size(), 1, [&](std::size_t begin, std::size_t end, std::size_t) {
-    for (std::size_t i = begin; i < end; ++i) {
-      try {
-        patches[i] = cut_patch(meshes, p.entries[i]);
-      } catch (const Error& e) {
-        errors[i] = e;
-      } catch (const std::bad_alloc&) {
-        errors[i] = Error(MCON_ERROR_OUT_OF_MEMORY, "out of memory cutting the patch");
-      }
-    }
-  });
-  for (std::size_t i = 0; i < p.entries.size(); ++i) {
-    if (errors[i]) entry_error(i, *errors[i]);
-    try {
-      add_library_entry(lib, *patches[i], entry_content(p.entries[i]));
-    } catch (const Error& e) {
-      entry_error(i, e);
-    }
-    patches[i].reset();
-  }
+  add_entries(lib, meshes, p.entries);
   const double patch_seconds = seconds_since(t0);
   const auto t1 = std::chrono::steady_clock::now();
   lib = build_library_retrieval(lib, options);
