@@ -272,16 +272,21 @@ MapEnergyTerms MapEnergy::evaluate(const Eigen::VectorXd& x) const {
   terms.values[tt.descriptor] = deterministic_sum(s.num_vertices, kVertexBlock, [&](int v) {
     thread_local std::vector<double> scratch;
     scratch.resize(3 * static_cast<std::size_t>(d));
-    const ScoreSample sample = match_score(*field_, &values_[static_cast<std::size_t>(v) * d],
-                                           Vec2(x[2 * v], x[2 * v + 1]), score_, false, scratch.data(), nullptr,
-                                           location_hint_[v]);
-    if (sample.location.triangle >= 0) location_hint_[v] = sample.location.triangle;
+    const ScoreSample sample = vertex_score(v, x, false, scratch.data());
     return s.vertex_weight[v] * (1.0 - sample.score);
   });
   if (anchor_) terms.values[tt.anchor] = anchor_energy(x, nullptr, nullptr);
   terms.total = weighted_total(terms.values);
   if (!std::isfinite(terms.total)) terms.total = kInf;
   return terms;
+}
+
+ScoreSample MapEnergy::vertex_score(int v, const Eigen::VectorXd& x, bool derivatives, double* scratch) const {
+  const ScoreSample sample = match_score(*field_, &values_[static_cast<std::size_t>(v) * field_->dimension()],
+                                         Vec2(x[2 * v], x[2 * v + 1]), score_, derivatives, scratch, nullptr,
+                                         location_hint_[v]);
+  if (sample.location.triangle >= 0) location_hint_[v] = sample.location.triangle;
+  return sample;
 }
 
 // E_p = sum_v A_v m_v |x_v - p_v|^2; gradient 2 alpha_p A_v m_v (x_v - p_v), Hessian 2 alpha_p A_v m_v I.
@@ -339,10 +344,7 @@ void MapEnergy::derivatives(const Eigen::VectorXd& x, Derivatives& out) const {
   terms.values[tt.descriptor] = deterministic_sum(nv, kVertexBlock, [&](int v) {
     thread_local std::vector<double> scratch;
     scratch.resize(3 * static_cast<std::size_t>(d));
-    const ScoreSample sample = match_score(*field_, &values_[static_cast<std::size_t>(v) * d],
-                                           Vec2(x[2 * v], x[2 * v + 1]), score_, true, scratch.data(), nullptr,
-                                           location_hint_[v]);
-    if (sample.location.triangle >= 0) location_hint_[v] = sample.location.triangle;
+    const ScoreSample sample = vertex_score(v, x, true, scratch.data());
     const double w = descriptor_weight * s.vertex_weight[v];
     vert_grad[v] = -w * sample.gradient;
     out.vertex_hessians[v] = project_psd(Eigen::Matrix2d(-w * sample.hessian));

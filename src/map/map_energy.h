@@ -158,6 +158,9 @@ class MapEnergy {
   };
   TriangleTermSet triangle_terms() const;
   double weighted_total(const std::vector<double>& values) const;
+  // Source vertex v's matching score at its position in x, its lookup starting from (and then
+  // updating) location_hint_[v]. scratch: 3 * dimension doubles.
+  ScoreSample vertex_score(int v, const Eigen::VectorXd& x, bool derivatives, double* scratch) const;
   // The anchor term's value; its weighted gradient and PSD Hessian blocks are added if non-null.
   double anchor_energy(const Eigen::VectorXd& x, std::vector<Vec2>* gradient,
                        std::vector<Eigen::Matrix2d>* hessians) const;
