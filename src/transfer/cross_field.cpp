@@ -5,11 +5,13 @@
 #include <complex>
 #include <cstdint>
 #include <string>
+#include <unordered_map>
 
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
 
 #include "base/error.h"
+#include "mesh/edge_key.h"
 #include "mesh/mesh_topology.h"
 
 namespace mcon {
@@ -313,6 +315,60 @@ std::vector<DirectionConstraint> constraints_from_polylines(const TriMesh& mesh,
       if (b.triangle != a.triangle) assign(b.triangle, d, len, w);
     }
   return out;
+}
+
+namespace {
+
+// For each listed edge, its faces (-1 where there is none).
+std::vector<std::array<int, 2>> faces_of_edges(const TriMesh& mesh, const std::vector<std::array<int, 2>>& edges) {
+  std::unordered_map<std::uint64_t, std::array<int, 2>> faces;
+  for (const auto& e : edges) faces.emplace(edge_key(e[0], e[1]), std::array<int, 2>{-1, -1});
+  for (int t = 0; t < mesh.num_triangles(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const auto it = faces.find(edge_key(mesh.triangles[t][k], mesh.triangles[t][(k + 1) % 3]));
+      if (it != faces.end()) it->second[it->second[0] < 0 ? 0 : 1] = t;
+    }
+  std::vector<std::array<int, 2>> out;
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    const auto& f = faces.at(edge_key(edges[i][0], edges[i][1]));
+    require(f[0] >= 0 && edges[i][0] != edges[i][1], MCON_ERROR_INVALID_ARGUMENT,
+            "edge " + std::to_string(i) + " (" + std::to_string(edges[i][0]) + ", " + std::to_string(edges[i][1]) +
+                ") is not an edge of the mesh");
+    out.push_back(f);
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<DirectionConstraint> constraints_from_edges(const TriMesh& mesh,
+                                                        const std::vector<std::array<int, 2>>& edges, double weight) {
+  require(std::isfinite(weight) && weight >= 0, MCON_ERROR_INVALID_ARGUMENT,
+          "edge constraints: weight must be finite and >= 0");
+  const auto faces = faces_of_edges(mesh, edges);
+  std::vector<DirectionConstraint> out;
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    const Vec3 d = (mesh.positions[edges[i][1]] - mesh.positions[edges[i][0]]).normalized();
+    for (int f : faces[i])
+      if (f >= 0) out.push_back({f, d, weight});
+  }
+  return out;
+}
+
+void align_field_to_edges(const TriMesh& mesh, const std::vector<std::array<int, 2>>& edges, CrossField& field) {
+  require(field.directions.size() == mesh.triangles.size(), MCON_ERROR_INVALID_ARGUMENT,
+          "the field has " + std::to_string(field.directions.size()) + " faces for a mesh of " +
+              std::to_string(mesh.triangles.size()));
+  const auto faces = faces_of_edges(mesh, edges);
+  std::vector<bool> done(mesh.triangles.size(), false);
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    const Vec3 d = (mesh.positions[edges[i][1]] - mesh.positions[edges[i][0]]).normalized();
+    for (int f : faces[i])
+      if (f >= 0 && !done[f]) {
+        field.directions[f] = d;  // an edge of the face lies in its plane
+        done[f] = true;
+      }
+  }
 }
 
 }  // namespace mcon

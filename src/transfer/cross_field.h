@@ -7,6 +7,7 @@
 // smallest eigenvector of the connection Laplacian).
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "mesh/mesh.h"
@@ -59,5 +60,15 @@ CrossField compute_cross_field(const TriMesh& mesh, const std::vector<DirectionC
 std::vector<DirectionConstraint> constraints_from_polylines(const TriMesh& mesh,
                                                             const std::vector<std::vector<SurfacePoint>>& polylines,
                                                             double weight = 1.0);
+
+// Constraints along mesh edges (guides cut into the mesh): each edge's direction goes to both of
+// its faces with weight `weight`. Throws INVALID_ARGUMENT for a pair that is not an edge.
+std::vector<DirectionConstraint> constraints_from_edges(const TriMesh& mesh,
+                                                        const std::vector<std::array<int, 2>>& edges,
+                                                        double weight = 1.0);
+
+// Makes the field follow `edges` exactly: every face with one of them as a side gets that edge's
+// direction (the first such edge in the list), its confidence unchanged.
+void align_field_to_edges(const TriMesh& mesh, const std::vector<std::array<int, 2>>& edges, CrossField& field);
 
 }  // namespace mcon
