@@ -18,6 +18,7 @@
 #include "transfer/cross_field.h"
 #include "descriptors/curvature_descriptors.h"
 #include "transfer/field_transfer.h"
+#include "transfer/guide_cutting.h"
 #include "patch/geodesic_disk_patch.h"
 #include "operators/heat_geodesics.h"
 #include "io/mesh_io.h"
@@ -34,7 +35,8 @@ const char* kUsage =
     "                      [--source-center-vertex M --source-radius Q] [--face-range A:B]\n"
     "                      [--source-face-range A:B] [--seed S] [--samples K] [--iterations I]\n"
     "                      [--orientation auto|preserve|reverse] [--landmarks S:T,S:T,...]\n"
-    "                      [--up X,Y,Z | --source-up X,Y,Z --target-up X,Y,Z] [--out DIR] [--json]\n"
+    "                      [--up X,Y,Z | --source-up X,Y,Z --target-up X,Y,Z] [--cut-guides]\n"
+    "                      [--snap F] [--out DIR] [--json]\n"
     "Maps a source patch onto the geodesic disk of radius R around vertex N of the target mesh and\n"
     "transfers the source's constraints. With --source-center-vertex the source patch is cut the same\n"
     "way from the source mesh (radius Q, default R); without it the source file must already be one\n"
@@ -56,7 +58,13 @@ const char* kUsage =
     "--up gives both meshes' up direction in their file coordinates (e.g. 0,1,0 for Y-up hosts);\n"
     "--source-up and --target-up give them apart. The map's rigid start then turns the source's up onto\n"
     "the target's (within 60 degrees), so it is never upside down; a reflection stays --orientation's.\n"
-    "An up direction (nearly) normal to a patch at its center is refused: omit it for such patches.\n";
+    "An up direction (nearly) normal to a patch at its center is refused: omit it for such patches.\n"
+    "--cut-guides also cuts the re-traced guides into the target patch, so every guide is a chain of\n"
+    "mesh edges, and writes the cut patch for a quad mesher: target_cut.obj (QuadWild's input, exact\n"
+    "doubles), target_cut.ply (with the transferred fields), target_cut.sharp (the guide edges as\n"
+    "feature edges) and target_cut.rosy (a cross field that follows the guide edges exactly).\n"
+    "Crossings closer than --snap F (default 0.25) edge lengths to a vertex snap to it and guides that\n"
+    "close merge, so no sliver is made; the summary's 'cut' reports the smallest angle created.\n";
 
 void parse_range(const std::string& key, const std::string& s, long& begin, long& end) {
   const auto colon = s.find(':');
@@ -247,6 +255,8 @@ struct EmbedOptions {
   long samples = 0, iterations = 0, seed = 0;
   std::string orientation;
   std::optional<Vec3> source_up, target_up;
+  bool cut_guides = false;
+  GuideCutOptions cut;
 };
 
 // "X,Y,Z" as a vector of three finite numbers.
@@ -285,6 +295,11 @@ EmbedOptions embed_options(const ArgParser& p) {
     o.source_up = parse_vec3("source-up", p.get("source-up"));
     o.target_up = parse_vec3("target-up", p.get("target-up"));
   }
+  o.cut_guides = p.flag("cut-guides");
+  require(o.cut_guides || !p.has("snap"), MCON_ERROR_INVALID_ARGUMENT, "--snap needs --cut-guides");
+  o.cut.snap_fraction = p.number("snap", o.cut.snap_fraction);
+  require(o.cut.snap_fraction >= 0 && o.cut.snap_fraction <= 0.45, MCON_ERROR_INVALID_ARGUMENT,
+          "--snap must be in [0, 0.45] (a fraction of an edge length)");
   return o;
 }
 
@@ -470,6 +485,150 @@ EmbedFiles write_embed_files(const std::string& out_dir, const EmbedPatches& e, 
   return f;
 }
 
+// 5b. With --cut-guides: the guides cut into the target patch, its fields, cross field and files.
+struct EmbedCut {
+  CutMesh cut;
+  CrossField field;
+  std::string obj, ply, sharp, rosy, guides;
+  double seconds = 0;
+};
+
+// A label at a cut-mesh vertex: the label of its host triangle's corner with the largest weight.
+template <typename T>
+std::vector<T> carry_labels(const CutMesh& cut, const TriMesh& input, const std::vector<T>& labels) {
+  std::vector<T> out;
+  out.reserve(cut.host.size());
+  for (const SurfacePoint& h : cut.host) {
+    int k = 0;
+    for (int j = 1; j < 3; ++j)
+      if (h.barycentric[j] > h.barycentric[k]) k = j;
+    out.push_back(labels[static_cast<std::size_t>(input.triangles[h.triangle][k])]);
+  }
+  return out;
+}
+
+EmbedCut cut_and_write(const EmbedOptions& o, const EmbedPatches& e, const EmbedTransfer& x) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const Patch& target = e.target;
+  std::vector<std::vector<SurfacePoint>> guides;
+  std::vector<bool> closed;
+  for (const TracedPolyline& t : x.traced) {
+    guides.push_back(t.points);
+    closed.push_back(t.closed);
+  }
+  EmbedCut c;
+  c.cut = cut_guides_into_mesh(target.mesh, guides, closed, o.cut);
+  const TriMesh& mesh = c.cut.mesh;
+  c.field = compute_cross_field(mesh, constraints_from_edges(mesh, c.cut.guide_edges));
+  align_field_to_edges(mesh, c.cut.guide_edges, c.field);
+  c.seconds = seconds_since(t0);
+
+  const Eigen::MatrixXd fields = carry_vertex_values(c.cut, target.mesh, x.fields);
+  const std::vector<std::int32_t> rings = carry_labels(c.cut, target.mesh, x.ring_labels);
+  const std::vector<std::uint8_t> outside = carry_labels(c.cut, target.mesh, x.outside);
+  TriMesh host_units = mesh;
+  for (Vec3& v : host_units.positions) v = to_host(target, v);
+  io::VertexAttribute uv{"source_uv", 2, {}}, h{"source_mean_curvature", 1, {}}, g{"source_geodesic_distance", 1, {}},
+      ring{"source_ring", 1, {}}, out_attr{"outside", 1, {}}, guide{"guide", 1, {}};
+  std::vector<double> on_guide(mesh.positions.size(), 0.0);
+  for (const auto& edge : c.cut.guide_edges) on_guide[edge[0]] = on_guide[edge[1]] = 1.0;
+  for (int w = 0; w < mesh.num_vertices(); ++w) {
+    uv.values.insert(uv.values.end(), {fields(w, 0), fields(w, 1)});
+    h.values.push_back(fields(w, 2));
+    g.values.push_back(fields(w, 3));
+    ring.values.push_back(rings[w]);
+    out_attr.values.push_back(outside[w]);
+    guide.values.push_back(on_guide[w]);
+  }
+  c.obj = o.out_dir + "/target_cut.obj";
+  c.ply = o.out_dir + "/target_cut.ply";
+  c.sharp = o.out_dir + "/target_cut.sharp";
+  c.rosy = o.out_dir + "/target_cut.rosy";
+  io::write_obj(c.obj, host_units);
+  io::write_ply(c.ply, host_units, {uv, h, g, ring, out_attr, guide});
+  io::write_sharp(c.sharp, host_units, c.cut.guide_edges);
+  io::write_rosy(c.rosy, host_units, c.field.directions);
+  // The cut guides as OBJ lines through the cut mesh's own vertices (same numbering as target_cut.obj).
+  c.guides = o.out_dir + "/target_cut_guides.obj";
+  std::string lines = "# macrocon embed: the guides as chains of target_cut.obj's edges\n";
+  for (const Vec3& v : host_units.positions)
+    lines += "v " + std::to_string(v.x()) + ' ' + std::to_string(v.y()) + ' ' + std::to_string(v.z()) + '\n';
+  for (const std::vector<int>& chain : c.cut.guides) {
+    if (chain.size() < 2) continue;
+    lines += 'l';
+    for (int v : chain) lines += ' ' + std::to_string(v + 1);
+    lines += '\n';
+  }
+  io::write_file_maybe_gz(c.guides, lines);
+  return c;
+}
+
+// Turning angle per unit length (normalized patch units), the mean over guides with >= 3 points.
+double mean_turning(const std::vector<std::vector<Vec3>>& lines, const std::vector<bool>& closed) {
+  double sum = 0;
+  int count = 0;
+  for (std::size_t i = 0; i < lines.size(); ++i)
+    if (lines[i].size() >= 3) {
+      sum += turning_per_length(lines[i], closed[i]);
+      ++count;
+    }
+  return count > 0 ? sum / count : 0.0;
+}
+
+tools::Json turning_summary(const EmbedPatches& e, const EmbedTransfer& x, const EmbedCut* c) {
+  std::vector<std::vector<Vec3>> source, traced, cut;
+  std::vector<bool> source_closed, traced_closed, cut_closed;
+  for (const PolylineInput& in : x.guides) {
+    std::vector<Vec3> line;
+    for (const SurfacePoint& q : in.points) line.push_back(on_mesh(e.source.mesh, q));
+    source.push_back(std::move(line));
+    source_closed.push_back(in.closed);
+  }
+  for (const TracedPolyline& t : x.traced) {
+    traced.push_back(t.positions);
+    traced_closed.push_back(t.closed);
+  }
+  tools::Json j = tools::Json::object();
+  // In host units (per unit length of the mesh files), so patches of different radii compare.
+  const double s = mean_turning(source, source_closed) / e.source.radius,
+               t = mean_turning(traced, traced_closed) / e.target.radius;
+  j.set("source", s);
+  j.set("traced", t);
+  j.set("traced_ratio", s > 0 ? t / s : 0.0);
+  if (c) {
+    for (const std::vector<int>& chain : c->cut.guides) {
+      std::vector<Vec3> line;
+      for (int v : chain) line.push_back(c->cut.mesh.positions[v]);
+      // A closed chain repeats its first vertex: drop it and measure it closed.
+      const bool is_closed = chain.size() > 2 && chain.front() == chain.back();
+      if (is_closed) line.pop_back();
+      cut.push_back(std::move(line));
+      cut_closed.push_back(is_closed);
+    }
+    const double k = mean_turning(cut, cut_closed) / e.target.radius;
+    j.set("cut", k);
+    j.set("cut_ratio", s > 0 ? k / s : 0.0);
+  }
+  return j;
+}
+
+tools::Json cut_summary(const EmbedCut& c) {
+  tools::Json j = tools::Json::object();
+  j.set("vertices", c.cut.mesh.num_vertices());
+  j.set("triangles", c.cut.mesh.num_triangles());
+  j.set("guide_edges", c.cut.guide_edges.size());
+  j.set("input_triangles_cut", c.cut.input_triangles_cut);
+  j.set("min_angle_created_degrees", c.cut.min_angle_created);
+  j.set("min_angle_of_cut_input_degrees", c.cut.min_angle_of_cut_input);
+  j.set("snapped_to_vertices", c.cut.snapped_to_vertices);
+  j.set("merged_crossings", c.cut.merged_crossings);
+  j.set("dropped_points", c.cut.dropped_points);
+  j.set("shortcuts", c.cut.shortcuts);
+  j.set("moved_vertices", c.cut.moved_vertices);
+  j.set("seconds", c.seconds);
+  return j;
+}
+
 // 6. Summary.
 tools::Json embed_summary(const EmbedOptions& o, const EmbedPatches& e, const EmbedMap& m, const EmbedTransfer& x,
                           const EmbedFiles& f, double patch_seconds, std::chrono::steady_clock::time_point t_start) {
@@ -538,8 +697,8 @@ int run_embed(const Args& args) {
   const ArgParser p(args,
                     {"source", "target", "center-vertex", "radius", "source-center-vertex", "source-radius",
                      "face-range", "source-face-range", "seed", "samples", "iterations", "orientation", "landmarks",
-                     "up", "source-up", "target-up", "out"},
-                    {"json"});
+                     "up", "source-up", "target-up", "out", "snap"},
+                    {"json", "cut-guides"});
   const auto t_start = std::chrono::steady_clock::now();
   const EmbedOptions o = embed_options(p);
   const EmbedPatches e = cut_embed_patches(p);
@@ -549,7 +708,20 @@ int run_embed(const Args& args) {
   const MapView view{e.source.mesh, e.source.uv, e.target.mesh, e.target.uv, map.phi, map.source_to_target, map.target_to_source};
   const EmbedTransfer x = transfer_constraints(view, e.source, e.target);
   const EmbedFiles f = write_embed_files(o.out_dir, e, x);
-  const tools::Json summary = embed_summary(o, e, m, x, f, patch_seconds, t_start);
+  std::optional<EmbedCut> cut;
+  if (o.cut_guides) cut = cut_and_write(o, e, x);
+  tools::Json summary = embed_summary(o, e, m, x, f, patch_seconds, t_start);
+  summary.set("guide_turning", turning_summary(e, x, cut ? &*cut : nullptr));
+  if (cut) {
+    summary.set("cut", cut_summary(*cut));
+    tools::Json files = summary.at("files");
+    files.set("cut_obj", cut->obj);
+    files.set("cut_ply", cut->ply);
+    files.set("cut_sharp", cut->sharp);
+    files.set("cut_rosy", cut->rosy);
+    files.set("cut_guides_obj", cut->guides);
+    summary.set("files", files);
+  }
   tools::write_json_file(f.summary_path, summary);
   if (p.flag("json")) {
     std::printf("%s\n", tools::write_json(summary, false).c_str());
@@ -560,6 +732,10 @@ int run_embed(const Args& args) {
                 m.map_seconds);
     std::printf("guides: %zu in, %zu out (%zu points); files in %s\n", x.guides.size(), x.traced.size(),
                 f.traced_points, o.out_dir.c_str());
+    if (cut)
+      std::printf("cut: %d vertices, %d triangles, %zu guide edges, smallest angle made %.1f degrees\n",
+                  cut->cut.mesh.num_vertices(), cut->cut.mesh.num_triangles(), cut->cut.guide_edges.size(),
+                  cut->cut.min_angle_created);
   }
   return m.flips == 0 ? 0 : 1;
 }
