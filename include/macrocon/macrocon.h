@@ -809,7 +809,8 @@ MCON_API mcon_status mcon_patch_compute_cross_field(mcon_patch patch, mcon_polyl
                                                     const mcon_cross_field_options* options, double* out_directions,
                                                     double* out_confidence, size_t capacity);
 /* Writes a QuadWild `.rosy` file (one direction per triangle, as mcon_patch_compute_cross_field
- * gives them; triangle_count must equal the patch's); a `.gz` path is compressed. IO on failure. */
+ * gives them; triangle_count must equal the patch's); a `.gz` path is refused (INVALID_ARGUMENT:
+ * QuadWild reads a compressed `.rosy` as zeros). IO on failure. */
 MCON_API mcon_status mcon_patch_write_rosy(mcon_patch patch, const double* directions, size_t triangle_count,
                                            const char* path);
 

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "base/error.h"
+#include "io/file_suffix.h"
 #include "io/mesh_io.h"
 
 namespace mcon::io {
@@ -23,6 +24,9 @@ void append_fixed6(std::string& out, double value) {
 }  // namespace
 
 void write_rosy(const std::string& path, const TriMesh& mesh, const std::vector<Vec3>& directions) {
+  // QuadWild reads a gzip-compressed .rosy as all zeros and exits 0 (docs/design.md §7).
+  require(!is_gzip_path(path), MCON_ERROR_INVALID_ARGUMENT,
+          "cannot write '" + path + "': QuadWild reads a compressed .rosy as zeros; give a path without .gz");
   require(directions.size() == mesh.triangles.size(), MCON_ERROR_INVALID_ARGUMENT,
           "cannot write '" + path + "': " + std::to_string(directions.size()) + " directions for " +
               std::to_string(mesh.triangles.size()) + " triangles");
@@ -38,7 +42,7 @@ void write_rosy(const std::string& path, const TriMesh& mesh, const std::vector<
     }
     out += '\n';
   }
-  write_file_maybe_gz(path, out);
+  write_file_maybe_gz(path, out);  // never .gz here
 }
 
 }  // namespace mcon::io

@@ -8,6 +8,7 @@
 
 #include "base/error.h"
 #include "mesh/edge_key.h"
+#include "io/file_suffix.h"
 #include "io/mesh_io.h"
 #include "io/writer_input.h"
 
@@ -23,6 +24,8 @@ struct EdgeSides {
 }  // namespace
 
 void write_sharp(const std::string& path, const TriMesh& mesh, const std::vector<std::array<int, 2>>& feature_edges) {
+  require(!is_gzip_path(path), MCON_ERROR_INVALID_ARGUMENT,
+          "cannot write '" + path + "': QuadWild cannot read a compressed .sharp; give a path without .gz");
   check_writable(mesh, path);
   std::unordered_map<std::uint64_t, EdgeSides> sides;
   sides.reserve(2 * mesh.triangles.size());
@@ -60,7 +63,7 @@ void write_sharp(const std::string& path, const TriMesh& mesh, const std::vector
     body += '\n';
     ++count;
   }
-  write_file_maybe_gz(path, std::to_string(count) + "\n" + body);
+  write_file_maybe_gz(path, std::to_string(count) + "\n" + body);  // never .gz here
 }
 
 }  // namespace mcon::io

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdio>
+#include <fstream>
 #include <limits>
 #include <map>
 #include <set>
@@ -483,7 +484,13 @@ TEST(CapiMapTransfer, CrossFieldFollowsTheGuidesAndTheRosyFileReadsBack) {
   std::vector<double> smooth(3 * x.t.nt());
   EXPECT_EQ(mcon_patch_compute_cross_field(x.target.get(), nullptr, nullptr, smooth.data(), nullptr, x.t.nt()), MCON_OK);
 
-  for (const std::string name : {"capi_map_transfer.rosy", "capi_map_transfer.rosy.gz"}) {
+  // QuadWild reads a compressed .rosy as zeros: refused.
+  const std::string gz = std::string(MACROCON_BINARY_DIR) + "/capi_map_transfer.rosy.gz";
+  std::remove(gz.c_str());
+  EXPECT_EQ(mcon_patch_write_rosy(x.target.get(), dir.data(), x.t.nt(), gz.c_str()), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(last_message().find("without .gz"), std::string::npos) << last_message();
+  EXPECT_FALSE(std::ifstream(gz).good());
+  for (const std::string name : {"capi_map_transfer.rosy"}) {
     const std::string path = std::string(MACROCON_BINARY_DIR) + "/" + name;
     std::remove(path.c_str());
     ASSERT_EQ(mcon_patch_write_rosy(x.target.get(), dir.data(), x.t.nt(), path.c_str()), MCON_OK) << last_message();

@@ -209,8 +209,9 @@ def test_transfer_polylines_and_cross_field(phi, source, target, tmp_path):
     target.write_rosy(d, path)
     head = path.read_text().split()
     assert str(target.triangle_count) in head[:3]
-    target.write_rosy(d, tmp_path / "field.rosy.gz")
-    assert (tmp_path / "field.rosy.gz").read_bytes()[:2] == b"\x1f\x8b"
+    with pytest.raises(ValueError, match="without .gz"):
+        target.write_rosy(d, tmp_path / "field.rosy.gz")  # QuadWild reads it as zeros
+    assert not (tmp_path / "field.rosy.gz").exists()
     with pytest.raises(macrocon.IOError_):
         target.write_rosy(d, tmp_path / "no such dir" / "f.rosy")
     with pytest.raises(ValueError):
