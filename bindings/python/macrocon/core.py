@@ -7,6 +7,7 @@ import itertools
 import sys
 import warnings
 import weakref
+from dataclasses import dataclass
 from typing import Callable, Optional
 
 import numpy as np
@@ -310,6 +311,37 @@ class Mesh(_Handle):
         return out
 
 
+@dataclass(frozen=True)
+class PatchInfo:
+    """What extracting a patch measured (mcon_patch_info), as ``Patch.info`` returns it."""
+
+    vertex_count: int
+    triangle_count: int
+    filled_triangle_count: int  # triangles that are not from the host mesh (filled holes)
+    boundary_loops: int  # 1 for a valid patch
+    euler_characteristic: int  # 1 for a valid patch
+    radius: float  # geodesic radius in host units (the normalization scale)
+    center: tuple  # (x, y, z) in host coordinates (the normalization origin)
+    center_patch_triangle: int  # the center as a point of the patch: this triangle ...
+    center_barycentric: tuple  # ... at these barycentric coordinates
+    max_geodesic_distance: float  # measured again on the normalized patch: about 1
+    param_flipped_triangles: int  # inverted triangles of the disk parametrization: 0
+    # The host's orientation repair (Mesh.orientation): host triangles reoriented, host components
+    # turned outward and made consistent, and how many of this patch's triangles lie in a
+    # reoriented host triangle.
+    host_reoriented_triangles: int
+    host_outward_turned_components: int
+    host_inconsistent_components: int
+    reoriented_triangles: int
+
+    @classmethod
+    def _from_c(cls, i: _native.PatchInfo) -> "PatchInfo":
+        return cls(i.vertex_count, i.triangle_count, i.filled_triangle_count, i.boundary_loops, i.euler_characteristic,
+                   i.radius, tuple(i.center), i.center_patch_triangle, tuple(i.center_barycentric),
+                   i.max_geodesic_distance, i.param_flipped_triangles, i.host_reoriented_triangles,
+                   i.host_outward_turned_components, i.host_inconsistent_components, i.reoriented_triangles)
+
+
 class Patch(_Handle):
     """A geodesic disk cut out of a host mesh, normalized to geodesic radius 1."""
 
@@ -431,12 +463,13 @@ class Patch(_Handle):
         check(_native.lib.mcon_patch_write_rosy(self.handle, d.ctypes.data, d.shape[0], os.fsencode(path)))
 
     @property
-    def info(self) -> _native.PatchInfo:
+    def info(self) -> PatchInfo:
+        """A :class:`PatchInfo` (frozen dataclass): sizes, center, radius and checks of the cut."""
         if self._info is None:
             info = _native.PatchInfo()
             check(_native.lib.mcon_patch_info_init(ctypes.byref(info)))
             check(_native.lib.mcon_patch_get_info(self.handle, ctypes.byref(info)))
-            self._info = info
+            self._info = PatchInfo._from_c(info)
         return self._info
 
     @property
@@ -505,4 +538,4 @@ class Patch(_Handle):
         return out
 
 
-__all__ = ["Context", "Mesh", "Patch", "LogCallbackWarning", "Error", "CancelledError", "version", "shutdown", "close_all"]
+__all__ = ["Context", "Mesh", "Patch", "PatchInfo", "LogCallbackWarning", "Error", "CancelledError", "version", "shutdown", "close_all"]

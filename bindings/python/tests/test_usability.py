@@ -1,0 +1,47 @@
+"""What a new user meets first: docstrings, reprs, info dataclasses, missing-file errors and entry
+lookup by index, name or id (issue 17, "Using it from Python, C# and the CLI")."""
+import dataclasses
+import inspect
+
+import numpy as np
+import pytest
+
+import macrocon
+from macrocon import _native
+from conftest import bumpy, center
+
+
+@pytest.fixture
+def region(context):
+    p, t = bumpy(41)
+    with macrocon.Mesh(context, p, t) as mesh:
+        with macrocon.Patch.extract(mesh, radius=0.3, center_vertex=center(41, 20, 20)) as patch:
+            yield mesh, patch
+
+
+# ---- Patch.info -----------------------------------------------------------------------------------
+
+def test_patch_info_is_a_frozen_dataclass_with_every_c_field(context, region):
+    mesh, patch = region
+    info = patch.info
+    assert isinstance(info, macrocon.PatchInfo) and dataclasses.is_dataclass(info)
+    c_fields = [f[0] for f in _native.PatchInfo._fields_ if f[0] != "struct_size"]
+    assert [f.name for f in dataclasses.fields(info)] == c_fields
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        info.radius = 2.0
+    assert info.vertex_count == patch.vertex_count == patch.positions.shape[0]
+    assert info.triangle_count == patch.triangle_count == patch.triangles.shape[0]
+    assert isinstance(info.center, tuple) and len(info.center) == 3
+    assert isinstance(info.center_barycentric, tuple) and abs(sum(info.center_barycentric) - 1) < 1e-9
+    assert info.radius == pytest.approx(0.3) and info.boundary_loops == 1 and info.euler_characteristic == 1
+    # The center it reports is the host vertex it was cut around.
+    p, _ = bumpy(41)
+    assert np.allclose(info.center, p[center(41, 20, 20)])
+    assert dataclasses.asdict(info)["vertex_count"] == patch.vertex_count
+    # from_arrays: the center given comes back in the info.
+    with macrocon.Patch.from_arrays(context, patch.positions, patch.triangles, center_triangle=7,
+                                    center_barycentric=(0.2, 0.3, 0.5)) as copy:
+        assert copy.info.center_patch_triangle == 7
+        assert copy.info.center_barycentric == pytest.approx((0.2, 0.3, 0.5))
+
+
