@@ -88,6 +88,11 @@ class _Handle:
             raise ValueError(f"{type(self).__name__} is closed")
         return self._handle
 
+    @property
+    def closed(self) -> bool:
+        """True once ``close()`` released the C handle."""
+        return not self._handle
+
     def close(self) -> None:
         if self._handle:
             type(self)._release(self._handle)
@@ -104,6 +109,20 @@ class _Handle:
             self.close()
         except Exception:  # never raise from a finalizer
             pass
+
+    def _repr_fields(self) -> str:
+        """What ``repr`` shows of an open handle (sizes); the subclasses override it."""
+        return ""
+
+    def __repr__(self) -> str:
+        name = f"macrocon.{type(self).__name__}"
+        if not self._handle:
+            return f"<{name} closed>"
+        try:
+            fields = self._repr_fields()
+        except Exception as exc:  # noqa: BLE001 - repr must not raise (debuggers, logs)
+            fields = f"<{type(exc).__name__}>"
+        return f"<{name} {fields}>" if fields else f"<{name}>"
 
 
 class _Progress:
@@ -200,6 +219,7 @@ class Context(_Handle):
         options = _native.ContextOptions()
         check(_native.lib.mcon_context_options_init(ctypes.byref(options)))
         options.max_threads = int(max_threads)
+        self.max_threads = int(max_threads)  # as requested; 0 = every hardware thread
         self._log: Optional[_Log] = None
         key = 0
         if log is not None:
@@ -224,6 +244,9 @@ class Context(_Handle):
     def log_exceptions(self) -> list:
         """Exceptions the log callback raised (oldest first, at most 100; empty without ``log``)."""
         return list(self._log.exceptions) if self._log is not None else []
+
+    def _repr_fields(self) -> str:
+        return f"max_threads={self.max_threads}" + (" log" if self._log is not None else "")
 
 
 def _as_array(name: str, array, dtypes: tuple, columns: int) -> np.ndarray:
@@ -309,6 +332,10 @@ class Mesh(_Handle):
         out = np.zeros((self.counts[1], 3), dtype=np.uint32)
         check(_native.lib.mcon_mesh_get_triangles(self.handle, out.ctypes.data_as(_native.c_uint32_p), out.size))
         return out
+
+    def _repr_fields(self) -> str:
+        nv, nt = self.counts
+        return f"vertices={nv} triangles={nt}"
 
 
 @dataclass(frozen=True)
@@ -479,6 +506,11 @@ class Patch(_Handle):
     @property
     def triangle_count(self) -> int:
         return self.info.triangle_count
+
+    def _repr_fields(self) -> str:
+        i = self.info
+        return (f"vertices={i.vertex_count} triangles={i.triangle_count} radius={i.radius:g} "
+                f"boundary_loops={i.boundary_loops}")
 
     def _doubles(self, fn, columns: int) -> np.ndarray:
         out = np.empty((self.vertex_count, columns), dtype=np.float64)

@@ -485,6 +485,10 @@ class Library(_Handle):
     def __iter__(self) -> Iterator[Entry]:
         return (Entry(self, i) for i in range(len(self)))
 
+    def _repr_fields(self) -> str:
+        i = self.info
+        return f"entries={i.entry_count} descriptor={i.descriptor.name} vocabulary={i.vocabulary_size}"
+
 
 __all__ = ["Library", "Entry", "EntryInfo", "LibraryInfo", "QueryResult", "Polyline", "Singularities", "Field",
            "FieldKind", "PolylineKind", "RetrievalDescriptor"]

@@ -92,6 +92,10 @@ class PolylineSet(_Handle):
         check(_native.lib.mcon_polyline_set_get_polylines(self.handle, ptr(sizes), ptr(closed), ptr(source), n))
         return sizes, closed.astype(bool), source
 
+    def _repr_fields(self) -> str:
+        n, p = self.counts
+        return f"polylines={n} points={p}"
+
     def point_arrays(self) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(triangles (p,) uint32, barycentric (p, 3), xyz (p, 3) in the target's host units)."""
         p = self.counts[1]
@@ -238,6 +242,12 @@ class Map(_Handle):
         handle = ctypes.c_void_p()
         cb.check(_native.lib.mcon_map_compute(source.handle, target.handle, ctypes.byref(o), ctypes.byref(handle)))
         return cls(handle, source, target)
+
+    def _repr_fields(self) -> str:
+        i = self.info
+        return (f"source_vertices={i.source_vertex_count} target_vertices={i.target_vertex_count} "
+                f"overlap={i.overlap_ratio:.3g} iterations={i.iterations} stop={i.stop_reason.name} "
+                f"reflected={i.reflected}")
 
     @property
     def info(self) -> MapInfo:

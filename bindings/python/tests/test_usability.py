@@ -45,3 +45,36 @@ def test_patch_info_is_a_frozen_dataclass_with_every_c_field(context, region):
         assert copy.info.center_barycentric == pytest.approx((0.2, 0.3, 0.5))
 
 
+# ---- repr -----------------------------------------------------------------------------------------
+
+def test_repr_of_every_handle_shows_its_sizes_and_closed_state(context, region):
+    mesh, patch = region
+    assert repr(context) == "<macrocon.Context max_threads=2>"
+    nv, nt = mesh.counts
+    assert repr(mesh) == f"<macrocon.Mesh vertices={nv} triangles={nt}>"
+    r = repr(patch)
+    assert r.startswith("<macrocon.Patch ") and f"vertices={patch.vertex_count} " in r
+    assert f"triangles={patch.triangle_count} " in r and "radius=0.3 " in r and "boundary_loops=1" in r
+    with macrocon.Library(context) as lib:
+        assert repr(lib) == "<macrocon.Library entries=0 descriptor=CURV9 vocabulary=0>"
+        lib.add_entry(patch, name="a")
+        lib.add_entry(patch, name="b")
+        assert repr(lib) == "<macrocon.Library entries=2 descriptor=CURV9 vocabulary=0>"
+        assert repr(lib[1]) == f"<macrocon.Entry 1 id={lib[1].id} 'b'>"
+    with macrocon.Map.compute(patch, patch, max_iterations=5) as phi:
+        r = repr(phi)
+        i = phi.info
+        assert r.startswith("<macrocon.Map ") and f"source_vertices={patch.vertex_count} " in r
+        assert f"target_vertices={patch.vertex_count} " in r and f"iterations={i.iterations} " in r
+        assert f"stop={i.stop_reason.name} " in r and f"reflected={i.reflected}>" in r
+        tri = np.arange(0, patch.triangle_count, 50, dtype=np.uint32)
+        line = macrocon.Polyline(tri, np.full((tri.size, 3), 1 / 3))
+        with phi.transfer_polylines([line]) as traced:
+            n, p = traced.counts
+            assert n >= 1 and repr(traced) == f"<macrocon.PolylineSet polylines={n} points={p}>"
+    patch.close()
+    assert repr(patch) == "<macrocon.Patch closed>"  # never raises, even on a closed handle
+    mesh.close()
+    assert repr(mesh) == "<macrocon.Mesh closed>"
+
+
