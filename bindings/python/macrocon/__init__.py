@@ -36,6 +36,7 @@ from .errors import (
     BufferTooSmallError,
     CancelledError,
     Error,
+    FileNotFoundError_,
     InvalidArgumentError,
     InvalidLibraryError,
     InvalidMeshError,
@@ -59,5 +60,5 @@ __all__ = [
     "NumericalError", "InvalidLibraryError", "UnsupportedError", "NotFoundError", "status_name", "close_all",
     "Library", "Entry", "EntryInfo", "LibraryInfo", "QueryResult", "Suggestion", "Polyline", "PolylineKind", "Singularities",
     "Field", "FieldKind", "RetrievalDescriptor", "Map", "MapInfo", "PolylineSet", "StopReason", "Direction",
-    "Orientation", "OutOfMemoryError", "IOError_", "PatchInfo",
+    "Orientation", "OutOfMemoryError", "IOError_", "FileNotFoundError_", "PatchInfo",
 ]

@@ -14,7 +14,7 @@ import numpy as np
 
 from . import _native
 from ._arrays import strided_rows
-from .errors import CancelledError, Error, check
+from .errors import CancelledError, Error, check, check_path
 
 ProgressCallback = Callable[[float], bool]
 #: ``log(status, message)``: every error message of a context as it is raised (any thread).
@@ -487,7 +487,8 @@ class Patch(_Handle):
         d = _as_array("directions", directions, (np.float64,), 3)
         if d.shape[0] != self.triangle_count:
             raise ValueError(f"directions has {d.shape[0]} rows, the patch {self.triangle_count} triangles")
-        check(_native.lib.mcon_patch_write_rosy(self.handle, d.ctypes.data, d.shape[0], os.fsencode(path)))
+        check_path(_native.lib.mcon_patch_write_rosy(self.handle, d.ctypes.data, d.shape[0], os.fsencode(path)), path,
+                   writing=True)
 
     @property
     def info(self) -> PatchInfo:

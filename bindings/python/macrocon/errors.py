@@ -2,6 +2,8 @@
 from __future__ import annotations
 
 import ctypes
+import errno
+import os
 
 from . import _native
 
@@ -42,7 +44,17 @@ class CancelledError(Error):
 
 
 class IOError_(Error, OSError):
-    pass
+    """MCON_ERROR_IO: a file could not be read or written (also an ``OSError``)."""
+
+
+class FileNotFoundError_(IOError_, FileNotFoundError):
+    """MCON_ERROR_IO for a path that does not exist: a file to read, or the folder of a file to write.
+
+    Also a builtin ``FileNotFoundError`` (and still an :class:`IOError_` and :class:`Error`, as
+    before); ``filename`` is the missing path, ``errno`` is ENOENT, and the message names the path.
+    """
+
+    __str__ = Exception.__str__  # the message, as for every Error (OSError's would be "[Errno 2] ...")
 
 
 class InvalidMeshError(Error, ValueError):
@@ -110,3 +122,22 @@ def check(status: int) -> None:
     _native.lib.mcon_get_last_error(None, ctypes.byref(message))
     text = message.value.decode("utf-8", "replace") if message.value else ""
     raise _BY_STATUS.get(status, Error)(status, text)
+
+
+def check_path(status: int, path, writing: bool = False) -> None:
+    """``check`` for a call that opened ``path``: an IO failure on a path that does not exist (to
+    read), or whose folder does not exist (to write), is a :class:`FileNotFoundError_` naming it."""
+    try:
+        check(status)
+    except IOError_ as exc:
+        missing = os.fsdecode(path)
+        if writing:
+            missing = os.path.dirname(os.path.abspath(missing))
+        if os.path.exists(missing):
+            raise
+        message = exc.message
+        if missing not in message:  # the C message usually names the path it could not open
+            message += f" ({'no such folder to write in' if writing else 'no such file'}: {missing!r})"
+        err = FileNotFoundError_(exc.status, message)
+        err.errno, err.strerror, err.filename = errno.ENOENT, os.strerror(errno.ENOENT), missing
+        raise err from None

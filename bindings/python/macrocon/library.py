@@ -12,7 +12,7 @@ import numpy as np
 from . import _native
 from ._arrays import SINGULARITY, SURFACE_POINT, checked, ptr, strided_rows
 from .core import Context, Patch, ProgressCallback, _Handle, _Progress, require_type
-from .errors import check
+from .errors import check, check_path
 
 
 class FieldKind(IntEnum):
@@ -271,10 +271,11 @@ class Library(_Handle):
 
     @classmethod
     def open(cls, context: Context, path: Union[str, os.PathLike]) -> "Library":
-        """Validates and opens a library file (IO, InvalidLibrary, Unsupported errors)."""
+        """Validates and opens a library file: FileNotFoundError (a :class:`FileNotFoundError_`
+        naming the path) if there is none, else IOError_, InvalidLibraryError, UnsupportedError."""
         require_type(context, Context, "context")
         handle = ctypes.c_void_p()
-        check(_native.lib.mcon_library_open(context.handle, os.fsencode(path), ctypes.byref(handle)))
+        check_path(_native.lib.mcon_library_open(context.handle, os.fsencode(path), ctypes.byref(handle)), path)
         return cls(context, handle)
 
     @classmethod
@@ -289,8 +290,9 @@ class Library(_Handle):
         return cls(context, handle)
 
     def save(self, path: Union[str, os.PathLike]) -> None:
-        """Writes atomically: on failure the previous file at ``path`` is untouched."""
-        check(_native.lib.mcon_library_save(self.handle, os.fsencode(path)))
+        """Writes atomically: on failure the previous file at ``path`` is untouched. A folder that
+        does not exist is a FileNotFoundError naming it."""
+        check_path(_native.lib.mcon_library_save(self.handle, os.fsencode(path)), path, writing=True)
 
     def to_bytes(self) -> bytes:
         size = _native.c_size()

@@ -78,3 +78,35 @@ def test_repr_of_every_handle_shows_its_sizes_and_closed_state(context, region):
     assert repr(mesh) == "<macrocon.Mesh closed>"
 
 
+# ---- missing files --------------------------------------------------------------------------------
+
+def test_opening_a_missing_library_is_a_file_not_found_error_naming_the_path(context, tmp_path):
+    for path in (tmp_path / "missing.mclb", str(tmp_path / "also missing.mclb")):
+        with pytest.raises(FileNotFoundError) as err:
+            macrocon.Library.open(context, path)
+        e = err.value
+        assert str(path) in str(e) and e.filename == str(path) and e.errno == 2
+        # Still what existing callers catch.
+        assert isinstance(e, macrocon.IOError_) and isinstance(e, macrocon.Error) and e.status == 8
+
+
+def test_a_path_that_exists_but_cannot_be_read_stays_an_io_error(context, tmp_path):
+    with pytest.raises(macrocon.IOError_) as err:
+        macrocon.Library.open(context, tmp_path)  # a folder, not a file
+    assert not isinstance(err.value, FileNotFoundError)
+
+
+def test_writing_into_a_missing_folder_is_a_file_not_found_error_naming_it(context, region, tmp_path):
+    _, patch = region
+    folder = tmp_path / "no such folder"
+    with macrocon.Library(context) as lib:
+        with pytest.raises(FileNotFoundError) as err:
+            lib.save(folder / "lib.mclb")
+        assert err.value.filename == str(folder) and str(folder) in str(err.value)
+        lib.save(tmp_path / "lib.mclb")  # an existing folder still works
+    directions = np.tile([1.0, 0.0, 0.0], (patch.triangle_count, 1))
+    with pytest.raises(FileNotFoundError) as err:
+        patch.write_rosy(directions, folder / "field.rosy")
+    assert err.value.filename == str(folder) and isinstance(err.value, macrocon.IOError_)
+
+
