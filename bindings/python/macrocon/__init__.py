@@ -35,6 +35,7 @@ from .mapping import Direction, Map, MapInfo, Orientation, PolylineSet, StopReas
 from .errors import (
     BufferTooSmallError,
     CancelledError,
+    EntryIndexError,
     Error,
     FileNotFoundError_,
     InvalidArgumentError,
@@ -60,5 +61,5 @@ __all__ = [
     "NumericalError", "InvalidLibraryError", "UnsupportedError", "NotFoundError", "status_name", "close_all",
     "Library", "Entry", "EntryInfo", "LibraryInfo", "QueryResult", "Suggestion", "Polyline", "PolylineKind", "Singularities",
     "Field", "FieldKind", "RetrievalDescriptor", "Map", "MapInfo", "PolylineSet", "StopReason", "Direction",
-    "Orientation", "OutOfMemoryError", "IOError_", "FileNotFoundError_", "PatchInfo",
+    "Orientation", "OutOfMemoryError", "IOError_", "FileNotFoundError_", "EntryIndexError", "PatchInfo",
 ]

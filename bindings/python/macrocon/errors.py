@@ -79,7 +79,13 @@ class UnsupportedError(Error):
 
 
 class NotFoundError(Error, KeyError):
-    pass
+    """MCON_ERROR_NOT_FOUND: no entry has this id or name (also a ``KeyError``)."""
+
+
+class EntryIndexError(InvalidArgumentError, IndexError):
+    """An entry index outside the library (``Library.entry``, ``lib[i]``): the message gives the
+    valid range. Also an ``IndexError``, and an :class:`InvalidArgumentError` (status 2) as the
+    C side reported it before."""
 
 
 _BY_STATUS = {

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import ctypes
+import operator
 import os
 from dataclasses import dataclass
 from enum import IntEnum
@@ -12,7 +13,7 @@ import numpy as np
 from . import _native
 from ._arrays import SINGULARITY, SURFACE_POINT, checked, ptr, strided_rows
 from .core import Context, Patch, ProgressCallback, _Handle, _Progress, require_type
-from .errors import check, check_path
+from .errors import EntryIndexError, NotFoundError, check, check_path
 
 
 class FieldKind(IntEnum):
@@ -392,11 +393,46 @@ class Library(_Handle):
         """Removes the entry with this id (NotFoundError if none); later indices shift down."""
         check(_native.lib.mcon_library_remove_entry(self.handle, int(id)))
 
-    def find(self, id: int) -> int:
-        """The index of the entry with this id (NotFoundError if none)."""
+    def find(self, id: Union[int, str, None] = None, *, name: Optional[str] = None) -> int:
+        """The index of the entry with this id (an int, as before) or this name (a str, or
+        ``name=``). NotFoundError (a KeyError) naming the id or the name if there is none; a name
+        that several entries carry is a NotFoundError too, listing their ids (use the id)."""
+        if name is not None:
+            if id is not None:
+                raise TypeError("give the entry's id or its name, not both")
+            return self._find_name(name)
+        if isinstance(id, str):
+            return self._find_name(id)
+        if id is None or isinstance(id, bool):
+            raise TypeError(f"find takes an entry id (int) or name (str), got {type(id).__name__}")
         index = _native.c_size()
-        check(_native.lib.mcon_library_find_entry(self.handle, int(id), ctypes.byref(index)))
+        check(_native.lib.mcon_library_find_entry(self.handle, operator.index(id), ctypes.byref(index)))
         return index.value
+
+    def _find_name(self, name: str) -> int:
+        if not isinstance(name, str):
+            raise TypeError(f"name must be a str, got {type(name).__name__}")
+        matches = [i for i in range(len(self)) if Entry(self, i).name == name]
+        if len(matches) == 1:
+            return matches[0]
+        if not matches:
+            raise NotFoundError(32, f"no entry is named {name!r} ({len(self)} entries)")
+        ids = ", ".join(str(self._entry_info(i).id) for i in matches)
+        raise NotFoundError(32, f"{len(matches)} entries are named {name!r} (ids {ids}): find or entry by id")
+
+    def _index(self, index) -> int:
+        """``index`` (negative counts from the end) checked against the entry count."""
+        if isinstance(index, bool):
+            raise TypeError("an entry index must be an int, got bool")
+        try:
+            i = operator.index(index)
+        except TypeError:
+            raise TypeError(f"an entry index must be an int (or a name: str), got {type(index).__name__}") from None
+        n = len(self)
+        if not -n <= i < n:
+            valid = "the library is empty" if n == 0 else f"valid: 0..{n - 1}, or -{n}..-1 from the end"
+            raise EntryIndexError(2, f"entry index {i} is out of range ({n} entries; {valid})")
+        return i + n if i < 0 else i
 
     def merge(self, other: "Library") -> None:
         """Appends copies of ``other``'s entries (taken ids are renumbered)."""
@@ -477,10 +513,21 @@ class Library(_Handle):
                          i.field_count, i.center.face, tuple(i.center.barycentric), i.source_scale,
                          tuple(i.source_origin))
 
-    def entry(self, index: int) -> Entry:
-        if index < 0:
-            index += len(self)
-        return Entry(self, index)
+    def entry(self, index: Union[int, str, None] = None, *, id: Optional[int] = None,
+              name: Optional[str] = None) -> Entry:
+        """The :class:`Entry` at ``index`` (0-based; negative counts from the end), or with this
+        name (a str, or ``name=``), or with this id (``id=``). Give exactly one. An index outside
+        the library is an :class:`EntryIndexError` (an IndexError) giving the valid range; an
+        unknown name or id a NotFoundError (a KeyError) naming it (see ``find``). ``lib[key]`` is
+        the same as ``lib.entry(key)``."""
+        given = [k for k, v in (("index", index), ("id", id), ("name", name)) if v is not None]
+        if len(given) != 1:
+            raise TypeError("give exactly one of an index, id= or name=" + (f" (got {', '.join(given)})" if given else ""))
+        if id is not None:
+            return Entry(self, self.find(id))
+        if name is not None or isinstance(index, str):
+            return Entry(self, self._find_name(name if name is not None else index))
+        return Entry(self, self._index(index))
 
     __getitem__ = entry
 

@@ -110,3 +110,64 @@ def test_writing_into_a_missing_folder_is_a_file_not_found_error_naming_it(conte
     assert err.value.filename == str(folder) and isinstance(err.value, macrocon.IOError_)
 
 
+# ---- entry and find by index, name or id -----------------------------------------------------------
+
+@pytest.fixture
+def named(context, region):
+    _, patch = region
+    with macrocon.Library(context) as lib:
+        ids = [lib.add_entry(patch, name=n) for n in ("left ear", "nose", "twin", "twin")]
+        yield lib, ids
+
+
+def test_find_and_entry_by_id_name_and_index(named):
+    lib, ids = named
+    assert [lib.find(i) for i in ids] == [0, 1, 2, 3]  # by id, as before
+    assert lib.find(id=ids[1]) == 1 and lib.find(np.uint64(ids[2])) == 2
+    assert lib.find("nose") == 1 and lib.find(name="left ear") == 0
+    assert lib.entry(1).name == "nose" and lib.entry(index=0).id == ids[0]
+    assert lib.entry(-1).index == 3 and lib[-4].index == 0 and lib[np.uint32(2)].index == 2
+    assert lib.entry("nose").index == 1 and lib["left ear"].id == ids[0] and lib.entry(name="nose").id == ids[1]
+    assert lib.entry(id=ids[3]).index == 3
+
+
+def test_an_index_outside_the_library_names_the_valid_range(context, named):
+    lib, _ = named
+    for bad in (4, -5, 100):
+        with pytest.raises(IndexError) as err:
+            lib.entry(bad)
+        assert f"entry index {bad} " in str(err.value) and "0..3" in str(err.value) and "-4..-1" in str(err.value)
+        assert isinstance(err.value, macrocon.InvalidArgumentError)  # what it was before
+    with pytest.raises(IndexError, match="0..3"):
+        lib[4]
+    with macrocon.Library(context) as empty:
+        with pytest.raises(macrocon.EntryIndexError, match="empty"):
+            empty.entry(0)
+
+
+def test_an_unknown_or_ambiguous_name_or_id_is_a_key_error_naming_it(named):
+    lib, ids = named
+    with pytest.raises(KeyError) as err:
+        lib.find("mouth")
+    assert "'mouth'" in str(err.value) and isinstance(err.value, macrocon.NotFoundError)
+    with pytest.raises(KeyError, match="mouth"):
+        lib["mouth"]
+    with pytest.raises(KeyError) as err:
+        lib.entry(name="twin")
+    assert "2 entries are named 'twin'" in str(err.value) and f"ids {ids[2]}, {ids[3]}" in str(err.value)
+    unknown = max(ids) + 1000
+    with pytest.raises(KeyError, match=f"no entry has id {unknown}"):
+        lib.entry(id=unknown)
+    with pytest.raises(macrocon.NotFoundError, match=f"no entry has id {unknown}"):
+        lib.find(unknown)
+
+
+def test_entry_and_find_reject_what_is_neither_an_index_a_name_nor_an_id(named):
+    lib, ids = named
+    for call in (lambda: lib.entry(), lambda: lib.entry(0, name="nose"), lambda: lib.entry(id=ids[0], name="nose"),
+                 lambda: lib.entry(1.0), lambda: lib.entry(True), lambda: lib.find(), lambda: lib.find(1.5),
+                 lambda: lib.find(ids[0], name="nose"), lambda: lib.find(name=3)):
+        with pytest.raises(TypeError):
+            call()
+
+
