@@ -84,6 +84,7 @@ class _Handle:
 
     @property
     def handle(self) -> ctypes.c_void_p:
+        """The C handle (a ctypes pointer) for calls into ``_native.lib``; ValueError once closed."""
         if not self._handle:
             raise ValueError(f"{type(self).__name__} is closed")
         return self._handle
@@ -94,6 +95,7 @@ class _Handle:
         return not self._handle
 
     def close(self) -> None:
+        """Releases this object's reference of the C handle (safe to call more than once)."""
         if self._handle:
             type(self)._release(self._handle)
             self._handle = None
@@ -306,6 +308,7 @@ class Mesh(_Handle):
 
     @property
     def counts(self) -> tuple[int, int]:
+        """(vertex count, triangle count)."""
         nv, nt = _native.c_size(), _native.c_size()
         check(_native.lib.mcon_mesh_get_counts(self.handle, ctypes.byref(nv), ctypes.byref(nt)))
         return nv.value, nt.value
@@ -391,6 +394,17 @@ class Patch(_Handle):
         snap_fraction: Optional[float] = None,
         progress: Optional[ProgressCallback] = None,
     ) -> "Patch":
+        """Cuts the geodesic disk of ``radius`` (host units) around a center on ``mesh``.
+
+        The center is either host vertex ``center_vertex`` or the point of host triangle
+        ``center_triangle`` at ``barycentric`` coordinates (3 weights, default its centroid); give
+        exactly one of ``center_vertex`` and ``center_triangle`` (0-based). ``fill_holes`` fills enclosed
+        pockets and inner holes (new triangles: ``info.filled_triangle_count``). Iso-line crossings
+        closer to a vertex than ``snap_fraction`` of the local edge length snap onto it (range
+        [0, 0.45]; None keeps the default 0.2). ``progress(fraction)`` is called as the cut
+        proceeds; returning False cancels (CancelledError). Raises NotADiskError if the region is
+        not a disk, InvalidArgumentError for an out-of-range center or radius.
+        """
         require_type(mesh, Mesh, "mesh")
         options = _native.PatchOptions()
         check(_native.lib.mcon_patch_options_init(ctypes.byref(options)))
@@ -502,10 +516,12 @@ class Patch(_Handle):
 
     @property
     def vertex_count(self) -> int:
+        """Number of patch vertices."""
         return self.info.vertex_count
 
     @property
     def triangle_count(self) -> int:
+        """Number of patch triangles."""
         return self.info.triangle_count
 
     def _repr_fields(self) -> str:
@@ -530,6 +546,7 @@ class Patch(_Handle):
 
     @property
     def triangles(self) -> np.ndarray:
+        """(m, 3) uint32 vertex indices, counter-clockwise as in the host."""
         out = np.empty((self.triangle_count, 3), dtype=np.uint32)
         check(_native.lib.mcon_patch_get_triangles(self.handle, out.ctypes.data_as(_native.c_uint32_p), out.size))
         return out
@@ -552,6 +569,7 @@ class Patch(_Handle):
 
     @property
     def host_triangles(self) -> np.ndarray:
+        """(m,) uint32: the host triangle each patch triangle lies in; 0xFFFFFFFF if it fills a hole."""
         out = np.empty(self.triangle_count, np.uint32)
         check(_native.lib.mcon_patch_get_host_triangles(self.handle, out.ctypes.data_as(_native.c_uint32_p), out.size))
         return out

@@ -20,27 +20,27 @@ class Error(Exception):
 
 
 class InvalidArgumentError(Error, ValueError):
-    pass
+    """MCON_ERROR_INVALID_ARGUMENT: an argument is outside its documented range."""
 
 
 class NullPointerError(InvalidArgumentError):
-    pass
+    """MCON_ERROR_NULL_POINTER: a required pointer or handle was NULL (e.g. a closed handle)."""
 
 
 class StructSizeError(Error):
-    pass
+    """MCON_ERROR_STRUCT_SIZE: an options or info struct is smaller than the library's first version."""
 
 
 class OutOfMemoryError(Error, MemoryError):
-    pass
+    """MCON_ERROR_OUT_OF_MEMORY: the library could not allocate."""
 
 
 class BufferTooSmallError(Error):
-    pass
+    """MCON_ERROR_BUFFER_TOO_SMALL: an output array is smaller than the result (a binding bug)."""
 
 
 class CancelledError(Error):
-    pass
+    """MCON_ERROR_CANCELLED: a progress callback returned False; every object stays valid."""
 
 
 class IOError_(Error, OSError):
@@ -63,19 +63,19 @@ class InvalidMeshError(Error, ValueError):
 
 
 class NotADiskError(Error):
-    pass
+    """MCON_ERROR_NOT_A_DISK: the cut region is not a topological disk (the message says why)."""
 
 
 class NumericalError(Error, ArithmeticError):
-    pass
+    """MCON_ERROR_NUMERICAL: a linear solve or an optimization failed numerically."""
 
 
 class InvalidLibraryError(Error):
-    pass
+    """MCON_ERROR_INVALID_LIBRARY: a library file or buffer failed validation (the message says where)."""
 
 
 class UnsupportedError(Error):
-    pass
+    """MCON_ERROR_UNSUPPORTED: a feature or format version this build does not know."""
 
 
 class NotFoundError(Error, KeyError):
@@ -114,6 +114,7 @@ _BY_STATUS = {
 
 
 def status_name(status: int) -> str:
+    """The C name of a status code, e.g. ``"MCON_ERROR_NOT_FOUND"`` (``MCON_STATUS_<n>`` if unknown)."""
     name = ctypes.c_char_p()
     if _native.lib.mcon_get_status_name(status, ctypes.byref(name)) != 0 or not name.value:
         return f"MCON_STATUS_{status}"

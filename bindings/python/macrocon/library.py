@@ -27,11 +27,15 @@ class FieldKind(IntEnum):
 
 
 class PolylineKind(IntEnum):
+    """mcon_polyline_kind: a guide the cross field follows, or a sharp feature line."""
+
     GUIDE = 1
     FEATURE = 2
 
 
 class RetrievalDescriptor(IntEnum):
+    """The per-vertex descriptor retrieval builds its vocabulary from (CUSTOM: the caller's own)."""
+
     CURV9 = 1
     HKS = 3
     WKS = 4
@@ -65,6 +69,7 @@ class Singularities:
     index_quarters: np.ndarray
 
     def records(self) -> np.ndarray:
+        """The singularities as an mcon_singularity array (checked)."""
         f = checked("singularities.faces", self.faces, np.uint32, (None,))
         b = checked("singularities.barycentric", self.barycentric, np.float64, (f.shape[0], 3))
         q = checked("singularities.index_quarters", self.index_quarters, np.int32, (f.shape[0],))
@@ -91,6 +96,8 @@ class Field:
 
 @dataclass(frozen=True)
 class LibraryInfo:
+    """A library's size and retrieval configuration (mcon_library_info), as ``Library.info`` returns it."""
+
     entry_count: int
     descriptor: RetrievalDescriptor
     descriptor_dimension: int
@@ -105,6 +112,12 @@ class LibraryInfo:
 
 @dataclass(frozen=True)
 class EntryInfo:
+    """Sizes and placement of one library entry (mcon_library_entry_info), as ``Entry.info`` holds it.
+
+    ``center_face`` / ``center_barycentric``: the patch center on the entry's mesh;
+    ``source_scale`` / ``source_origin``: where it sat in its source (host = origin + scale * p).
+    """
+
     id: int
     vertex_count: int
     triangle_count: int
@@ -160,6 +173,7 @@ class Entry:
 
     @property
     def id(self) -> int:
+        """The entry's id (unique in its library, kept by save/open; see ``Library.find``)."""
         return self.info.id
 
     def _string(self, which: int, item: int = 0) -> str:
@@ -172,38 +186,46 @@ class Entry:
 
     @property
     def name(self) -> str:
+        """The entry's name ('' if none; names need not be unique)."""
         return self._string(1)
 
     @property
     def class_label(self) -> str:
+        """Its class label; ``query_distinct`` counts entries of one class once (side suffix ignored)."""
         return self._string(2)
 
     @property
     def author(self) -> str:
+        """Who made the entry ('' if not given)."""
         return self._string(3)
 
     @property
     def licence(self) -> str:
+        """Its licence, e.g. an SPDX id ('' if not given)."""
         return self._string(4)
 
     @property
     def tags(self) -> List[str]:
+        """Its tags, in the order they were added."""
         return [self._string(5, i) for i in range(self.info.tag_count)]
 
     @property
     def positions(self) -> np.ndarray:
+        """(vertex_count, 3) float64 normalized positions of the entry's patch."""
         out = np.empty((self.info.vertex_count, 3), np.float64)
         check(_native.lib.mcon_library_get_entry_positions(self.library.handle, self.index, ptr(out), out.size))
         return out
 
     @property
     def triangles(self) -> np.ndarray:
+        """(triangle_count, 3) uint32 vertex indices of the entry's patch."""
         out = np.empty((self.info.triangle_count, 3), np.uint32)
         check(_native.lib.mcon_library_get_entry_triangles(self.library.handle, self.index, ptr(out), out.size))
         return out
 
     @property
     def polylines(self) -> List[Polyline]:
+        """The guide and feature polylines stored with the entry (points on its patch)."""
         result = []
         for i in range(self.info.polyline_count):
             kind, closed, n = ctypes.c_uint32(), ctypes.c_uint32(), _native.c_size()
@@ -218,12 +240,14 @@ class Entry:
 
     @property
     def singularities(self) -> Singularities:
+        """The cross-field singularities stored with the entry."""
         rec = np.zeros(self.info.singularity_count, SINGULARITY)
         check(_native.lib.mcon_library_get_entry_singularities(self.library.handle, self.index, ptr(rec), rec.size))
         return Singularities(rec["location"]["face"].copy(), rec["location"]["barycentric"].copy(),
                              rec["index_quarters"].copy())
 
     def field(self, number: int) -> Field:
+        """Field ``number`` (0-based, < ``info.field_count``) with its name, kind and values."""
         kind, dim = ctypes.c_uint32(), ctypes.c_uint32()
         h = self.library.handle
         check(_native.lib.mcon_library_get_entry_field(h, self.index, number, ctypes.byref(kind), ctypes.byref(dim),
@@ -236,6 +260,7 @@ class Entry:
 
     @property
     def fields(self) -> Dict[str, Field]:
+        """Every field of the entry, by name."""
         return {f.name: f for f in (self.field(i) for i in range(self.info.field_count))}
 
     @property
@@ -296,6 +321,7 @@ class Library(_Handle):
         check_path(_native.lib.mcon_library_save(self.handle, os.fsencode(path)), path, writing=True)
 
     def to_bytes(self) -> bytes:
+        """The library file's bytes (what ``save`` writes; ``open_memory`` reads them back)."""
         size = _native.c_size()
         check(_native.lib.mcon_library_save_memory(self.handle, None, 0, ctypes.byref(size)))
         buf = ctypes.create_string_buffer(size.value)
@@ -304,6 +330,7 @@ class Library(_Handle):
 
     @property
     def info(self) -> LibraryInfo:
+        """A :class:`LibraryInfo` (frozen dataclass): entry count and retrieval configuration."""
         i = _native.LibraryInfo()
         check(_native.lib.mcon_library_info_init(ctypes.byref(i)))
         check(_native.lib.mcon_library_get_info(self.handle, ctypes.byref(i)))

@@ -16,6 +16,8 @@ from .library import FieldKind, Polyline
 
 
 class StopReason(IntEnum):
+    """Why the map optimization stopped (``MapInfo.stop_reason``)."""
+
     CONVERGED = 1
     STALLED = 2
     ITERATION_CAP = 3
@@ -23,6 +25,8 @@ class StopReason(IntEnum):
 
 
 class Direction(IntEnum):
+    """Which patch's vertices ``Map.correspondences`` locates on the other."""
+
     SOURCE_TO_TARGET = 1
     TARGET_TO_SOURCE = 2
 
@@ -40,6 +44,9 @@ _ORIENTATIONS = {"automatic": Orientation.AUTOMATIC, "preserve": Orientation.PRE
 
 @dataclass(frozen=True)
 class MapInfo:
+    """What computing a map measured (mcon_map_info), as ``Map.info`` returns it: overlap, energies,
+    iterations and why it stopped, the orientation decision and its evidence, timings."""
+
     source_vertex_count: int
     target_vertex_count: int
     source_vertices_inside: int
@@ -251,6 +258,7 @@ class Map(_Handle):
 
     @property
     def info(self) -> MapInfo:
+        """A :class:`MapInfo` (frozen dataclass) of the computed map."""
         i = _native.MapInfo()
         check(_native.lib.mcon_map_info_init(ctypes.byref(i)))
         check(_native.lib.mcon_map_get_info(self.handle, ctypes.byref(i)))
