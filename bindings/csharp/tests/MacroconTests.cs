@@ -280,7 +280,20 @@ static class Tests
                     for (int i = 0; i < 8; ++i) ids.Add(other.GetEntryInfo(i).Id);
                     Check(ids.Count == 8, "renumbered ids");
                 }
-                Check(Expect<MacroconException>(() => ConstraintLibrary.Open(ctx, System.IO.Path.Combine(dir, "missing.mclb"))).Status == Status.IO, "io");
+                string missing = System.IO.Path.Combine(dir, "missing.mclb");
+                var fnf = Expect<System.IO.FileNotFoundException>(() => ConstraintLibrary.Open(ctx, missing));
+                Check(fnf.FileName == missing && fnf.Message.Contains(missing), "names the path: " + fnf.Message);
+                Check(fnf.InnerException is MacroconException && ((MacroconException)fnf.InnerException).Status == Status.IO, "io inside");
+                // A path that exists but is no library file stays a MacroconException.
+                var notFile = Expect<MacroconException>(() => ConstraintLibrary.Open(ctx, dir));
+                Check(notFile.Status == Status.IO, "a folder is an IO error, not a missing file");
+                string folder = System.IO.Path.Combine(dir, "no such folder");
+                var dnf = Expect<System.IO.DirectoryNotFoundException>(() => lib.Save(System.IO.Path.Combine(folder, "lib.mclb")));
+                Check(dnf.Message.Contains(folder) && dnf.InnerException is MacroconException, "names the folder: " + dnf.Message);
+                var rosy = new double[3 * ps[0].TriangleCount];
+                for (int f = 0; f < ps[0].TriangleCount; ++f) rosy[3 * f] = 1;
+                Check(Expect<System.IO.DirectoryNotFoundException>(() => ps[0].WriteRosy(rosy, System.IO.Path.Combine(folder, "f.rosy")))
+                      .Message.Contains(folder), "rosy names the folder");
             }
             foreach (var q in ps) q.Dispose();
         }
@@ -498,7 +511,8 @@ static class Tests
                     string rosy = System.IO.Path.Combine(dir, "f.rosy");
                     target.WriteRosy(dirs, rosy);
                     Check(System.IO.File.ReadAllText(rosy).Contains(target.TriangleCount.ToString()), "rosy header");
-                    Check(Expect<MacroconException>(() => target.WriteRosy(dirs, System.IO.Path.Combine(dir, "no", "f.rosy"))).Status == Status.IO, "io");
+                    var io = Expect<System.IO.DirectoryNotFoundException>(() => target.WriteRosy(dirs, System.IO.Path.Combine(dir, "no", "f.rosy")));
+                    Check(((MacroconException)io.InnerException).Status == Status.IO, "io");
                     Expect<ArgumentException>(() => target.WriteRosy(new double[3], rosy));
                 }
                 var smooth = target.CrossField();
