@@ -894,15 +894,50 @@ namespace Macrocon
             Native.Check(Native.mcon_patch_get_info(Handle, ref info));
         }
 
-        /// <summary>Cuts the geodesic disk of `radius` around host vertex `centerVertex`.</summary>
-        public static unsafe Patch Extract(Mesh mesh, uint centerVertex, double radius, bool fillHoles = true,
-                                           Func<double, bool> progress = null)
+        /// <summary>Cuts the geodesic disk of `radius` around host vertex `centerVertex` (0-based).</summary>
+        public static Patch Extract(Mesh mesh, uint centerVertex, double radius, bool fillHoles = true,
+                                    Func<double, bool> progress = null)
+            => Cut(mesh, radius, centerVertex, Native.InvalidIndex, null, fillHoles, null, progress);
+
+        /// <summary>Cuts the geodesic disk of `radius` (host units) around a center on `mesh`, with the
+        /// arguments of Python's Patch.extract: the center is host vertex `centerVertex` or the point
+        /// of host triangle `centerTriangle` at `barycentric` (3 weights, default its centroid); give
+        /// exactly one of the two (0-based), e.g.
+        /// <c>Patch.Extract(mesh, radius: 0.3, centerTriangle: 12, barycentric: new[] { 0.2, 0.3, 0.5 })</c>.
+        /// `fillHoles` fills enclosed pockets and inner holes; iso-line crossings closer to a vertex than
+        /// `snapFraction` of the local edge length snap onto it (range [0, 0.45]; null keeps the
+        /// default 0.2); `progress(fraction)` returning false cancels (CancelledException).
+        /// ArgumentException (before any native call) unless exactly one center is given and
+        /// `barycentric`, if given, has 3 values and goes with `centerTriangle`.</summary>
+        public static Patch Extract(Mesh mesh, double radius, uint? centerVertex = null, uint? centerTriangle = null,
+                                    double[] barycentric = null, bool fillHoles = true, double? snapFraction = null,
+                                    Func<double, bool> progress = null)
         {
+            if (centerVertex.HasValue == centerTriangle.HasValue)
+                throw new ArgumentException("give exactly one of centerVertex and centerTriangle");
+            if (barycentric != null && !centerTriangle.HasValue)
+                throw new ArgumentException("barycentric places the center inside centerTriangle: give centerTriangle with it");
+            if (barycentric != null && barycentric.Length != 3)
+                throw new ArgumentException($"barycentric needs 3 values, got {barycentric.Length}");
+            return Cut(mesh, radius, centerVertex ?? Native.InvalidIndex, centerTriangle ?? 0, barycentric, fillHoles,
+                       snapFraction, progress);
+        }
+
+        private static unsafe Patch Cut(Mesh mesh, double radius, uint centerVertex, uint centerTriangle, double[] barycentric,
+                                        bool fillHoles, double? snapFraction, Func<double, bool> progress)
+        {
+            if (mesh == null) throw new ArgumentNullException(nameof(mesh));
             var options = new Native.PatchOptions();
             Native.Check(Native.mcon_patch_options_init(ref options));
             options.center_vertex = centerVertex;
+            if (centerVertex == Native.InvalidIndex)
+            {
+                options.center_triangle = centerTriangle;
+                for (int k = 0; k < 3; ++k) options.center_barycentric[k] = barycentric == null ? 1.0 / 3 : barycentric[k];
+            }
             options.radius = radius;
             options.flags = fillHoles ? 1u : 0u;
+            if (snapFraction.HasValue) options.snap_fraction = snapFraction.Value;
             using (var scope = new Native.ProgressScope(progress))
             {
                 options.progress = scope.Function;
