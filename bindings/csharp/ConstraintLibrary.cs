@@ -106,12 +106,14 @@ namespace Macrocon
             Native.Check(Native.mcon_library_create(context.Handle, out Handle));
         }
 
-        /// <summary>Validates and opens a file (IO, InvalidLibrary, Unsupported errors).</summary>
+        /// <summary>Validates and opens a file: System.IO.FileNotFoundException (FileName = path, the
+        /// MacroconException with Status.IO as InnerException) if there is none, else a
+        /// MacroconException (IO, InvalidLibrary, Unsupported).</summary>
         public static ConstraintLibrary Open(Context context, string path)
         {
             if (context == null) throw new ArgumentNullException(nameof(context));
             if (path == null) throw new ArgumentNullException(nameof(path));
-            Native.Check(Native.mcon_library_open(context.Handle, Native.Utf8(path), out LibraryHandle h));
+            Native.CheckPath(Native.mcon_library_open(context.Handle, Native.Utf8(path), out LibraryHandle h), path);
             return new ConstraintLibrary(h);
         }
 
@@ -126,11 +128,12 @@ namespace Macrocon
             }
         }
 
-        /// <summary>Writes atomically: on failure the previous file is untouched.</summary>
+        /// <summary>Writes atomically: on failure the previous file is untouched. A folder that does
+        /// not exist is a System.IO.DirectoryNotFoundException naming it.</summary>
         public void Save(string path)
         {
             if (path == null) throw new ArgumentNullException(nameof(path));
-            Native.Check(Native.mcon_library_save(Handle, Native.Utf8(path)));
+            Native.CheckPath(Native.mcon_library_save(Handle, Native.Utf8(path)), path, writing: true);
         }
 
         public unsafe byte[] SaveMemory()

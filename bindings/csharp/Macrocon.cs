@@ -384,21 +384,52 @@ namespace Macrocon
 
         internal static void Check(Status status)
         {
-            if (status == Status.Ok) return;
+            if (status != Status.Ok) throw Error(status);
+        }
+
+        /// <summary>The exception of a failed call (status and the thread's last error message).</summary>
+        internal static MacroconException Error(Status status)
+        {
             mcon_get_last_error(IntPtr.Zero, out IntPtr msg);
             string text = msg == IntPtr.Zero ? "" : Marshal.PtrToStringAnsi(msg);
             switch (status)
             {
-                case Status.Cancelled: throw new CancelledException(text);
-                case Status.NotADisk: throw new NotADiskException(text);
-                case Status.InvalidLibrary: throw new InvalidLibraryException(text);
-                case Status.NotFound: throw new NotFoundException(text);
+                case Status.Cancelled: return new CancelledException(text);
+                case Status.NotADisk: return new NotADiskException(text);
+                case Status.InvalidLibrary: return new InvalidLibraryException(text);
+                case Status.NotFound: return new NotFoundException(text);
                 case Status.NonFinite: case Status.IndexOutOfRange: case Status.RepeatedIndex: case Status.DegenerateTriangle:
                 case Status.NonManifoldEdge: case Status.NonManifoldVertex: case Status.IsolatedVertex: case Status.EmptyMesh:
                 case Status.NonOrientable:
-                    throw new InvalidMeshException(status, text);
-                default: throw new MacroconException(status, text);
+                    return new InvalidMeshException(status, text);
+                default: return new MacroconException(status, text);
             }
+        }
+
+        /// <summary>Check for a call that opened `path`: an IO failure on a file to read that does not
+        /// exist is a System.IO.FileNotFoundException (FileName = path), on a file to write whose folder
+        /// does not exist a System.IO.DirectoryNotFoundException; both name the path and carry the
+        /// MacroconException (Status.IO, the library's message) as InnerException.</summary>
+        internal static void CheckPath(Status status, string path, bool writing = false)
+        {
+            if (status == Status.Ok) return;
+            MacroconException error = Error(status);  // first: reads this thread's last error
+            if (status == Status.IO)
+            {
+                string full = System.IO.Path.GetFullPath(path);
+                string missing = writing ? System.IO.Path.GetDirectoryName(full) : full;
+                bool exists = writing ? System.IO.Directory.Exists(missing)
+                                      : System.IO.File.Exists(missing) || System.IO.Directory.Exists(missing);
+                if (!exists)
+                {
+                    string text = error.Message;
+                    if (!text.Contains(path) && !text.Contains(missing))
+                        text += writing ? " (no such folder to write in: '" + missing + "')" : " (no such file: '" + path + "')";
+                    if (writing) throw new System.IO.DirectoryNotFoundException(text, error);
+                    throw new System.IO.FileNotFoundException(text, path, error);
+                }
+            }
+            throw error;
         }
 
         // The one native-callable progress function; `user` is a GCHandle to the managed callback.
@@ -863,15 +894,50 @@ namespace Macrocon
             Native.Check(Native.mcon_patch_get_info(Handle, ref info));
         }
 
-        /// <summary>Cuts the geodesic disk of `radius` around host vertex `centerVertex`.</summary>
-        public static unsafe Patch Extract(Mesh mesh, uint centerVertex, double radius, bool fillHoles = true,
-                                           Func<double, bool> progress = null)
+        /// <summary>Cuts the geodesic disk of `radius` around host vertex `centerVertex` (0-based).</summary>
+        public static Patch Extract(Mesh mesh, uint centerVertex, double radius, bool fillHoles = true,
+                                    Func<double, bool> progress = null)
+            => Cut(mesh, radius, centerVertex, Native.InvalidIndex, null, fillHoles, null, progress);
+
+        /// <summary>Cuts the geodesic disk of `radius` (host units) around a center on `mesh`, with the
+        /// arguments of Python's Patch.extract: the center is host vertex `centerVertex` or the point
+        /// of host triangle `centerTriangle` at `barycentric` (3 weights, default its centroid); give
+        /// exactly one of the two (0-based), e.g.
+        /// <c>Patch.Extract(mesh, radius: 0.3, centerTriangle: 12, barycentric: new[] { 0.2, 0.3, 0.5 })</c>.
+        /// `fillHoles` fills enclosed pockets and inner holes; iso-line crossings closer to a vertex than
+        /// `snapFraction` of the local edge length snap onto it (range [0, 0.45]; null keeps the
+        /// default 0.2); `progress(fraction)` returning false cancels (CancelledException).
+        /// ArgumentException (before any native call) unless exactly one center is given and
+        /// `barycentric`, if given, has 3 values and goes with `centerTriangle`.</summary>
+        public static Patch Extract(Mesh mesh, double radius, uint? centerVertex = null, uint? centerTriangle = null,
+                                    double[] barycentric = null, bool fillHoles = true, double? snapFraction = null,
+                                    Func<double, bool> progress = null)
         {
+            if (centerVertex.HasValue == centerTriangle.HasValue)
+                throw new ArgumentException("give exactly one of centerVertex and centerTriangle");
+            if (barycentric != null && !centerTriangle.HasValue)
+                throw new ArgumentException("barycentric places the center inside centerTriangle: give centerTriangle with it");
+            if (barycentric != null && barycentric.Length != 3)
+                throw new ArgumentException($"barycentric needs 3 values, got {barycentric.Length}");
+            return Cut(mesh, radius, centerVertex ?? Native.InvalidIndex, centerTriangle ?? 0, barycentric, fillHoles,
+                       snapFraction, progress);
+        }
+
+        private static unsafe Patch Cut(Mesh mesh, double radius, uint centerVertex, uint centerTriangle, double[] barycentric,
+                                        bool fillHoles, double? snapFraction, Func<double, bool> progress)
+        {
+            if (mesh == null) throw new ArgumentNullException(nameof(mesh));
             var options = new Native.PatchOptions();
             Native.Check(Native.mcon_patch_options_init(ref options));
             options.center_vertex = centerVertex;
+            if (centerVertex == Native.InvalidIndex)
+            {
+                options.center_triangle = centerTriangle;
+                for (int k = 0; k < 3; ++k) options.center_barycentric[k] = barycentric == null ? 1.0 / 3 : barycentric[k];
+            }
             options.radius = radius;
             options.flags = fillHoles ? 1u : 0u;
+            if (snapFraction.HasValue) options.snap_fraction = snapFraction.Value;
             using (var scope = new Native.ProgressScope(progress))
             {
                 options.progress = scope.Function;
@@ -956,13 +1022,15 @@ namespace Macrocon
             return (d, c);
         }
 
-        /// <summary>Writes a QuadWild .rosy file (a .gz path is compressed); 3 doubles per triangle.</summary>
+        /// <summary>Writes a QuadWild .rosy file (a .gz path is compressed); 3 doubles per triangle. A
+        /// folder that does not exist is a System.IO.DirectoryNotFoundException naming it.</summary>
         public unsafe void WriteRosy(ReadOnlySpan<double> directions, string path)
         {
             if (directions.Length != 3 * TriangleCount) throw new ArgumentException($"directions must hold 3 * {TriangleCount} values");
             if (path == null) throw new ArgumentNullException(nameof(path));
             fixed (double* d = &MemoryMarshal.GetReference(directions))
-                Native.Check(Native.mcon_patch_write_rosy(Handle, (IntPtr)d, (UIntPtr)TriangleCount, Native.Utf8(path)));
+                Native.CheckPath(Native.mcon_patch_write_rosy(Handle, (IntPtr)d, (UIntPtr)TriangleCount, Native.Utf8(path)), path,
+                                 writing: true);
         }
 
         public int VertexCount => (int)info.vertex_count;

@@ -172,6 +172,61 @@ static class Tests
         }
     }
 
+    // patch extraction around a point of a triangle, with Python's arguments
+    static void TestExtractAtTriangle()
+    {
+        var r = Bumpy(41); var p = r.Item1; var t = r.Item2;
+        const uint tri = 2 * (20 * 40 + 20);  // Grid: triangles (a, b, c), (a, c, d) per cell; cell (20, 20): 840, 841, 882
+        uint a = t[3 * tri], b = t[3 * tri + 1], c = t[3 * tri + 2];
+        using (var ctx = new Context(2))
+        using (var m = new Mesh(ctx, p, t))
+        {
+            using (var patch = Patch.Extract(m, radius: 0.3, centerTriangle: tri, barycentric: new[] { 0.2, 0.3, 0.5 }))
+            {
+                var center = patch.Center;
+                for (int k = 0; k < 3; ++k)
+                    Near(center[k], 0.2 * p[3 * a + k] + 0.3 * p[3 * b + k] + 0.5 * p[3 * c + k], 1e-9, "center on the triangle");
+                Check(patch.BoundaryLoops == 1 && Math.Abs(patch.Radius - 0.3) < 1e-12, "a disk of the radius");
+                // The same point on the patch's own mesh is its normalization origin.
+                var pos = patch.Positions(); var ptri = patch.Triangles(); var bc = patch.CenterBarycentric;
+                uint pt = patch.CenterPatchTriangle;
+                for (int k = 0; k < 3; ++k)
+                {
+                    double x = 0;
+                    for (int q = 0; q < 3; ++q) x += bc[q] * pos[3 * ptri[3 * pt + q] + k];
+                    Near(x, 0, 1e-9, "center at the origin of the patch");
+                }
+            }
+            using (var centroid = Patch.Extract(m, 0.3, centerTriangle: tri))
+                for (int k = 0; k < 3; ++k)
+                    Near(centroid.Center[k], (p[3 * a + k] + p[3 * b + k] + p[3 * c + k]) / 3, 1e-9, "default: the centroid");
+            using (var atCorner = Patch.Extract(m, 0.3, centerTriangle: tri, barycentric: new[] { 1.0, 0, 0 }))
+            using (var atVertex = Patch.Extract(m, a, 0.3))
+            using (var named = Patch.Extract(m, 0.3, centerVertex: a))
+            {
+                for (int k = 0; k < 3; ++k) Near(atCorner.Center[k], atVertex.Center[k], 1e-12, "corner = vertex");
+                Check(named.VertexCount == atVertex.VertexCount && named.TriangleCount == atVertex.TriangleCount, "both overloads cut alike");
+            }
+            // snapFraction reaches the library: no snapping and the most snapping cut different meshes.
+            using (var none = Patch.Extract(m, 0.3, centerTriangle: tri, snapFraction: 0.0))
+            using (var most = Patch.Extract(m, 0.3, centerTriangle: tri, snapFraction: 0.45))
+                Check(none.VertexCount > most.VertexCount, $"snapping merges cut points ({none.VertexCount} vs {most.VertexCount})");
+            var snap = Expect<MacroconException>(() => Patch.Extract(m, 0.3, centerTriangle: tri, snapFraction: 0.5));
+            Check(snap.Status == Status.InvalidArgument && snap.Message.Contains("snap_fraction"), snap.Message);
+            var range = Expect<MacroconException>(() => Patch.Extract(m, 0.3, centerTriangle: 99999));
+            Check(range.Status == Status.InvalidArgument && range.Message.Contains("99999"), range.Message);
+            int calls = 0;
+            Expect<CancelledException>(() => Patch.Extract(m, 0.3, centerTriangle: tri, progress: f => ++calls < 2));
+            Check(calls == 2, "progress reaches the callback");
+            // Checked before any native call.
+            Expect<ArgumentException>(() => Patch.Extract(m, 0.3));
+            Expect<ArgumentException>(() => Patch.Extract(m, 0.3, centerVertex: a, centerTriangle: tri));
+            Expect<ArgumentException>(() => Patch.Extract(m, 0.3, centerTriangle: tri, barycentric: new[] { 0.5, 0.5 }));
+            Expect<ArgumentException>(() => Patch.Extract(m, 0.3, centerVertex: a, barycentric: new[] { 1.0, 0, 0 }));
+            Expect<ArgumentNullException>(() => Patch.Extract(null, 0.3, centerTriangle: tri));
+        }
+    }
+
     // progress cancels and callback exceptions propagate
     static void Test4()
     {
@@ -280,7 +335,20 @@ static class Tests
                     for (int i = 0; i < 8; ++i) ids.Add(other.GetEntryInfo(i).Id);
                     Check(ids.Count == 8, "renumbered ids");
                 }
-                Check(Expect<MacroconException>(() => ConstraintLibrary.Open(ctx, System.IO.Path.Combine(dir, "missing.mclb"))).Status == Status.IO, "io");
+                string missing = System.IO.Path.Combine(dir, "missing.mclb");
+                var fnf = Expect<System.IO.FileNotFoundException>(() => ConstraintLibrary.Open(ctx, missing));
+                Check(fnf.FileName == missing && fnf.Message.Contains(missing), "names the path: " + fnf.Message);
+                Check(fnf.InnerException is MacroconException && ((MacroconException)fnf.InnerException).Status == Status.IO, "io inside");
+                // A path that exists but is no library file stays a MacroconException.
+                var notFile = Expect<MacroconException>(() => ConstraintLibrary.Open(ctx, dir));
+                Check(notFile.Status == Status.IO, "a folder is an IO error, not a missing file");
+                string folder = System.IO.Path.Combine(dir, "no such folder");
+                var dnf = Expect<System.IO.DirectoryNotFoundException>(() => lib.Save(System.IO.Path.Combine(folder, "lib.mclb")));
+                Check(dnf.Message.Contains(folder) && dnf.InnerException is MacroconException, "names the folder: " + dnf.Message);
+                var rosy = new double[3 * ps[0].TriangleCount];
+                for (int f = 0; f < ps[0].TriangleCount; ++f) rosy[3 * f] = 1;
+                Check(Expect<System.IO.DirectoryNotFoundException>(() => ps[0].WriteRosy(rosy, System.IO.Path.Combine(folder, "f.rosy")))
+                      .Message.Contains(folder), "rosy names the folder");
             }
             foreach (var q in ps) q.Dispose();
         }
@@ -498,7 +566,8 @@ static class Tests
                     string rosy = System.IO.Path.Combine(dir, "f.rosy");
                     target.WriteRosy(dirs, rosy);
                     Check(System.IO.File.ReadAllText(rosy).Contains(target.TriangleCount.ToString()), "rosy header");
-                    Check(Expect<MacroconException>(() => target.WriteRosy(dirs, System.IO.Path.Combine(dir, "no", "f.rosy"))).Status == Status.IO, "io");
+                    var io = Expect<System.IO.DirectoryNotFoundException>(() => target.WriteRosy(dirs, System.IO.Path.Combine(dir, "no", "f.rosy")));
+                    Check(((MacroconException)io.InnerException).Status == Status.IO, "io");
                     Expect<ArgumentException>(() => target.WriteRosy(new double[3], rosy));
                 }
                 var smooth = target.CrossField();
@@ -739,7 +808,7 @@ static class Tests
     // No tuple deconstruction (`var (a, b) = ...`) anywhere here: mcs 6.8 silently drops a lambda that
     // contains one (which hid most of this runner's tests before) or crashes when a lambda captures
     // a deconstructed variable. The runner also checks how many tests ran.
-    const int ExpectedTests = 20;
+    const int ExpectedTests = 21;
 
     // The log callback receives the status and the message of the exception (mesh and patch
     // errors of the context); other contexts do not log; a disposed context drops late messages.
@@ -1069,6 +1138,7 @@ static class Tests
         Run("mesh from doubles and floats", Test1);
         Run("invalid mesh throws with status and message", Test2);
         Run("patch extraction", Test3);
+        Run("patch extraction at a triangle + barycentric, Python's arguments", TestExtractAtTriangle);
         Run("progress cancels and callback exceptions propagate", Test4);
         Run("library: entries round trip through every getter", Test5);
         Run("library: save, open, bytes, remove, find, merge", Test6);

@@ -12,6 +12,7 @@ from .core import (
     LogCallbackWarning,
     Mesh,
     Patch,
+    PatchInfo,
     close_all,
     shutdown,
     version,
@@ -34,7 +35,9 @@ from .mapping import Direction, Map, MapInfo, Orientation, PolylineSet, StopReas
 from .errors import (
     BufferTooSmallError,
     CancelledError,
+    EntryIndexError,
     Error,
+    FileNotFoundError_,
     InvalidArgumentError,
     InvalidLibraryError,
     InvalidMeshError,
@@ -58,5 +61,5 @@ __all__ = [
     "NumericalError", "InvalidLibraryError", "UnsupportedError", "NotFoundError", "status_name", "close_all",
     "Library", "Entry", "EntryInfo", "LibraryInfo", "QueryResult", "Suggestion", "Polyline", "PolylineKind", "Singularities",
     "Field", "FieldKind", "RetrievalDescriptor", "Map", "MapInfo", "PolylineSet", "StopReason", "Direction",
-    "Orientation", "OutOfMemoryError", "IOError_",
+    "Orientation", "OutOfMemoryError", "IOError_", "FileNotFoundError_", "EntryIndexError", "PatchInfo",
 ]

@@ -512,6 +512,7 @@ for _name, _args in _SIGNATURES.items():
 
 
 def library_version() -> tuple[int, int, int]:
+    """(major, minor, patch) of the loaded native library (``mcon_get_version``)."""
     major, minor, patch = ctypes.c_uint32(), ctypes.c_uint32(), ctypes.c_uint32()
     lib.mcon_get_version(ctypes.byref(major), ctypes.byref(minor), ctypes.byref(patch))
     return major.value, minor.value, patch.value

@@ -7,13 +7,14 @@ import itertools
 import sys
 import warnings
 import weakref
+from dataclasses import dataclass
 from typing import Callable, Optional
 
 import numpy as np
 
 from . import _native
 from ._arrays import strided_rows
-from .errors import CancelledError, Error, check
+from .errors import CancelledError, Error, check, check_path
 
 ProgressCallback = Callable[[float], bool]
 #: ``log(status, message)``: every error message of a context as it is raised (any thread).
@@ -83,11 +84,18 @@ class _Handle:
 
     @property
     def handle(self) -> ctypes.c_void_p:
+        """The C handle (a ctypes pointer) for calls into ``_native.lib``; ValueError once closed."""
         if not self._handle:
             raise ValueError(f"{type(self).__name__} is closed")
         return self._handle
 
+    @property
+    def closed(self) -> bool:
+        """True once ``close()`` released the C handle."""
+        return not self._handle
+
     def close(self) -> None:
+        """Releases this object's reference of the C handle (safe to call more than once)."""
         if self._handle:
             type(self)._release(self._handle)
             self._handle = None
@@ -103,6 +111,20 @@ class _Handle:
             self.close()
         except Exception:  # never raise from a finalizer
             pass
+
+    def _repr_fields(self) -> str:
+        """What ``repr`` shows of an open handle (sizes); the subclasses override it."""
+        return ""
+
+    def __repr__(self) -> str:
+        name = f"macrocon.{type(self).__name__}"
+        if not self._handle:
+            return f"<{name} closed>"
+        try:
+            fields = self._repr_fields()
+        except Exception as exc:  # noqa: BLE001 - repr must not raise (debuggers, logs)
+            fields = f"<{type(exc).__name__}>"
+        return f"<{name} {fields}>" if fields else f"<{name}>"
 
 
 class _Progress:
@@ -199,6 +221,7 @@ class Context(_Handle):
         options = _native.ContextOptions()
         check(_native.lib.mcon_context_options_init(ctypes.byref(options)))
         options.max_threads = int(max_threads)
+        self.max_threads = int(max_threads)  # as requested; 0 = every hardware thread
         self._log: Optional[_Log] = None
         key = 0
         if log is not None:
@@ -223,6 +246,9 @@ class Context(_Handle):
     def log_exceptions(self) -> list:
         """Exceptions the log callback raised (oldest first, at most 100; empty without ``log``)."""
         return list(self._log.exceptions) if self._log is not None else []
+
+    def _repr_fields(self) -> str:
+        return f"max_threads={self.max_threads}" + (" log" if self._log is not None else "")
 
 
 def _as_array(name: str, array, dtypes: tuple, columns: int) -> np.ndarray:
@@ -282,6 +308,7 @@ class Mesh(_Handle):
 
     @property
     def counts(self) -> tuple[int, int]:
+        """(vertex count, triangle count)."""
         nv, nt = _native.c_size(), _native.c_size()
         check(_native.lib.mcon_mesh_get_counts(self.handle, ctypes.byref(nv), ctypes.byref(nt)))
         return nv.value, nt.value
@@ -309,6 +336,41 @@ class Mesh(_Handle):
         check(_native.lib.mcon_mesh_get_triangles(self.handle, out.ctypes.data_as(_native.c_uint32_p), out.size))
         return out
 
+    def _repr_fields(self) -> str:
+        nv, nt = self.counts
+        return f"vertices={nv} triangles={nt}"
+
+
+@dataclass(frozen=True)
+class PatchInfo:
+    """What extracting a patch measured (mcon_patch_info), as ``Patch.info`` returns it."""
+
+    vertex_count: int
+    triangle_count: int
+    filled_triangle_count: int  # triangles that are not from the host mesh (filled holes)
+    boundary_loops: int  # 1 for a valid patch
+    euler_characteristic: int  # 1 for a valid patch
+    radius: float  # geodesic radius in host units (the normalization scale)
+    center: tuple  # (x, y, z) in host coordinates (the normalization origin)
+    center_patch_triangle: int  # the center as a point of the patch: this triangle ...
+    center_barycentric: tuple  # ... at these barycentric coordinates
+    max_geodesic_distance: float  # measured again on the normalized patch: about 1
+    param_flipped_triangles: int  # inverted triangles of the disk parametrization: 0
+    # The host's orientation repair (Mesh.orientation): host triangles reoriented, host components
+    # turned outward and made consistent, and how many of this patch's triangles lie in a
+    # reoriented host triangle.
+    host_reoriented_triangles: int
+    host_outward_turned_components: int
+    host_inconsistent_components: int
+    reoriented_triangles: int
+
+    @classmethod
+    def _from_c(cls, i: _native.PatchInfo) -> "PatchInfo":
+        return cls(i.vertex_count, i.triangle_count, i.filled_triangle_count, i.boundary_loops, i.euler_characteristic,
+                   i.radius, tuple(i.center), i.center_patch_triangle, tuple(i.center_barycentric),
+                   i.max_geodesic_distance, i.param_flipped_triangles, i.host_reoriented_triangles,
+                   i.host_outward_turned_components, i.host_inconsistent_components, i.reoriented_triangles)
+
 
 class Patch(_Handle):
     """A geodesic disk cut out of a host mesh, normalized to geodesic radius 1."""
@@ -332,6 +394,17 @@ class Patch(_Handle):
         snap_fraction: Optional[float] = None,
         progress: Optional[ProgressCallback] = None,
     ) -> "Patch":
+        """Cuts the geodesic disk of ``radius`` (host units) around a center on ``mesh``.
+
+        The center is either host vertex ``center_vertex`` or the point of host triangle
+        ``center_triangle`` at ``barycentric`` coordinates (3 weights, default its centroid); give
+        exactly one of ``center_vertex`` and ``center_triangle`` (0-based). ``fill_holes`` fills enclosed
+        pockets and inner holes (new triangles: ``info.filled_triangle_count``). Iso-line crossings
+        closer to a vertex than ``snap_fraction`` of the local edge length snap onto it (range
+        [0, 0.45]; None keeps the default 0.2). ``progress(fraction)`` is called as the cut
+        proceeds; returning False cancels (CancelledError). Raises NotADiskError if the region is
+        not a disk, InvalidArgumentError for an out-of-range center or radius.
+        """
         require_type(mesh, Mesh, "mesh")
         options = _native.PatchOptions()
         check(_native.lib.mcon_patch_options_init(ctypes.byref(options)))
@@ -428,24 +501,33 @@ class Patch(_Handle):
         d = _as_array("directions", directions, (np.float64,), 3)
         if d.shape[0] != self.triangle_count:
             raise ValueError(f"directions has {d.shape[0]} rows, the patch {self.triangle_count} triangles")
-        check(_native.lib.mcon_patch_write_rosy(self.handle, d.ctypes.data, d.shape[0], os.fsencode(path)))
+        check_path(_native.lib.mcon_patch_write_rosy(self.handle, d.ctypes.data, d.shape[0], os.fsencode(path)), path,
+                   writing=True)
 
     @property
-    def info(self) -> _native.PatchInfo:
+    def info(self) -> PatchInfo:
+        """A :class:`PatchInfo` (frozen dataclass): sizes, center, radius and checks of the cut."""
         if self._info is None:
             info = _native.PatchInfo()
             check(_native.lib.mcon_patch_info_init(ctypes.byref(info)))
             check(_native.lib.mcon_patch_get_info(self.handle, ctypes.byref(info)))
-            self._info = info
+            self._info = PatchInfo._from_c(info)
         return self._info
 
     @property
     def vertex_count(self) -> int:
+        """Number of patch vertices."""
         return self.info.vertex_count
 
     @property
     def triangle_count(self) -> int:
+        """Number of patch triangles."""
         return self.info.triangle_count
+
+    def _repr_fields(self) -> str:
+        i = self.info
+        return (f"vertices={i.vertex_count} triangles={i.triangle_count} radius={i.radius:g} "
+                f"boundary_loops={i.boundary_loops}")
 
     def _doubles(self, fn, columns: int) -> np.ndarray:
         out = np.empty((self.vertex_count, columns), dtype=np.float64)
@@ -464,6 +546,7 @@ class Patch(_Handle):
 
     @property
     def triangles(self) -> np.ndarray:
+        """(m, 3) uint32 vertex indices, counter-clockwise as in the host."""
         out = np.empty((self.triangle_count, 3), dtype=np.uint32)
         check(_native.lib.mcon_patch_get_triangles(self.handle, out.ctypes.data_as(_native.c_uint32_p), out.size))
         return out
@@ -486,6 +569,7 @@ class Patch(_Handle):
 
     @property
     def host_triangles(self) -> np.ndarray:
+        """(m,) uint32: the host triangle each patch triangle lies in; 0xFFFFFFFF if it fills a hole."""
         out = np.empty(self.triangle_count, np.uint32)
         check(_native.lib.mcon_patch_get_host_triangles(self.handle, out.ctypes.data_as(_native.c_uint32_p), out.size))
         return out
@@ -505,4 +589,4 @@ class Patch(_Handle):
         return out
 
 
-__all__ = ["Context", "Mesh", "Patch", "LogCallbackWarning", "Error", "CancelledError", "version", "shutdown", "close_all"]
+__all__ = ["Context", "Mesh", "Patch", "PatchInfo", "LogCallbackWarning", "Error", "CancelledError", "version", "shutdown", "close_all"]

@@ -2,6 +2,8 @@
 from __future__ import annotations
 
 import ctypes
+import errno
+import os
 
 from . import _native
 
@@ -18,31 +20,41 @@ class Error(Exception):
 
 
 class InvalidArgumentError(Error, ValueError):
-    pass
+    """MCON_ERROR_INVALID_ARGUMENT: an argument is outside its documented range."""
 
 
 class NullPointerError(InvalidArgumentError):
-    pass
+    """MCON_ERROR_NULL_POINTER: a required pointer or handle was NULL (e.g. a closed handle)."""
 
 
 class StructSizeError(Error):
-    pass
+    """MCON_ERROR_STRUCT_SIZE: an options or info struct is smaller than the library's first version."""
 
 
 class OutOfMemoryError(Error, MemoryError):
-    pass
+    """MCON_ERROR_OUT_OF_MEMORY: the library could not allocate."""
 
 
 class BufferTooSmallError(Error):
-    pass
+    """MCON_ERROR_BUFFER_TOO_SMALL: an output array is smaller than the result (a binding bug)."""
 
 
 class CancelledError(Error):
-    pass
+    """MCON_ERROR_CANCELLED: a progress callback returned False; every object stays valid."""
 
 
 class IOError_(Error, OSError):
-    pass
+    """MCON_ERROR_IO: a file could not be read or written (also an ``OSError``)."""
+
+
+class FileNotFoundError_(IOError_, FileNotFoundError):
+    """MCON_ERROR_IO for a path that does not exist: a file to read, or the folder of a file to write.
+
+    Also a builtin ``FileNotFoundError`` (and still an :class:`IOError_` and :class:`Error`, as
+    before); ``filename`` is the missing path, ``errno`` is ENOENT, and the message names the path.
+    """
+
+    __str__ = Exception.__str__  # the message, as for every Error (OSError's would be "[Errno 2] ...")
 
 
 class InvalidMeshError(Error, ValueError):
@@ -51,23 +63,29 @@ class InvalidMeshError(Error, ValueError):
 
 
 class NotADiskError(Error):
-    pass
+    """MCON_ERROR_NOT_A_DISK: the cut region is not a topological disk (the message says why)."""
 
 
 class NumericalError(Error, ArithmeticError):
-    pass
+    """MCON_ERROR_NUMERICAL: a linear solve or an optimization failed numerically."""
 
 
 class InvalidLibraryError(Error):
-    pass
+    """MCON_ERROR_INVALID_LIBRARY: a library file or buffer failed validation (the message says where)."""
 
 
 class UnsupportedError(Error):
-    pass
+    """MCON_ERROR_UNSUPPORTED: a feature or format version this build does not know."""
 
 
 class NotFoundError(Error, KeyError):
-    pass
+    """MCON_ERROR_NOT_FOUND: no entry has this id or name (also a ``KeyError``)."""
+
+
+class EntryIndexError(InvalidArgumentError, IndexError):
+    """An entry index outside the library (``Library.entry``, ``lib[i]``): the message gives the
+    valid range. Also an ``IndexError``, and an :class:`InvalidArgumentError` (status 2) as the
+    C side reported it before."""
 
 
 _BY_STATUS = {
@@ -96,6 +114,7 @@ _BY_STATUS = {
 
 
 def status_name(status: int) -> str:
+    """The C name of a status code, e.g. ``"MCON_ERROR_NOT_FOUND"`` (``MCON_STATUS_<n>`` if unknown)."""
     name = ctypes.c_char_p()
     if _native.lib.mcon_get_status_name(status, ctypes.byref(name)) != 0 or not name.value:
         return f"MCON_STATUS_{status}"
@@ -110,3 +129,22 @@ def check(status: int) -> None:
     _native.lib.mcon_get_last_error(None, ctypes.byref(message))
     text = message.value.decode("utf-8", "replace") if message.value else ""
     raise _BY_STATUS.get(status, Error)(status, text)
+
+
+def check_path(status: int, path, writing: bool = False) -> None:
+    """``check`` for a call that opened ``path``: an IO failure on a path that does not exist (to
+    read), or whose folder does not exist (to write), is a :class:`FileNotFoundError_` naming it."""
+    try:
+        check(status)
+    except IOError_ as exc:
+        missing = os.fsdecode(path)
+        if writing:
+            missing = os.path.dirname(os.path.abspath(missing))
+        if os.path.exists(missing):
+            raise
+        message = exc.message
+        if missing not in message:  # the C message usually names the path it could not open
+            message += f" ({'no such folder to write in' if writing else 'no such file'}: {missing!r})"
+        err = FileNotFoundError_(exc.status, message)
+        err.errno, err.strerror, err.filename = errno.ENOENT, os.strerror(errno.ENOENT), missing
+        raise err from None

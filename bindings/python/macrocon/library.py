@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import ctypes
+import operator
 import os
 from dataclasses import dataclass
 from enum import IntEnum
@@ -12,7 +13,7 @@ import numpy as np
 from . import _native
 from ._arrays import SINGULARITY, SURFACE_POINT, checked, ptr, strided_rows
 from .core import Context, Patch, ProgressCallback, _Handle, _Progress, require_type
-from .errors import check
+from .errors import EntryIndexError, NotFoundError, check, check_path
 
 
 class FieldKind(IntEnum):
@@ -26,11 +27,15 @@ class FieldKind(IntEnum):
 
 
 class PolylineKind(IntEnum):
+    """mcon_polyline_kind: a guide the cross field follows, or a sharp feature line."""
+
     GUIDE = 1
     FEATURE = 2
 
 
 class RetrievalDescriptor(IntEnum):
+    """The per-vertex descriptor retrieval builds its vocabulary from (CUSTOM: the caller's own)."""
+
     CURV9 = 1
     HKS = 3
     WKS = 4
@@ -64,6 +69,7 @@ class Singularities:
     index_quarters: np.ndarray
 
     def records(self) -> np.ndarray:
+        """The singularities as an mcon_singularity array (checked)."""
         f = checked("singularities.faces", self.faces, np.uint32, (None,))
         b = checked("singularities.barycentric", self.barycentric, np.float64, (f.shape[0], 3))
         q = checked("singularities.index_quarters", self.index_quarters, np.int32, (f.shape[0],))
@@ -90,6 +96,8 @@ class Field:
 
 @dataclass(frozen=True)
 class LibraryInfo:
+    """A library's size and retrieval configuration (mcon_library_info), as ``Library.info`` returns it."""
+
     entry_count: int
     descriptor: RetrievalDescriptor
     descriptor_dimension: int
@@ -104,6 +112,12 @@ class LibraryInfo:
 
 @dataclass(frozen=True)
 class EntryInfo:
+    """Sizes and placement of one library entry (mcon_library_entry_info), as ``Entry.info`` holds it.
+
+    ``center_face`` / ``center_barycentric``: the patch center on the entry's mesh;
+    ``source_scale`` / ``source_origin``: where it sat in its source (host = origin + scale * p).
+    """
+
     id: int
     vertex_count: int
     triangle_count: int
@@ -159,6 +173,7 @@ class Entry:
 
     @property
     def id(self) -> int:
+        """The entry's id (unique in its library, kept by save/open; see ``Library.find``)."""
         return self.info.id
 
     def _string(self, which: int, item: int = 0) -> str:
@@ -171,38 +186,46 @@ class Entry:
 
     @property
     def name(self) -> str:
+        """The entry's name ('' if none; names need not be unique)."""
         return self._string(1)
 
     @property
     def class_label(self) -> str:
+        """Its class label; ``query_distinct`` counts entries of one class once (side suffix ignored)."""
         return self._string(2)
 
     @property
     def author(self) -> str:
+        """Who made the entry ('' if not given)."""
         return self._string(3)
 
     @property
     def licence(self) -> str:
+        """Its licence, e.g. an SPDX id ('' if not given)."""
         return self._string(4)
 
     @property
     def tags(self) -> List[str]:
+        """Its tags, in the order they were added."""
         return [self._string(5, i) for i in range(self.info.tag_count)]
 
     @property
     def positions(self) -> np.ndarray:
+        """(vertex_count, 3) float64 normalized positions of the entry's patch."""
         out = np.empty((self.info.vertex_count, 3), np.float64)
         check(_native.lib.mcon_library_get_entry_positions(self.library.handle, self.index, ptr(out), out.size))
         return out
 
     @property
     def triangles(self) -> np.ndarray:
+        """(triangle_count, 3) uint32 vertex indices of the entry's patch."""
         out = np.empty((self.info.triangle_count, 3), np.uint32)
         check(_native.lib.mcon_library_get_entry_triangles(self.library.handle, self.index, ptr(out), out.size))
         return out
 
     @property
     def polylines(self) -> List[Polyline]:
+        """The guide and feature polylines stored with the entry (points on its patch)."""
         result = []
         for i in range(self.info.polyline_count):
             kind, closed, n = ctypes.c_uint32(), ctypes.c_uint32(), _native.c_size()
@@ -217,12 +240,14 @@ class Entry:
 
     @property
     def singularities(self) -> Singularities:
+        """The cross-field singularities stored with the entry."""
         rec = np.zeros(self.info.singularity_count, SINGULARITY)
         check(_native.lib.mcon_library_get_entry_singularities(self.library.handle, self.index, ptr(rec), rec.size))
         return Singularities(rec["location"]["face"].copy(), rec["location"]["barycentric"].copy(),
                              rec["index_quarters"].copy())
 
     def field(self, number: int) -> Field:
+        """Field ``number`` (0-based, < ``info.field_count``) with its name, kind and values."""
         kind, dim = ctypes.c_uint32(), ctypes.c_uint32()
         h = self.library.handle
         check(_native.lib.mcon_library_get_entry_field(h, self.index, number, ctypes.byref(kind), ctypes.byref(dim),
@@ -235,6 +260,7 @@ class Entry:
 
     @property
     def fields(self) -> Dict[str, Field]:
+        """Every field of the entry, by name."""
         return {f.name: f for f in (self.field(i) for i in range(self.info.field_count))}
 
     @property
@@ -271,10 +297,11 @@ class Library(_Handle):
 
     @classmethod
     def open(cls, context: Context, path: Union[str, os.PathLike]) -> "Library":
-        """Validates and opens a library file (IO, InvalidLibrary, Unsupported errors)."""
+        """Validates and opens a library file: FileNotFoundError (a :class:`FileNotFoundError_`
+        naming the path) if there is none, else IOError_, InvalidLibraryError, UnsupportedError."""
         require_type(context, Context, "context")
         handle = ctypes.c_void_p()
-        check(_native.lib.mcon_library_open(context.handle, os.fsencode(path), ctypes.byref(handle)))
+        check_path(_native.lib.mcon_library_open(context.handle, os.fsencode(path), ctypes.byref(handle)), path)
         return cls(context, handle)
 
     @classmethod
@@ -289,10 +316,12 @@ class Library(_Handle):
         return cls(context, handle)
 
     def save(self, path: Union[str, os.PathLike]) -> None:
-        """Writes atomically: on failure the previous file at ``path`` is untouched."""
-        check(_native.lib.mcon_library_save(self.handle, os.fsencode(path)))
+        """Writes atomically: on failure the previous file at ``path`` is untouched. A folder that
+        does not exist is a FileNotFoundError naming it."""
+        check_path(_native.lib.mcon_library_save(self.handle, os.fsencode(path)), path, writing=True)
 
     def to_bytes(self) -> bytes:
+        """The library file's bytes (what ``save`` writes; ``open_memory`` reads them back)."""
         size = _native.c_size()
         check(_native.lib.mcon_library_save_memory(self.handle, None, 0, ctypes.byref(size)))
         buf = ctypes.create_string_buffer(size.value)
@@ -301,6 +330,7 @@ class Library(_Handle):
 
     @property
     def info(self) -> LibraryInfo:
+        """A :class:`LibraryInfo` (frozen dataclass): entry count and retrieval configuration."""
         i = _native.LibraryInfo()
         check(_native.lib.mcon_library_info_init(ctypes.byref(i)))
         check(_native.lib.mcon_library_get_info(self.handle, ctypes.byref(i)))
@@ -390,11 +420,46 @@ class Library(_Handle):
         """Removes the entry with this id (NotFoundError if none); later indices shift down."""
         check(_native.lib.mcon_library_remove_entry(self.handle, int(id)))
 
-    def find(self, id: int) -> int:
-        """The index of the entry with this id (NotFoundError if none)."""
+    def find(self, id: Union[int, str, None] = None, *, name: Optional[str] = None) -> int:
+        """The index of the entry with this id (an int, as before) or this name (a str, or
+        ``name=``). NotFoundError (a KeyError) naming the id or the name if there is none; a name
+        that several entries carry is a NotFoundError too, listing their ids (use the id)."""
+        if name is not None:
+            if id is not None:
+                raise TypeError("give the entry's id or its name, not both")
+            return self._find_name(name)
+        if isinstance(id, str):
+            return self._find_name(id)
+        if id is None or isinstance(id, bool):
+            raise TypeError(f"find takes an entry id (int) or name (str), got {type(id).__name__}")
         index = _native.c_size()
-        check(_native.lib.mcon_library_find_entry(self.handle, int(id), ctypes.byref(index)))
+        check(_native.lib.mcon_library_find_entry(self.handle, operator.index(id), ctypes.byref(index)))
         return index.value
+
+    def _find_name(self, name: str) -> int:
+        if not isinstance(name, str):
+            raise TypeError(f"name must be a str, got {type(name).__name__}")
+        matches = [i for i in range(len(self)) if Entry(self, i).name == name]
+        if len(matches) == 1:
+            return matches[0]
+        if not matches:
+            raise NotFoundError(32, f"no entry is named {name!r} ({len(self)} entries)")
+        ids = ", ".join(str(self._entry_info(i).id) for i in matches)
+        raise NotFoundError(32, f"{len(matches)} entries are named {name!r} (ids {ids}): find or entry by id")
+
+    def _index(self, index) -> int:
+        """``index`` (negative counts from the end) checked against the entry count."""
+        if isinstance(index, bool):
+            raise TypeError("an entry index must be an int, got bool")
+        try:
+            i = operator.index(index)
+        except TypeError:
+            raise TypeError(f"an entry index must be an int (or a name: str), got {type(index).__name__}") from None
+        n = len(self)
+        if not -n <= i < n:
+            valid = "the library is empty" if n == 0 else f"valid: 0..{n - 1}, or -{n}..-1 from the end"
+            raise EntryIndexError(2, f"entry index {i} is out of range ({n} entries; {valid})")
+        return i + n if i < 0 else i
 
     def merge(self, other: "Library") -> None:
         """Appends copies of ``other``'s entries (taken ids are renumbered)."""
@@ -475,15 +540,30 @@ class Library(_Handle):
                          i.field_count, i.center.face, tuple(i.center.barycentric), i.source_scale,
                          tuple(i.source_origin))
 
-    def entry(self, index: int) -> Entry:
-        if index < 0:
-            index += len(self)
-        return Entry(self, index)
+    def entry(self, index: Union[int, str, None] = None, *, id: Optional[int] = None,
+              name: Optional[str] = None) -> Entry:
+        """The :class:`Entry` at ``index`` (0-based; negative counts from the end), or with this
+        name (a str, or ``name=``), or with this id (``id=``). Give exactly one. An index outside
+        the library is an :class:`EntryIndexError` (an IndexError) giving the valid range; an
+        unknown name or id a NotFoundError (a KeyError) naming it (see ``find``). ``lib[key]`` is
+        the same as ``lib.entry(key)``."""
+        given = [k for k, v in (("index", index), ("id", id), ("name", name)) if v is not None]
+        if len(given) != 1:
+            raise TypeError("give exactly one of an index, id= or name=" + (f" (got {', '.join(given)})" if given else ""))
+        if id is not None:
+            return Entry(self, self.find(id))
+        if name is not None or isinstance(index, str):
+            return Entry(self, self._find_name(name if name is not None else index))
+        return Entry(self, self._index(index))
 
     __getitem__ = entry
 
     def __iter__(self) -> Iterator[Entry]:
         return (Entry(self, i) for i in range(len(self)))
+
+    def _repr_fields(self) -> str:
+        i = self.info
+        return f"entries={i.entry_count} descriptor={i.descriptor.name} vocabulary={i.vocabulary_size}"
 
 
 __all__ = ["Library", "Entry", "EntryInfo", "LibraryInfo", "QueryResult", "Polyline", "Singularities", "Field",

@@ -16,6 +16,8 @@ from .library import FieldKind, Polyline
 
 
 class StopReason(IntEnum):
+    """Why the map optimization stopped (``MapInfo.stop_reason``)."""
+
     CONVERGED = 1
     STALLED = 2
     ITERATION_CAP = 3
@@ -23,6 +25,8 @@ class StopReason(IntEnum):
 
 
 class Direction(IntEnum):
+    """Which patch's vertices ``Map.correspondences`` locates on the other."""
+
     SOURCE_TO_TARGET = 1
     TARGET_TO_SOURCE = 2
 
@@ -40,6 +44,9 @@ _ORIENTATIONS = {"automatic": Orientation.AUTOMATIC, "preserve": Orientation.PRE
 
 @dataclass(frozen=True)
 class MapInfo:
+    """What computing a map measured (mcon_map_info), as ``Map.info`` returns it: overlap, energies,
+    iterations and why it stopped, the orientation decision and its evidence, timings."""
+
     source_vertex_count: int
     target_vertex_count: int
     source_vertices_inside: int
@@ -91,6 +98,10 @@ class PolylineSet(_Handle):
         sizes, closed, source = np.zeros(n, np.uint32), np.zeros(n, np.uint8), np.zeros(n, np.uint32)
         check(_native.lib.mcon_polyline_set_get_polylines(self.handle, ptr(sizes), ptr(closed), ptr(source), n))
         return sizes, closed.astype(bool), source
+
+    def _repr_fields(self) -> str:
+        n, p = self.counts
+        return f"polylines={n} points={p}"
 
     def point_arrays(self) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(triangles (p,) uint32, barycentric (p, 3), xyz (p, 3) in the target's host units)."""
@@ -239,8 +250,15 @@ class Map(_Handle):
         cb.check(_native.lib.mcon_map_compute(source.handle, target.handle, ctypes.byref(o), ctypes.byref(handle)))
         return cls(handle, source, target)
 
+    def _repr_fields(self) -> str:
+        i = self.info
+        return (f"source_vertices={i.source_vertex_count} target_vertices={i.target_vertex_count} "
+                f"overlap={i.overlap_ratio:.3g} iterations={i.iterations} stop={i.stop_reason.name} "
+                f"reflected={i.reflected}")
+
     @property
     def info(self) -> MapInfo:
+        """A :class:`MapInfo` (frozen dataclass) of the computed map."""
         i = _native.MapInfo()
         check(_native.lib.mcon_map_info_init(ctypes.byref(i)))
         check(_native.lib.mcon_map_get_info(self.handle, ctypes.byref(i)))
