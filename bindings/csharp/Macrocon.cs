@@ -1022,7 +1022,7 @@ namespace Macrocon
             return (d, c);
         }
 
-        /// <summary>Writes a QuadWild .rosy file (a .gz path is compressed); 3 doubles per triangle. A
+        /// <summary>Writes a QuadWild .rosy file (a .gz path is refused: QuadWild reads it as zeros); 3 doubles per triangle. A
         /// folder that does not exist is a System.IO.DirectoryNotFoundException naming it.</summary>
         public unsafe void WriteRosy(ReadOnlySpan<double> directions, string path)
         {

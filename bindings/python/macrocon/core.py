@@ -495,7 +495,9 @@ class Patch(_Handle):
         return directions, confidence
 
     def write_rosy(self, directions, path) -> None:
-        """Writes a QuadWild ``.rosy`` file (``.gz`` compresses); directions (triangle_count, 3) float64."""
+        """Writes a QuadWild ``.rosy`` file; directions (triangle_count, 3) float64.
+
+        A ``.gz`` path is refused (QuadWild reads a compressed ``.rosy`` as zeros)."""
         import os
 
         d = _as_array("directions", directions, (np.float64,), 3)
