@@ -814,6 +814,72 @@ MCON_API mcon_status mcon_patch_compute_cross_field(mcon_patch patch, mcon_polyl
 MCON_API mcon_status mcon_patch_write_rosy(mcon_patch patch, const double* directions, size_t triangle_count,
                                            const char* path);
 
+/* Guides cut into a patch: a new mesh of the patch's surface in which every guide is a chain of
+ * edges, what a quad mesher's feature edges need (QuadWild `.sharp`; docs/design.md §15). */
+typedef struct mcon_cut_mesh_t* mcon_cut_mesh;
+
+typedef struct mcon_guide_cut_options {
+  uint32_t struct_size;
+  /* Crossings closer than this fraction of their edge to a vertex snap to it, and crossings of
+   * one edge closer than that merge; default 0.25, in [0, 0.45]. */
+  double snap_fraction;
+  /* Guide points inside a triangle closer than this fraction of an edge to their chord are
+   * dropped; default 0.05, in [0, 1]. */
+  double simplify_fraction;
+} mcon_guide_cut_options;
+
+MCON_API mcon_status mcon_guide_cut_options_init(mcon_guide_cut_options* options);
+
+typedef struct mcon_cut_mesh_info {
+  uint32_t struct_size;
+  size_t vertex_count;
+  size_t triangle_count;
+  size_t guide_count;            /* one chain per polyline of the set (empty if it collapsed) */
+  size_t guide_vertex_count;     /* all chains' vertices together */
+  size_t guide_edge_count;       /* distinct guide edges */
+  size_t cut_triangle_count;     /* patch triangles that were retriangulated */
+  double min_angle_created;      /* degrees: the smallest angle of a triangle the cut made or moved */
+  double min_angle_of_cut_input; /* degrees: the smallest angle of the patch triangles it cut */
+  uint32_t snapped_to_vertices;  /* crossings moved onto a patch vertex */
+  uint32_t merged_crossings;     /* crossings merged with another of the same edge */
+  uint32_t dropped_points;       /* guide points dropped as adding no shape */
+  uint32_t shortcuts;            /* steps through a snapped vertex replaced by the edge across */
+  uint32_t moved_vertices;       /* snapped patch vertices moved onto their guide */
+} mcon_cut_mesh_info;
+
+MCON_API mcon_status mcon_cut_mesh_info_init(mcon_cut_mesh_info* info);
+/* Cuts `guides` (polylines transferred onto `patch`) into the patch. `options` may be NULL.
+ * INVALID_ARGUMENT if the guides lie on another patch. The cut mesh keeps a reference on the patch. */
+MCON_API mcon_status mcon_patch_cut_guides(mcon_patch patch, mcon_polyline_set guides,
+                                           const mcon_guide_cut_options* options, mcon_cut_mesh* out_cut);
+MCON_API mcon_status mcon_cut_mesh_retain(mcon_cut_mesh cut);
+MCON_API mcon_status mcon_cut_mesh_release(mcon_cut_mesh cut);
+MCON_API mcon_status mcon_cut_mesh_get_info(mcon_cut_mesh cut, mcon_cut_mesh_info* info);
+/* Vertex positions in the patch's host units (3 doubles each); capacity in doubles. */
+MCON_API mcon_status mcon_cut_mesh_get_positions(mcon_cut_mesh cut, double* out_xyz, size_t capacity);
+/* Triangles (3 indices each, the patch's winding); capacity in indices. */
+MCON_API mcon_status mcon_cut_mesh_get_triangles(mcon_cut_mesh cut, uint32_t* out_indices, size_t capacity);
+/* Per vertex its point on the patch: patch triangle and 3 weights. Either may be NULL; capacity in vertices. */
+MCON_API mcon_status mcon_cut_mesh_get_host_points(mcon_cut_mesh cut, uint32_t* out_patch_triangles,
+                                                   double* out_barycentric, size_t capacity);
+/* The distinct guide edges as vertex pairs (2 indices each); capacity in indices. */
+MCON_API mcon_status mcon_cut_mesh_get_guide_edges(mcon_cut_mesh cut, uint32_t* out_edges, size_t capacity);
+/* Per guide its chain length (capacity in guides) and the chains' vertices one after the other
+ * (capacity in vertices; a closed guide repeats its first vertex at its end). Either may be NULL. */
+MCON_API mcon_status mcon_cut_mesh_get_guides(mcon_cut_mesh cut, uint32_t* out_sizes, size_t size_capacity,
+                                              uint32_t* out_vertices, size_t vertex_capacity);
+/* A per-vertex field of the patch (patch vertices x dimension doubles) at the cut mesh's vertices,
+ * interpolated at their host points; counts and capacity in doubles. */
+MCON_API mcon_status mcon_cut_mesh_carry_field(mcon_cut_mesh cut, uint32_t dimension, const double* patch_values,
+                                               size_t value_count, double* out_values, size_t capacity);
+/* A per-face 4-RoSy cross field on the cut mesh that lies exactly along the guide edges on their
+ * faces and is smooth elsewhere (3 doubles per triangle); capacity in triangles. */
+MCON_API mcon_status mcon_cut_mesh_compute_cross_field(mcon_cut_mesh cut, double* out_directions, size_t capacity);
+/* Writes QuadWild's inputs side by side: `<path_prefix>.obj` (host units, exact doubles),
+ * `<path_prefix>.rosy` (mcon_cut_mesh_compute_cross_field) and `<path_prefix>.sharp` (the guide
+ * edges; convex/concave from the dihedral angle). IO on failure. */
+MCON_API mcon_status mcon_cut_mesh_write_quadwild(mcon_cut_mesh cut, const char* path_prefix);
+
 /* @@map-api@@ (insertion point; keep this line) */
 
 #ifdef __cplusplus

@@ -1,0 +1,219 @@
+// Guides cut into a patch (transfer/guide_cutting.h) and QuadWild's inputs written from the result
+// (docs/design.md §15).
+#include <cmath>
+#include <cstddef>
+#include <memory>
+
+#include "capi/capi_map_handles.h"
+#include "io/mesh_io.h"
+#include "transfer/cross_field.h"
+#include "transfer/guide_cutting.h"
+
+using namespace mcon;
+using namespace mcon::capi;
+
+struct mcon_cut_mesh_t {
+  static constexpr std::uint32_t kMagic = 0x4d43435a;  // "MCCZ"
+  mcon::capi::HandleHeader header{kMagic};
+  mcon_context context = nullptr;  // the patch's (not retained: the patch holds it)
+  mcon_patch patch = nullptr;      // retained
+  mcon::CutMesh cut;               // in the patch's normalized coordinates
+  ~mcon_cut_mesh_t() { release_owned(patch); }
+};
+
+namespace {
+
+mcon_guide_cut_options default_cut_options() {
+  auto o = zeroed_struct<mcon_guide_cut_options>();
+  const GuideCutOptions core;
+  o.snap_fraction = core.snap_fraction;
+  o.simplify_fraction = core.simplify_fraction;
+  return o;
+}
+
+Vec3 to_host(const Patch& p, const Vec3& x) { return p.center_position + p.radius * x; }
+
+TriMesh host_units(const mcon_cut_mesh_t& c) {
+  TriMesh m = c.cut.mesh;
+  for (Vec3& x : m.positions) x = to_host(c.patch->patch, x);
+  return m;
+}
+
+CrossField guide_field(const mcon_cut_mesh_t& c) {
+  const TriMesh& mesh = c.cut.mesh;
+  CrossField field = run_in_arena(c.context, [&] {
+    return compute_cross_field(mesh, constraints_from_edges(mesh, c.cut.guide_edges));
+  });
+  align_field_to_edges(mesh, c.cut.guide_edges, field);
+  return field;
+}
+
+}  // namespace
+
+extern "C" {
+
+mcon_status mcon_guide_cut_options_init(mcon_guide_cut_options* options) {
+  return init_struct("mcon_guide_cut_options_init", options, "options", default_cut_options());
+}
+
+mcon_status mcon_cut_mesh_info_init(mcon_cut_mesh_info* info) {
+  return init_struct("mcon_cut_mesh_info_init", info, "info", zeroed_struct<mcon_cut_mesh_info>());
+}
+
+mcon_status mcon_patch_cut_guides(mcon_patch patch, mcon_polyline_set guides, const mcon_guide_cut_options* options,
+                                  mcon_cut_mesh* out_cut) {
+  return guard_create("mcon_patch_cut_guides", out_cut, "out_cut", patch, "patch", [&] {
+    check_handle(guides, "polyline set");
+    require(guides->patch == patch, MCON_ERROR_INVALID_ARGUMENT,
+            "the guides lie on another patch (use polylines transferred onto this patch)");
+    const auto o = read_options(options, sizeof(mcon_guide_cut_options), "mcon_guide_cut_options",
+                                default_cut_options());
+    require(std::isfinite(o.snap_fraction) && std::isfinite(o.simplify_fraction), MCON_ERROR_NON_FINITE,
+            "snap_fraction and simplify_fraction must be finite");
+    GuideCutOptions co;
+    co.snap_fraction = o.snap_fraction;
+    co.simplify_fraction = o.simplify_fraction;
+    std::vector<std::vector<SurfacePoint>> lines;
+    std::vector<bool> closed;
+    for (const TracedPolyline& p : guides->polylines) {
+      lines.push_back(p.points);
+      closed.push_back(p.closed);
+    }
+    auto cut = std::make_unique<mcon_cut_mesh_t>();
+    cut->cut = run_in_arena(patch->context, [&] { return cut_guides_into_mesh(patch->patch.mesh, lines, closed, co); });
+    retain_owned(patch);
+    cut->patch = patch;
+    cut->context = patch->context;
+    *out_cut = cut.release();
+  });
+}
+
+mcon_status mcon_cut_mesh_retain(mcon_cut_mesh cut) {
+  return guard("mcon_cut_mesh_retain", [&] { retain(cut, "cut mesh"); });
+}
+
+mcon_status mcon_cut_mesh_release(mcon_cut_mesh cut) {
+  return guard("mcon_cut_mesh_release", [&] { release(cut, "cut mesh"); });
+}
+
+mcon_status mcon_cut_mesh_get_info(mcon_cut_mesh cut, mcon_cut_mesh_info* info) {
+  return guard_object("mcon_cut_mesh_get_info", cut, "cut mesh", [&] {
+    const CutMesh& c = cut->cut;
+    auto v = zeroed_struct<mcon_cut_mesh_info>();
+    v.vertex_count = c.mesh.positions.size();
+    v.triangle_count = c.mesh.triangles.size();
+    v.guide_count = c.guides.size();
+    for (const auto& g : c.guides) v.guide_vertex_count += g.size();
+    v.guide_edge_count = c.guide_edges.size();
+    v.cut_triangle_count = static_cast<std::size_t>(c.input_triangles_cut);
+    v.min_angle_created = c.min_angle_created;
+    v.min_angle_of_cut_input = c.min_angle_of_cut_input;
+    v.snapped_to_vertices = static_cast<std::uint32_t>(c.snapped_to_vertices);
+    v.merged_crossings = static_cast<std::uint32_t>(c.merged_crossings);
+    v.dropped_points = static_cast<std::uint32_t>(c.dropped_points);
+    v.shortcuts = static_cast<std::uint32_t>(c.shortcuts);
+    v.moved_vertices = static_cast<std::uint32_t>(c.moved_vertices);
+    write_info(info, sizeof(mcon_cut_mesh_info), "mcon_cut_mesh_info", v);
+  });
+}
+
+mcon_status mcon_cut_mesh_get_positions(mcon_cut_mesh cut, double* out_xyz, size_t capacity) {
+  return guard_object("mcon_cut_mesh_get_positions", cut, "cut mesh", [&] {
+    write_rows<3>(host_units(*cut).positions, out_xyz, capacity, "out_xyz", "out_xyz (capacity in doubles)");
+  });
+}
+
+mcon_status mcon_cut_mesh_get_triangles(mcon_cut_mesh cut, uint32_t* out_indices, size_t capacity) {
+  return guard_object("mcon_cut_mesh_get_triangles", cut, "cut mesh", [&] {
+    write_rows<3>(cut->cut.mesh.triangles, out_indices, capacity, "out_indices", "out_indices (capacity in indices)");
+  });
+}
+
+mcon_status mcon_cut_mesh_get_host_points(mcon_cut_mesh cut, uint32_t* out_patch_triangles, double* out_barycentric,
+                                          size_t capacity) {
+  return guard_object("mcon_cut_mesh_get_host_points", cut, "cut mesh", [&] {
+    if (out_patch_triangles == nullptr && out_barycentric == nullptr) return;
+    const auto& host = cut->cut.host;
+    require_capacity(capacity, host.size(), "host point arrays (capacity in vertices)");
+    for (std::size_t v = 0; v < host.size(); ++v) {
+      if (out_patch_triangles) out_patch_triangles[v] = static_cast<uint32_t>(host[v].triangle);
+      if (out_barycentric)
+        for (int k = 0; k < 3; ++k) out_barycentric[3 * v + k] = host[v].barycentric[k];
+    }
+  });
+}
+
+mcon_status mcon_cut_mesh_get_guide_edges(mcon_cut_mesh cut, uint32_t* out_edges, size_t capacity) {
+  return guard_object("mcon_cut_mesh_get_guide_edges", cut, "cut mesh", [&] {
+    write_rows<2>(cut->cut.guide_edges, out_edges, capacity, "out_edges", "out_edges (capacity in indices)");
+  });
+}
+
+mcon_status mcon_cut_mesh_get_guides(mcon_cut_mesh cut, uint32_t* out_sizes, size_t size_capacity,
+                                     uint32_t* out_vertices, size_t vertex_capacity) {
+  return guard_object("mcon_cut_mesh_get_guides", cut, "cut mesh", [&] {
+    const auto& guides = cut->cut.guides;
+    if (out_sizes) {
+      require_capacity(size_capacity, guides.size(), "out_sizes (capacity in guides)");
+      for (std::size_t g = 0; g < guides.size(); ++g) out_sizes[g] = static_cast<uint32_t>(guides[g].size());
+    }
+    if (out_vertices) {
+      std::size_t total = 0;
+      for (const auto& g : guides) total += g.size();
+      require_capacity(vertex_capacity, total, "out_vertices (capacity in vertices)");
+      std::size_t i = 0;
+      for (const auto& g : guides)
+        for (int v : g) out_vertices[i++] = static_cast<uint32_t>(v);
+    }
+  });
+}
+
+mcon_status mcon_cut_mesh_carry_field(mcon_cut_mesh cut, uint32_t dimension, const double* patch_values,
+                                      size_t value_count, double* out_values, size_t capacity) {
+  return guard_object("mcon_cut_mesh_carry_field", cut, "cut mesh", [&] {
+    require(dimension >= 1 && dimension <= 65536u, MCON_ERROR_INVALID_ARGUMENT,
+            "dimension must be in [1, 65536] (got " + std::to_string(dimension) + ")");
+    require_pointer(patch_values, "patch_values");
+    require_pointer(out_values, "out_values");
+    const TriMesh& patch_mesh = cut->patch->patch.mesh;
+    const std::size_t n = patch_mesh.positions.size();
+    require(value_count == n * dimension, MCON_ERROR_INVALID_ARGUMENT,
+            "value_count is " + std::to_string(value_count) + ", expected patch vertices x dimension = " +
+                std::to_string(n * dimension));
+    require_capacity(capacity, cut->cut.host.size() * dimension, "out_values (capacity in doubles)");
+    Eigen::MatrixXd values(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(dimension));
+    for (std::size_t i = 0; i < value_count; ++i) {
+      require(std::isfinite(patch_values[i]), MCON_ERROR_NON_FINITE,
+              "patch_values[" + std::to_string(i) + "] is not finite");
+      values(static_cast<Eigen::Index>(i / dimension), static_cast<Eigen::Index>(i % dimension)) = patch_values[i];
+    }
+    const Eigen::MatrixXd out = carry_vertex_values(cut->cut, patch_mesh, values);
+    for (Eigen::Index v = 0; v < out.rows(); ++v)
+      for (Eigen::Index k = 0; k < out.cols(); ++k) out_values[static_cast<std::size_t>(v) * dimension + k] = out(v, k);
+  });
+}
+
+mcon_status mcon_cut_mesh_compute_cross_field(mcon_cut_mesh cut, double* out_directions, size_t capacity) {
+  return guard_object("mcon_cut_mesh_compute_cross_field", cut, "cut mesh", [&] {
+    require_pointer(out_directions, "out_directions");
+    require_capacity(capacity, cut->cut.mesh.triangles.size(), "out_directions (capacity in triangles)");
+    const CrossField field = guide_field(*cut);
+    for (std::size_t t = 0; t < field.directions.size(); ++t)
+      for (int k = 0; k < 3; ++k) out_directions[3 * t + k] = field.directions[t][k];
+  });
+}
+
+mcon_status mcon_cut_mesh_write_quadwild(mcon_cut_mesh cut, const char* path_prefix) {
+  return guard_object("mcon_cut_mesh_write_quadwild", cut, "cut mesh", [&] {
+    require_pointer(path_prefix, "path_prefix");
+    const std::string prefix = path_prefix;
+    require(!prefix.empty(), MCON_ERROR_INVALID_ARGUMENT, "path_prefix is empty");
+    const TriMesh mesh = host_units(*cut);
+    const CrossField field = guide_field(*cut);
+    io::write_obj(prefix + ".obj", mesh);
+    io::write_rosy(prefix + ".rosy", mesh, field.directions);
+    io::write_sharp(prefix + ".sharp", mesh, cut->cut.guide_edges);
+  });
+}
+
+}  // extern "C"

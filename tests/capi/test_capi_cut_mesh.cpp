@@ -1,0 +1,258 @@
+// mcon_patch_cut_guides and the cut mesh's accessors, on a map of the bundled body's nose: the
+// guides become chains of the cut mesh's edges, fields are carried, QuadWild's three files agree,
+// and bad arguments are refused by name.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include "map_test_util.h"
+
+using namespace map_test;
+
+namespace {
+
+struct CutDeleter {
+  void operator()(mcon_cut_mesh c) const { mcon_cut_mesh_release(c); }
+};
+using CutPtr = std::unique_ptr<mcon_cut_mesh_t, CutDeleter>;
+
+struct CutSetup {
+  ContextPtr ctx;
+  MeshPtr mesh;
+  PatchPtr source, target;
+  MapPtr map;
+  PatchArrays s, t;
+  PolylineSetPtr guides;
+};
+
+CutSetup& setup() {
+  static CutSetup* st = [] {
+    auto* x = new CutSetup;
+    x->ctx = make_context();
+    x->mesh = make_mesh(x->ctx.get(), body().arrays);
+    x->source = extract(x->mesh.get(), 297, 0.45);
+    x->target = extract(x->mesh.get(), 297, 0.55);
+    x->map = compute(x->source.get(), x->target.get(), fast_options());
+    x->s = arrays_of_patch(x->source.get());
+    x->t = arrays_of_patch(x->target.get());
+    // A closed loop and a line across it, in the source's uv.
+    std::vector<uint32_t> tri;
+    std::vector<double> bary;
+    auto add = [&](double u, double v) {
+      uint32_t t = 0;
+      double b[3];
+      EXPECT_TRUE(locate_uv(x->s, u, v, t, b));
+      tri.push_back(t);
+      bary.insert(bary.end(), b, b + 3);
+    };
+    for (int i = 0; i < 30; ++i) add(0.4 * std::cos(2 * 3.141592653589793 * i / 30), 0.4 * std::sin(2 * 3.141592653589793 * i / 30));
+    add(-0.6, -0.05);
+    add(0.6, 0.08);
+    const std::vector<uint32_t> sizes = {30, 2};
+    const std::vector<uint8_t> closed = {1, 0};
+    mcon_polyline_set set = nullptr;
+    EXPECT_EQ(mcon_map_transfer_polylines(x->map.get(), tri.data(), bary.data(), tri.size(), sizes.data(),
+                                          closed.data(), sizes.size(), &set),
+              MCON_OK)
+        << last_message();
+    x->guides.reset(set);
+    return x;
+  }();
+  return *st;
+}
+
+CutPtr cut_of(CutSetup& x, const mcon_guide_cut_options* o = nullptr) {
+  mcon_cut_mesh c = nullptr;
+  EXPECT_EQ(mcon_patch_cut_guides(x.target.get(), x.guides.get(), o, &c), MCON_OK) << last_message();
+  return CutPtr(c);
+}
+
+mcon_cut_mesh_info info_of(mcon_cut_mesh c) {
+  mcon_cut_mesh_info info;
+  EXPECT_EQ(mcon_cut_mesh_info_init(&info), MCON_OK);
+  EXPECT_EQ(mcon_cut_mesh_get_info(c, &info), MCON_OK) << last_message();
+  return info;
+}
+
+std::set<std::pair<uint32_t, uint32_t>> edges_of(const std::vector<uint32_t>& tri) {
+  std::set<std::pair<uint32_t, uint32_t>> e;
+  for (size_t f = 0; f < tri.size() / 3; ++f)
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t a = tri[3 * f + k], b = tri[3 * f + (k + 1) % 3];
+      e.insert({std::min(a, b), std::max(a, b)});
+    }
+  return e;
+}
+
+}  // namespace
+
+TEST(CapiCutMesh, GuidesAreEdgeChainsOfTheCutMesh) {
+  CutSetup& x = setup();
+  const CutPtr cut = cut_of(x);
+  const mcon_cut_mesh_info info = info_of(cut.get());
+  std::printf("cut: %zu vertices, %zu triangles (patch %zu), %zu guide edges, smallest angle made %.1f "
+              "(cut patch triangles %.1f), %u moved\n",
+              info.vertex_count, info.triangle_count, x.t.nt(), info.guide_edge_count, info.min_angle_created,
+              info.min_angle_of_cut_input, info.moved_vertices);
+  EXPECT_GT(info.triangle_count, x.t.nt());
+  EXPECT_GT(info.guide_edge_count, 20u);
+  EXPECT_GE(info.guide_count, 2u);
+  EXPECT_GT(info.min_angle_created, 1.0);
+
+  std::vector<double> xyz(3 * info.vertex_count);
+  std::vector<uint32_t> tri(3 * info.triangle_count), host_tri(info.vertex_count);
+  std::vector<double> host_bary(3 * info.vertex_count);
+  ASSERT_EQ(mcon_cut_mesh_get_positions(cut.get(), xyz.data(), xyz.size()), MCON_OK);
+  ASSERT_EQ(mcon_cut_mesh_get_triangles(cut.get(), tri.data(), tri.size()), MCON_OK);
+  ASSERT_EQ(mcon_cut_mesh_get_host_points(cut.get(), host_tri.data(), host_bary.data(), info.vertex_count), MCON_OK);
+  // Each vertex is at its host point on the patch (host units).
+  for (size_t v = 0; v < info.vertex_count; ++v)
+    for (int k = 0; k < 3; ++k) {
+      double p = 0;
+      for (int c = 0; c < 3; ++c) p += host_bary[3 * v + c] * x.t.xyz[3 * x.t.tri[3 * host_tri[v] + c] + k];
+      // Patch positions are normalized (host = center + radius * p); the cut mesh's are in host units.
+      ASSERT_NEAR(x.t.info.center[k] + x.t.info.radius * p, xyz[3 * v + k], 1e-9) << v;
+    }
+  // Chains of mesh edges; the guide edges are exactly the chains' steps.
+  std::vector<uint32_t> sizes(info.guide_count), chain(info.guide_vertex_count), edges(2 * info.guide_edge_count);
+  ASSERT_EQ(mcon_cut_mesh_get_guides(cut.get(), sizes.data(), sizes.size(), chain.data(), chain.size()), MCON_OK);
+  ASSERT_EQ(mcon_cut_mesh_get_guide_edges(cut.get(), edges.data(), edges.size()), MCON_OK);
+  const auto mesh_edges = edges_of(tri);
+  std::set<std::pair<uint32_t, uint32_t>> steps;
+  size_t at = 0;
+  for (uint32_t n : sizes) {
+    for (uint32_t k = 0; k + 1 < n; ++k) {
+      const uint32_t a = chain[at + k], b = chain[at + k + 1];
+      steps.insert({std::min(a, b), std::max(a, b)});
+      EXPECT_TRUE(mesh_edges.count({std::min(a, b), std::max(a, b)}));
+    }
+    at += n;
+  }
+  std::set<std::pair<uint32_t, uint32_t>> listed;
+  for (size_t e = 0; e < info.guide_edge_count; ++e) listed.insert({edges[2 * e], edges[2 * e + 1]});
+  EXPECT_EQ(listed, steps);
+
+  // A field of the patch, carried: the x coordinate lands on the cut vertices' x.
+  std::vector<double> field(x.t.nv()), carried(info.vertex_count);
+  for (size_t v = 0; v < x.t.nv(); ++v) field[v] = x.t.info.center[0] + x.t.info.radius * x.t.xyz[3 * v];
+  ASSERT_EQ(mcon_cut_mesh_carry_field(cut.get(), 1, field.data(), field.size(), carried.data(), carried.size()), MCON_OK);
+  for (size_t v = 0; v < info.vertex_count; ++v) EXPECT_NEAR(carried[v], xyz[3 * v], 1e-9);
+
+  // The cross field runs exactly along the guide edges on their faces.
+  std::vector<double> dir(3 * info.triangle_count);
+  ASSERT_EQ(mcon_cut_mesh_compute_cross_field(cut.get(), dir.data(), info.triangle_count), MCON_OK);
+  size_t along = 0;
+  for (const auto& e : listed) {
+    double d[3], len = 0;
+    for (int k = 0; k < 3; ++k) {
+      d[k] = xyz[3 * e.second + k] - xyz[3 * e.first + k];
+      len += d[k] * d[k];
+    }
+    len = std::sqrt(len);
+    for (size_t f = 0; f < info.triangle_count; ++f) {
+      int hits = 0;
+      for (int k = 0; k < 3; ++k) hits += tri[3 * f + k] == e.first || tri[3 * f + k] == e.second;
+      if (hits < 2) continue;
+      const double c = std::abs(d[0] * dir[3 * f] + d[1] * dir[3 * f + 1] + d[2] * dir[3 * f + 2]) / len;
+      if (c > 1 - 1e-9) {
+        ++along;
+        break;
+      }
+    }
+  }
+  // A face that has two guide edges as sides (the guide turns inside it) follows one of them.
+  EXPECT_GE(along, listed.size() * 95 / 100);
+}
+
+TEST(CapiCutMesh, QuadWildFilesAgreeWithTheCutMesh) {
+  CutSetup& x = setup();
+  const CutPtr cut = cut_of(x);
+  const mcon_cut_mesh_info info = info_of(cut.get());
+  const std::string prefix = std::string(MACROCON_BINARY_DIR) + "/capi_cut_mesh_nose";
+  ASSERT_EQ(mcon_cut_mesh_write_quadwild(cut.get(), prefix.c_str()), MCON_OK) << last_message();
+  std::ifstream obj(prefix + ".obj"), rosy(prefix + ".rosy"), sharp(prefix + ".sharp");
+  ASSERT_TRUE(obj && rosy && sharp);
+  size_t faces = 0, vertices = 0;
+  for (std::string line; std::getline(obj, line);) {
+    faces += line.rfind("f ", 0) == 0;
+    vertices += line.rfind("v ", 0) == 0;
+  }
+  EXPECT_EQ(faces, info.triangle_count);
+  EXPECT_EQ(vertices, info.vertex_count);
+  size_t rosy_count = 0, sharp_count = 0;
+  rosy >> rosy_count;
+  sharp >> sharp_count;
+  EXPECT_EQ(rosy_count, info.triangle_count);
+  EXPECT_EQ(sharp_count, info.guide_edge_count);
+  for (const char* ext : {".obj", ".rosy", ".sharp"}) std::remove((prefix + ext).c_str());
+}
+
+TEST(CapiCutMesh, BadArgumentsAreRefusedByName) {
+  CutSetup& x = setup();
+  mcon_cut_mesh c = reinterpret_cast<mcon_cut_mesh>(0x1);
+  // Guides of another patch.
+  EXPECT_EQ(mcon_patch_cut_guides(x.source.get(), x.guides.get(), nullptr, &c), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(c, nullptr);
+  EXPECT_NE(last_message().find("another patch"), std::string::npos) << last_message();
+  EXPECT_EQ(mcon_patch_cut_guides(x.target.get(), nullptr, nullptr, &c), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_patch_cut_guides(x.target.get(), x.guides.get(), nullptr, nullptr), MCON_ERROR_NULL_POINTER);
+  mcon_guide_cut_options o;
+  ASSERT_EQ(mcon_guide_cut_options_init(&o), MCON_OK);
+  EXPECT_DOUBLE_EQ(o.snap_fraction, 0.25);
+  o.snap_fraction = 0.6;
+  EXPECT_EQ(mcon_patch_cut_guides(x.target.get(), x.guides.get(), &o, &c), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(last_message().find("snap_fraction"), std::string::npos) << last_message();
+  o.snap_fraction = std::nan("");
+  EXPECT_EQ(mcon_patch_cut_guides(x.target.get(), x.guides.get(), &o, &c), MCON_ERROR_NON_FINITE);
+  o.struct_size = 4;
+  EXPECT_EQ(mcon_patch_cut_guides(x.target.get(), x.guides.get(), &o, &c), MCON_ERROR_STRUCT_SIZE);
+
+  const CutPtr cut = cut_of(x);
+  const mcon_cut_mesh_info info = info_of(cut.get());
+  std::vector<double> small(3);
+  EXPECT_EQ(mcon_cut_mesh_get_positions(cut.get(), small.data(), small.size()), MCON_ERROR_BUFFER_TOO_SMALL);
+  std::vector<double> field(x.t.nv() + 1), out(info.vertex_count);
+  EXPECT_EQ(mcon_cut_mesh_carry_field(cut.get(), 1, field.data(), field.size(), out.data(), out.size()),
+            MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(last_message().find("patch vertices"), std::string::npos) << last_message();
+  field.pop_back();
+  field[3] = std::nan("");
+  EXPECT_EQ(mcon_cut_mesh_carry_field(cut.get(), 1, field.data(), field.size(), out.data(), out.size()),
+            MCON_ERROR_NON_FINITE);
+  EXPECT_EQ(mcon_cut_mesh_write_quadwild(cut.get(), ""), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(mcon_cut_mesh_write_quadwild(cut.get(), "/nonexistent-dir/x"), MCON_ERROR_IO);
+  // Retain and release balance; the handle stays valid for its guard.
+  mcon_cut_mesh extra = cut.get();
+  ASSERT_EQ(mcon_cut_mesh_retain(extra), MCON_OK);
+  EXPECT_EQ(mcon_cut_mesh_release(extra), MCON_OK);
+  // The cut mesh keeps its patch alive.
+  mcon_cut_mesh kept = nullptr;
+  {
+    PatchPtr target = extract(x.mesh.get(), 297, 0.55);
+    MapPtr map = compute(x.source.get(), target.get(), fast_options());
+    std::vector<uint32_t> tri;
+    std::vector<double> bary;
+    for (double u : {-0.5, 0.5}) {
+      uint32_t t = 0;
+      double b[3];
+      ASSERT_TRUE(locate_uv(x.s, u, 0.0, t, b));
+      tri.push_back(t);
+      bary.insert(bary.end(), b, b + 3);
+    }
+    const uint32_t size = 2;
+    mcon_polyline_set set = nullptr;
+    ASSERT_EQ(mcon_map_transfer_polylines(map.get(), tri.data(), bary.data(), 2, &size, nullptr, 1, &set), MCON_OK);
+    const PolylineSetPtr guard(set);
+    ASSERT_EQ(mcon_patch_cut_guides(target.get(), set, nullptr, &kept), MCON_OK) << last_message();
+  }
+  const mcon_cut_mesh_info k = info_of(kept);
+  EXPECT_GT(k.guide_edge_count, 0u);
+  std::vector<double> kx(3 * k.vertex_count);
+  EXPECT_EQ(mcon_cut_mesh_get_positions(kept, kx.data(), kx.size()), MCON_OK);
+  EXPECT_EQ(mcon_cut_mesh_release(kept), MCON_OK);
+  EXPECT_EQ(mcon_cut_mesh_release(kept), MCON_ERROR_INVALID_ARGUMENT);
+}
