@@ -4,6 +4,7 @@
 #   samples.cpp_transfer_guides   the C++ wrapper, guides and .rosy (samples/cpp)
 #   samples.python_transfer       the Python binding (samples/python)
 #   samples.csharp_transfer       the C# binding under Mono (samples/csharp)
+#   samples.python_dask_library   a library built on a Dask cluster (samples/python), if Dask is found
 #   samples.blender_headless      the Blender script, registered only if blender is found
 # The region is not one the library was built from (another radius), so the map is not trivial.
 set(MACROCON_SAMPLE_BODY ${PROJECT_SOURCE_DIR}/samples/data/makehuman-body.obj.gz)
@@ -55,6 +56,23 @@ if(NOT MACROCON_SANITIZE)
     CHECK_ARGS --guides ${MACROCON_SAMPLE_OUT}/python_transfer_guides.obj)
   set_tests_properties(samples.python_transfer PROPERTIES
     ENVIRONMENT "MACROCON_LIBRARY=$<TARGET_FILE:macrocon>;PYTHONPATH=${PROJECT_SOURCE_DIR}/bindings/python")
+
+  # The Dask sample (samples/python/dask_build_library.py): a library built on 4 LocalCluster worker
+  # processes must answer queries as a single-process build does. Registered only if the
+  # interpreter imports Dask's `distributed` (Debian's python3-distributed, in
+  # tools/debian-packages-extra.txt); otherwise the configuration says that it is not.
+  execute_process(COMMAND ${MACROCON_PYTHON} -c "import distributed"
+                  RESULT_VARIABLE macrocon_dask_rc OUTPUT_QUIET ERROR_QUIET)
+  if(macrocon_dask_rc EQUAL 0)
+    add_test(NAME samples.python_dask_library
+      COMMAND ${MACROCON_PYTHON} -m pytest -q -s -p no:cacheprovider
+              ${PROJECT_SOURCE_DIR}/samples/python/test_dask_build_library.py)
+    set_tests_properties(samples.python_dask_library PROPERTIES TIMEOUT 600
+      ENVIRONMENT "MACROCON_LIBRARY=$<TARGET_FILE:macrocon>;PYTHONPATH=${PROJECT_SOURCE_DIR}/bindings/python")
+  else()
+    message(STATUS "samples.python_dask_library NOT registered: ${MACROCON_PYTHON} cannot import distributed "
+                   "(apt-get install python3-distributed, see tools/debian-packages-extra.txt)")
+  endif()
 
   find_program(MACROCON_SAMPLE_MCS mcs)
   find_program(MACROCON_SAMPLE_MONO mono)
