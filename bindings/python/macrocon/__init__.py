@@ -31,7 +31,7 @@ from .library import (
     RetrievalDescriptor,
     Singularities,
 )
-from .mapping import Direction, Map, MapInfo, Orientation, PolylineSet, StopReason
+from .mapping import CutMesh, CutMeshInfo, Direction, Map, MapInfo, Orientation, PolylineSet, StopReason
 from .errors import (
     BufferTooSmallError,
     CancelledError,
@@ -62,4 +62,5 @@ __all__ = [
     "Library", "Entry", "EntryInfo", "LibraryInfo", "QueryResult", "Suggestion", "Polyline", "PolylineKind", "Singularities",
     "Field", "FieldKind", "RetrievalDescriptor", "Map", "MapInfo", "PolylineSet", "StopReason", "Direction",
     "Orientation", "OutOfMemoryError", "IOError_", "FileNotFoundError_", "EntryIndexError", "PatchInfo",
+    "CutMesh", "CutMeshInfo",
 ]

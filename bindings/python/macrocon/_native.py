@@ -299,6 +299,33 @@ class MapInfo(Struct):
     ]
 
 
+class GuideCutOptions(Struct):
+    _fields_ = [
+        ("struct_size", ctypes.c_uint32),
+        ("snap_fraction", ctypes.c_double),
+        ("simplify_fraction", ctypes.c_double),
+    ]
+
+
+class CutMeshInfo(Struct):
+    _fields_ = [
+        ("struct_size", ctypes.c_uint32),
+        ("vertex_count", c_size),
+        ("triangle_count", c_size),
+        ("guide_count", c_size),
+        ("guide_vertex_count", c_size),
+        ("guide_edge_count", c_size),
+        ("cut_triangle_count", c_size),
+        ("min_angle_created", ctypes.c_double),
+        ("min_angle_of_cut_input", ctypes.c_double),
+        ("snapped_to_vertices", ctypes.c_uint32),
+        ("merged_crossings", ctypes.c_uint32),
+        ("dropped_points", ctypes.c_uint32),
+        ("shortcuts", ctypes.c_uint32),
+        ("moved_vertices", ctypes.c_uint32),
+    ]
+
+
 class CrossFieldOptions(Struct):
     _fields_ = [
         ("struct_size", ctypes.c_uint32),
@@ -470,6 +497,21 @@ _SIGNATURES = {
     "mcon_patch_compute_cross_field": [ctypes.c_void_p, ctypes.c_void_p, ctypes.POINTER(CrossFieldOptions),
                                        ctypes.c_void_p, ctypes.c_void_p, c_size],
     "mcon_patch_write_rosy": [ctypes.c_void_p, ctypes.c_void_p, c_size, ctypes.c_char_p],
+    "mcon_guide_cut_options_init": [ctypes.POINTER(GuideCutOptions)],
+    "mcon_cut_mesh_info_init": [ctypes.POINTER(CutMeshInfo)],
+    "mcon_patch_cut_guides": [ctypes.c_void_p, ctypes.c_void_p, ctypes.POINTER(GuideCutOptions),
+                              ctypes.POINTER(ctypes.c_void_p)],
+    "mcon_cut_mesh_retain": [ctypes.c_void_p],
+    "mcon_cut_mesh_release": [ctypes.c_void_p],
+    "mcon_cut_mesh_get_info": [ctypes.c_void_p, ctypes.POINTER(CutMeshInfo)],
+    "mcon_cut_mesh_get_positions": [ctypes.c_void_p, ctypes.c_void_p, c_size],
+    "mcon_cut_mesh_get_triangles": [ctypes.c_void_p, ctypes.c_void_p, c_size],
+    "mcon_cut_mesh_get_host_points": [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_void_p, c_size],
+    "mcon_cut_mesh_get_guide_edges": [ctypes.c_void_p, ctypes.c_void_p, c_size],
+    "mcon_cut_mesh_get_guides": [ctypes.c_void_p, ctypes.c_void_p, c_size, ctypes.c_void_p, c_size],
+    "mcon_cut_mesh_carry_field": [ctypes.c_void_p, ctypes.c_uint32, ctypes.c_void_p, c_size, ctypes.c_void_p, c_size],
+    "mcon_cut_mesh_compute_cross_field": [ctypes.c_void_p, ctypes.c_void_p, c_size],
+    "mcon_cut_mesh_write_quadwild": [ctypes.c_void_p, ctypes.c_char_p],
 }
 
 #: Functions this package declares that the loaded library does not export (a build older than

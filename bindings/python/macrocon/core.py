@@ -494,6 +494,25 @@ class Patch(_Handle):
                                                          confidence.ctypes.data, m))
         return directions, confidence
 
+    def cut_guides(self, guides, snap_fraction: Optional[float] = None, simplify_fraction: Optional[float] = None):
+        """Cuts ``guides`` (a PolylineSet transferred onto this patch) into the patch: returns a
+        :class:`CutMesh` in which every guide is a chain of edges (for a quad mesher's features).
+
+        ``snap_fraction`` (default 0.25) and ``simplify_fraction`` (default 0.05) are fractions of an
+        edge length; see mcon_guide_cut_options."""
+        from .mapping import CutMesh, PolylineSet  # mapping imports this module
+
+        require_type(guides, PolylineSet, "guides")
+        o = _native.GuideCutOptions()
+        check(_native.lib.mcon_guide_cut_options_init(ctypes.byref(o)))
+        if snap_fraction is not None:
+            o.snap_fraction = float(snap_fraction)
+        if simplify_fraction is not None:
+            o.simplify_fraction = float(simplify_fraction)
+        out = ctypes.c_void_p()
+        check(_native.lib.mcon_patch_cut_guides(self.handle, guides.handle, ctypes.byref(o), ctypes.byref(out)))
+        return CutMesh(out)
+
     def write_rosy(self, directions, path) -> None:
         """Writes a QuadWild ``.rosy`` file; directions (triangle_count, 3) float64.
 

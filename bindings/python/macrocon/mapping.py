@@ -119,6 +119,116 @@ class PolylineSet(_Handle):
                 for a, b, c in zip(starts[:-1], starts[1:], closed)]
 
 
+@dataclass(frozen=True)
+class CutMeshInfo:
+    """What cutting guides into a patch made (mcon_cut_mesh_info), as ``CutMesh.info`` returns it."""
+
+    vertex_count: int
+    triangle_count: int
+    guide_count: int
+    guide_vertex_count: int
+    guide_edge_count: int
+    cut_triangle_count: int
+    min_angle_created: float  # degrees
+    min_angle_of_cut_input: float  # degrees
+    snapped_to_vertices: int
+    merged_crossings: int
+    dropped_points: int
+    shortcuts: int
+    moved_vertices: int
+
+
+class CutMesh(_Handle):
+    """A patch with its guides cut in: every guide a chain of edges (``Patch.cut_guides``).
+
+    Positions are in the patch's host units; each vertex keeps its point on the patch."""
+
+    _release = _native.lib.mcon_cut_mesh_release
+
+    @property
+    def info(self) -> CutMeshInfo:
+        """A :class:`CutMeshInfo` (frozen dataclass): sizes and the smallest angle the cut made."""
+        i = _native.CutMeshInfo()
+        check(_native.lib.mcon_cut_mesh_info_init(ctypes.byref(i)))
+        check(_native.lib.mcon_cut_mesh_get_info(self.handle, ctypes.byref(i)))
+        return CutMeshInfo(*(getattr(i, f) for f, _ in _native.CutMeshInfo._fields_[1:]))
+
+    def _repr_fields(self) -> str:
+        i = self.info
+        return f"vertices={i.vertex_count} triangles={i.triangle_count} guide_edges={i.guide_edge_count}"
+
+    @property
+    def positions(self) -> np.ndarray:
+        """(n, 3) float64 vertex positions in the patch's host units."""
+        n = self.info.vertex_count
+        out = np.zeros((n, 3))
+        check(_native.lib.mcon_cut_mesh_get_positions(self.handle, ptr(out), 3 * n))
+        return out
+
+    @property
+    def triangles(self) -> np.ndarray:
+        """(m, 3) uint32 triangles, in the patch's winding."""
+        m = self.info.triangle_count
+        out = np.zeros((m, 3), np.uint32)
+        check(_native.lib.mcon_cut_mesh_get_triangles(self.handle, ptr(out), 3 * m))
+        return out
+
+    def host_points(self) -> Tuple[np.ndarray, np.ndarray]:
+        """Per vertex its point on the patch: (patch triangles (n,) uint32, barycentric (n, 3))."""
+        n = self.info.vertex_count
+        tri, bary = np.zeros(n, np.uint32), np.zeros((n, 3))
+        check(_native.lib.mcon_cut_mesh_get_host_points(self.handle, ptr(tri), ptr(bary), n))
+        return tri, bary
+
+    @property
+    def guide_edges(self) -> np.ndarray:
+        """(k, 2) uint32: the distinct guide edges as vertex pairs."""
+        k = self.info.guide_edge_count
+        out = np.zeros((k, 2), np.uint32)
+        check(_native.lib.mcon_cut_mesh_get_guide_edges(self.handle, ptr(out), 2 * k))
+        return out
+
+    @property
+    def guides(self) -> List[np.ndarray]:
+        """One uint32 vertex chain per guide (a closed guide repeats its first vertex at the end)."""
+        i = self.info
+        sizes, chain = np.zeros(i.guide_count, np.uint32), np.zeros(i.guide_vertex_count, np.uint32)
+        check(_native.lib.mcon_cut_mesh_get_guides(self.handle, ptr(sizes), i.guide_count, ptr(chain),
+                                                   i.guide_vertex_count))
+        starts = np.concatenate([[0], np.cumsum(sizes, dtype=np.int64)])
+        return [chain[a:b].copy() for a, b in zip(starts[:-1], starts[1:])]
+
+    def carry_field(self, values) -> np.ndarray:
+        """A per-vertex field of the patch ((patch vertices,) or (patch vertices, d) float64) at the
+        cut mesh's vertices, interpolated at their host points."""
+        a = np.ascontiguousarray(np.asarray(values, dtype=np.float64))
+        one = a.ndim == 1
+        a2 = a.reshape(a.shape[0], 1) if one else a
+        if a2.ndim != 2 or a2.shape[1] < 1:
+            raise ValueError(f"values must be (patch vertices,) or (patch vertices, d), got shape {a.shape}")
+        d = a2.shape[1]
+        out = np.zeros((self.info.vertex_count, d))
+        check(_native.lib.mcon_cut_mesh_carry_field(self.handle, d, ptr(a2), a2.size, ptr(out), out.size))
+        return out[:, 0] if one else out
+
+    def cross_field(self) -> np.ndarray:
+        """(m, 3) per-face cross directions: exactly along the guide edges on their faces, smooth elsewhere."""
+        m = self.info.triangle_count
+        out = np.zeros((m, 3))
+        check(_native.lib.mcon_cut_mesh_compute_cross_field(self.handle, ptr(out), m))
+        return out
+
+    def write_quadwild(self, path_prefix) -> None:
+        """Writes QuadWild's inputs side by side: ``<prefix>.obj``, ``<prefix>.rosy``, ``<prefix>.sharp``."""
+        import os
+
+        from .errors import check_path
+
+        prefix = os.fspath(path_prefix)
+        check_path(_native.lib.mcon_cut_mesh_write_quadwild(self.handle, os.fsencode(prefix)), prefix + ".obj",
+                   writing=True)
+
+
 def _unstrided_rows(name: str, array, dtype, copy: bool, accepted: Optional[str] = None) -> np.ndarray:
     """Per-vertex input of a C function that takes no stride (mcon_map_transfer_field and
     _labels read vertex-major packed rows): a row-strided array cannot be passed in place, so it is

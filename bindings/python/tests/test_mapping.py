@@ -448,3 +448,39 @@ def test_float32_transfer_matches_the_float64_one(phi, source, kind):
     full = phi.transfer_field(np.ascontiguousarray(values, np.float64), kind)
     assert np.allclose(out32, full, rtol=1e-5, atol=1e-5)
     assert np.all(out32[phi.outside_mask] == 0)
+
+
+def test_cut_guides_gives_edge_chains_and_quadwild_files(phi, source, target, tmp_path):
+    uv, tri = source.uv, source.triangles
+    centroid = uv[tri].mean(1)
+    row = np.where(np.abs(centroid[:, 1]) < 0.05)[0]
+    row = row[np.argsort(centroid[row, 0])].astype(np.uint32)
+    guide = macrocon.Polyline(row, np.full((row.size, 3), 1 / 3))
+    with phi.transfer_polylines([guide]) as lines, target.cut_guides(lines) as cut:
+        info = cut.info
+        assert isinstance(info, macrocon.CutMeshInfo)
+        assert info.triangle_count > target.triangle_count and info.guide_edge_count > 5
+        assert info.min_angle_created > 1.0
+        assert "guide_edges=" in repr(cut)
+        faces = cut.triangles
+        edges = {tuple(sorted(e)) for f in faces for e in ((f[0], f[1]), (f[1], f[2]), (f[2], f[0]))}
+        for chain in cut.guides:
+            for a, b in zip(chain[:-1], chain[1:]):
+                assert tuple(sorted((a, b))) in edges
+        assert {tuple(e) for e in cut.guide_edges} <= edges
+        # The host-unit x coordinate of the patch, carried, is the cut vertices' x.
+        x = target.info.center[0] + target.info.radius * target.positions[:, 0]
+        assert np.allclose(cut.carry_field(x), cut.positions[:, 0], atol=1e-9)
+        assert cut.carry_field(np.stack([x, x], 1)).shape == (info.vertex_count, 2)
+        tris, bary = cut.host_points()
+        assert np.all(tris < target.triangle_count) and np.allclose(bary.sum(1), 1)
+        assert cut.cross_field().shape == (info.triangle_count, 3)
+        cut.write_quadwild(tmp_path / "nose")
+        assert int((tmp_path / "nose.rosy").read_text().split()[0]) == info.triangle_count
+        assert int((tmp_path / "nose.sharp").read_text().split()[0]) == info.guide_edge_count
+        with pytest.raises(macrocon.InvalidArgumentError, match="snap_fraction"):
+            target.cut_guides(lines, snap_fraction=0.6)
+        with pytest.raises(macrocon.InvalidArgumentError, match="another patch"):
+            source.cut_guides(lines)
+        with pytest.raises(FileNotFoundError):
+            cut.write_quadwild(tmp_path / "no such dir" / "x")
