@@ -144,7 +144,7 @@ std::size_t write_polylines_obj(const std::string& path, mcon_polyline_set set) 
 
 // Runs one region; returns false if the result fails a sanity check (printed).
 bool run_region(const macrocon::Context& ctx, const macrocon::Mesh& body, mcon_library lib, const Region& r,
-                const std::string& out_dir) {
+                const std::string& out_dir, bool cut_guides) {
   const auto t0 = std::chrono::steady_clock::now();
   const macrocon::Patch region = macrocon::Patch::extract(body, macrocon::PatchOptions::at_vertex(r.center_vertex, r.radius));
   const mcon_patch_info rinfo = region.info();
@@ -231,6 +231,20 @@ bool run_region(const macrocon::Context& ctx, const macrocon::Mesh& body, mcon_l
               entry_string(lib, best, MCON_ENTRY_CLASS_LABEL).c_str(), static_cast<unsigned long long>(ids[0]),
               minfo.overlap_ratio, minfo.matching_score, minfo.reflected ? "mirrored" : "direct",
               minfo.flipped_triangles, attributes.size() - 1, polylines, seconds, base.c_str(), base.c_str());
+  if (cut_guides) {
+    // The guides cut into the region: QuadWild's .obj/.rosy/.sharp, every guide on mesh edges.
+    mcon_cut_mesh raw_cut = nullptr;
+    check(mcon_patch_cut_guides(region.get(), lines.get(), nullptr, &raw_cut));
+    const std::unique_ptr<mcon_cut_mesh_t, Releaser<mcon_cut_mesh, mcon_cut_mesh_release>> cut(raw_cut);
+    check(mcon_cut_mesh_write_quadwild(cut.get(), (base + "_cut").c_str()));
+    mcon_cut_mesh_info cinfo;
+    check(mcon_cut_mesh_info_init(&cinfo));
+    check(mcon_cut_mesh_get_info(cut.get(), &cinfo));
+    std::printf("  guides cut in: %zu triangles, %zu guide edges, smallest angle made %.1f degrees (of the cut "
+                "region triangles %.1f) -> %s_cut.{obj,rosy,sharp}\n",
+                cinfo.triangle_count, cinfo.guide_edge_count, cinfo.min_angle_created, cinfo.min_angle_of_cut_input,
+                base.c_str());
+  }
   const bool ok = minfo.flipped_triangles == 0 && minfo.overlap_ratio > 0.5;
   if (!ok) std::printf("  %s: the re-embedding looks wrong (flips or overlap below 0.5)\n", r.name);
   return ok;
@@ -238,12 +252,14 @@ bool run_region(const macrocon::Context& ctx, const macrocon::Mesh& body, mcon_l
 
 int run_demo(const Args& args) {
   if (!args.empty() && (args[0] == "--help" || args[0] == "-h")) {
-    std::puts("usage: macrocon demo [--data DIR] [--library FILE.mclb] [--out DIR]\n"
+    std::puts("usage: macrocon demo [--data DIR] [--library FILE.mclb] [--out DIR] [--cut-guides]\n"
               "Queries the bundled MakeHuman body at a few regions against the starter constraint library,\n"
-              "re-embeds the best match and writes PLY/OBJ/.rosy results to --out (default demo-out).");
+              "re-embeds the best match and writes PLY/OBJ/.rosy results to --out (default demo-out).\n"
+              "--cut-guides also cuts the transferred guides into each region and writes QuadWild's inputs\n"
+              "<region>_cut.obj, .rosy and .sharp (guides on mesh edges, as feature edges).");
     return 0;
   }
-  const ArgParser p(args, {"data", "out", "library"}, {});
+  const ArgParser p(args, {"data", "out", "library"}, {"cut-guides"});
   const std::string data = p.get("data", MACROCON_SAMPLE_DATA_DIR);
   const std::string out_dir = p.get("out", "demo-out");
   const std::string library_path = p.get("library", default_library_path());
@@ -270,7 +286,7 @@ int run_demo(const Args& args) {
     for (const Region& r : kRegions) {
       // Region vertices are file numbers; the bundled body has no unreferenced vertices.
       try {
-        if (!run_region(ctx, body, lib.get(), r, out_dir)) ++failures;
+        if (!run_region(ctx, body, lib.get(), r, out_dir, p.flag("cut-guides"))) ++failures;
       } catch (const macrocon::Error& e) {
         std::printf("  %s failed: %s: %s\n", r.name, macrocon::status_name(e.status()).c_str(), e.what());
         ++failures;
