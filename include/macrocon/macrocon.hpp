@@ -982,11 +982,88 @@ inline CrossField compute_cross_field(const Patch& patch, const PolylineSet& gui
   return f;
 }
 
-// QuadWild `.rosy` (a `.gz` path is compressed).
+// QuadWild `.rosy` (a `.gz` path is refused: QuadWild reads it as zeros).
 inline void write_rosy(const Patch& patch, const std::vector<double>& directions, const std::string& path) {
   check(mcon_patch_write_rosy(detail::require(patch.get(), "Patch"), directions.data(), directions.size() / 3,
                               path.c_str()));
 }
+
+// Guides cut into a patch (mcon_patch_cut_guides): every guide a chain of edges. Positions in the
+// patch's host units. Options left empty keep mcon_guide_cut_options_init's defaults.
+class CutMesh {
+ public:
+  CutMesh() noexcept = default;
+  static CutMesh cut(const Patch& patch, const PolylineSet& guides, std::optional<double> snap_fraction = {},
+                     std::optional<double> simplify_fraction = {}) {
+    mcon_guide_cut_options o;
+    check(mcon_guide_cut_options_init(&o));
+    if (snap_fraction) o.snap_fraction = *snap_fraction;
+    if (simplify_fraction) o.simplify_fraction = *simplify_fraction;
+    mcon_cut_mesh out = nullptr;
+    check(mcon_patch_cut_guides(detail::require(patch.get(), "Patch"), detail::require(guides.get(), "PolylineSet"),
+                                &o, &out));
+    CutMesh c;
+    c.ref_ = Ref(out);
+    return c;
+  }
+  mcon_cut_mesh_info info() const {
+    mcon_cut_mesh_info i;
+    check(mcon_cut_mesh_info_init(&i));
+    check(mcon_cut_mesh_get_info(handle(), &i));
+    return i;
+  }
+  std::vector<double> positions() const {
+    std::vector<double> out(3 * info().vertex_count);
+    check(mcon_cut_mesh_get_positions(handle(), out.data(), out.size()));
+    return out;
+  }
+  std::vector<std::uint32_t> triangles() const {
+    std::vector<std::uint32_t> out(3 * info().triangle_count);
+    check(mcon_cut_mesh_get_triangles(handle(), out.data(), out.size()));
+    return out;
+  }
+  std::vector<std::uint32_t> guide_edges() const {
+    std::vector<std::uint32_t> out(2 * info().guide_edge_count);
+    check(mcon_cut_mesh_get_guide_edges(handle(), out.data(), out.size()));
+    return out;
+  }
+  // One vertex chain per guide (a closed guide repeats its first vertex at its end).
+  std::vector<std::vector<std::uint32_t>> guides() const {
+    const mcon_cut_mesh_info i = info();
+    std::vector<std::uint32_t> sizes(i.guide_count), all(i.guide_vertex_count);
+    check(mcon_cut_mesh_get_guides(handle(), sizes.data(), sizes.size(), all.data(), all.size()));
+    std::vector<std::vector<std::uint32_t>> out;
+    std::size_t at = 0;
+    for (std::uint32_t n : sizes) {
+      out.emplace_back(all.begin() + static_cast<std::ptrdiff_t>(at), all.begin() + static_cast<std::ptrdiff_t>(at + n));
+      at += n;
+    }
+    return out;
+  }
+  // A per-vertex field of the patch (patch vertices x dimension) at the cut mesh's vertices.
+  std::vector<double> carry_field(const std::vector<double>& patch_values, std::uint32_t dimension) const {
+    std::vector<double> out(static_cast<std::size_t>(dimension) * info().vertex_count);
+    check(mcon_cut_mesh_carry_field(handle(), dimension, patch_values.data(), patch_values.size(), out.data(),
+                                    out.size()));
+    return out;
+  }
+  std::vector<double> cross_field() const {
+    const std::size_t n = info().triangle_count;
+    std::vector<double> out(3 * n);
+    check(mcon_cut_mesh_compute_cross_field(handle(), out.data(), n));
+    return out;
+  }
+  void write_quadwild(const std::string& path_prefix) const {
+    check(mcon_cut_mesh_write_quadwild(handle(), path_prefix.c_str()));
+  }
+  mcon_cut_mesh get() const noexcept { return ref_.get(); }
+  explicit operator bool() const noexcept { return ref_.get() != nullptr; }
+
+ private:
+  using Ref = detail::Ref<mcon_cut_mesh, mcon_cut_mesh_retain, mcon_cut_mesh_release>;
+  mcon_cut_mesh handle() const { return detail::require(get(), "CutMesh"); }
+  Ref ref_;
+};
 
 // @@map-api@@ (insertion point; keep this line)
 

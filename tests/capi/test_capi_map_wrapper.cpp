@@ -1,6 +1,7 @@
 // The C++ wrapper of the map section (macrocon.hpp): Map, PolylineSet, patch_from_arrays,
 // compute_cross_field, write_rosy; errors become macrocon::Error with the C status.
 #include <cstdio>
+#include <set>
 #include <stdexcept>
 #include <utility>
 
@@ -98,6 +99,26 @@ TEST(CppMap, ComputeTransferAndCrossField) {
 
   // Guides of another patch are refused with the C status.
   EXPECT_EQ(status_of([&] { (void)macrocon::compute_cross_field(source, set); }), MCON_ERROR_INVALID_ARGUMENT);
+
+  // The guides cut into the target: chains of its edges, a field per triangle, the same counts.
+  const macrocon::CutMesh cut = macrocon::CutMesh::cut(target, set);
+  const mcon_cut_mesh_info ci = cut.info();
+  EXPECT_GE(ci.triangle_count, target.triangle_count());
+  EXPECT_EQ(cut.positions().size(), 3 * ci.vertex_count);
+  EXPECT_EQ(cut.cross_field().size(), 3 * ci.triangle_count);
+  EXPECT_EQ(cut.guide_edges().size(), 2 * ci.guide_edge_count);
+  const std::vector<std::uint32_t> faces = cut.triangles();
+  std::set<std::pair<std::uint32_t, std::uint32_t>> edges;
+  for (size_t t = 0; t < faces.size(); t += 3)
+    for (int k = 0; k < 3; ++k) edges.insert(std::minmax(faces[t + k], faces[t + (k + 1) % 3]));
+  size_t steps = 0;
+  for (const auto& chain : cut.guides())
+    for (size_t k = 0; k + 1 < chain.size(); ++k, ++steps) EXPECT_TRUE(edges.count(std::minmax(chain[k], chain[k + 1])));
+  EXPECT_GT(steps, 0u);
+  EXPECT_EQ(cut.carry_field(std::vector<double>(target.vertex_count(), 2.0), 1),
+            std::vector<double>(ci.vertex_count, 2.0));
+  EXPECT_EQ(status_of([&] { (void)macrocon::CutMesh::cut(target, set, 0.9); }), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(status_of([&] { (void)macrocon::CutMesh::cut(source, set); }), MCON_ERROR_INVALID_ARGUMENT);
 }
 
 TEST(CppMap, ProgressExceptionsAndCancellation) {
