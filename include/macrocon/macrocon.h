@@ -815,7 +815,7 @@ MCON_API mcon_status mcon_patch_write_rosy(mcon_patch patch, const double* direc
                                            const char* path);
 
 /* Guides cut into a patch: a new mesh of the patch's surface in which every guide is a chain of
- * edges, what a quad mesher's feature edges need (QuadWild `.sharp`; docs/design.md §15). */
+ * edges, what a quad mesher's feature edges need (QuadWild `.sharp`; docs/design.md §14). */
 typedef struct mcon_cut_mesh_t* mcon_cut_mesh;
 
 typedef struct mcon_guide_cut_options {

@@ -1,5 +1,5 @@
 // Guides cut into a patch (transfer/guide_cutting.h) and QuadWild's inputs written from the result
-// (docs/design.md §15).
+// (docs/design.md §14).
 #include <cmath>
 #include <cstddef>
 #include <memory>

@@ -1,6 +1,6 @@
 // Guides cut into the mesh: the triangles a traced polyline crosses are split so that every guide
 // becomes a chain of mesh edges, which is what a quad mesher's feature edges (QuadWild `.sharp`)
-// need (docs/design.md §15). Crossings close to a vertex snap to it, crossings of one edge that
+// need (docs/design.md §14). Crossings close to a vertex snap to it, crossings of one edge that
 // lie close together merge into one vertex, and points inside a triangle that add no shape
 // (within a tolerance of the chord) are dropped, so no sliver or needle is made; each cut triangle
 // is retriangulated with its guide pieces as forced edges (a greedy, shortest-edge-first
@@ -20,7 +20,7 @@ struct GuideCutOptions {
   // A crossing closer than snap_fraction * edge length to an end of its edge snaps to that vertex;
   // crossings of one edge closer than that to each other merge; a point inside a triangle closer
   // than snap_fraction * (the triangle's mean edge length) to an edge moves onto it. In [0, 0.45].
-  // 0.25 keeps the smallest angle made at about half the input's (docs/design.md §15).
+  // 0.25 keeps the smallest angle made at about half the input's (docs/design.md §14).
   double snap_fraction = 0.25;
   // Points inside one triangle closer than simplify_fraction * (mean edge length) to the chord of
   // their run are dropped (Douglas-Peucker). In [0, 1].

@@ -157,7 +157,7 @@ TEST(GuideCutting, SnappingAvoidsSliversAndMergesGuidesThatRunTooClose) {
   EXPECT_GT(snapped.merged_crossings, 0);
   EXPECT_EQ(unsnapped.merged_crossings, 0);
   EXPECT_LT(unsnapped.min_angle_created, 2.0);
-  // Measured: 10.2 degrees against 20.6 for the input triangles that were cut, 0.012 unsnapped.
+  // Measured: 10.6 degrees against 20.6 for the input triangles that were cut, 0.012 unsnapped.
   EXPECT_GT(snapped.min_angle_created, 0.4 * snapped.min_angle_of_cut_input);
   EXPECT_LT(snapped.mesh.num_vertices(), unsnapped.mesh.num_vertices());
   // Same input, same output.
