@@ -84,6 +84,38 @@ namespace Macrocon
         public uint FrameDecided;
     }
 
+    /// <summary>mcon_cut_mesh_info (C layout): sizes of a cut mesh and what the cut changed.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct CutMeshInfo
+    {
+        /// <summary>sizeof(mcon_cut_mesh_info), set by mcon_cut_mesh_info_init.</summary>
+        public uint StructSize;
+        /// <summary>Vertices and triangles of the cut mesh.</summary>
+        public UIntPtr VertexCount, TriangleCount;
+        /// <summary>One chain per polyline of the set (empty if it collapsed).</summary>
+        public UIntPtr GuideCount;
+        /// <summary>All chains' vertices together.</summary>
+        public UIntPtr GuideVertexCount;
+        /// <summary>Distinct guide edges.</summary>
+        public UIntPtr GuideEdgeCount;
+        /// <summary>Patch triangles that were retriangulated.</summary>
+        public UIntPtr CutTriangleCount;
+        /// <summary>Degrees: the smallest angle of a triangle the cut made or moved.</summary>
+        public double MinAngleCreated;
+        /// <summary>Degrees: the smallest angle of the patch triangles it cut.</summary>
+        public double MinAngleOfCutInput;
+        /// <summary>Crossings moved onto a patch vertex.</summary>
+        public uint SnappedToVertices;
+        /// <summary>Crossings merged with another of the same edge.</summary>
+        public uint MergedCrossings;
+        /// <summary>Guide points dropped as adding no shape.</summary>
+        public uint DroppedPoints;
+        /// <summary>Steps through a snapped vertex replaced by the edge across.</summary>
+        public uint Shortcuts;
+        /// <summary>Snapped patch vertices moved onto their guide.</summary>
+        public uint MovedVertices;
+    }
+
     /// <summary>A failed Macrocon call: the C status code and the library's message.</summary>
     public class MacroconException : Exception
     {
@@ -369,6 +401,28 @@ namespace Macrocon
             [Out] double[] directions, [Out] double[] confidence, UIntPtr capacity);
         [DllImport(Lib)] internal static extern Status mcon_patch_write_rosy(PatchHandle patch, IntPtr directions, UIntPtr triangleCount, byte[] path);
 
+        // ---- guides cut into a patch (mcon_cut_mesh_*) ----
+        [StructLayout(LayoutKind.Sequential)]
+        internal struct GuideCutOptions { public uint struct_size; public double snap_fraction; public double simplify_fraction; }
+
+        [DllImport(Lib)] internal static extern Status mcon_guide_cut_options_init(ref GuideCutOptions options);
+        [DllImport(Lib)] internal static extern Status mcon_cut_mesh_info_init(ref CutMeshInfo info);
+        [DllImport(Lib)] internal static extern Status mcon_patch_cut_guides(PatchHandle patch, PolylineSetHandle guides, ref GuideCutOptions options,
+            out CutMeshHandle cut);
+        [DllImport(Lib)] internal static extern Status mcon_cut_mesh_release(IntPtr cut);
+        [DllImport(Lib)] internal static extern Status mcon_cut_mesh_get_info(CutMeshHandle cut, ref CutMeshInfo info);
+        [DllImport(Lib)] internal static extern Status mcon_cut_mesh_get_positions(CutMeshHandle cut, [Out] double[] xyz, UIntPtr capacity);
+        [DllImport(Lib)] internal static extern Status mcon_cut_mesh_get_triangles(CutMeshHandle cut, [Out] uint[] indices, UIntPtr capacity);
+        [DllImport(Lib)] internal static extern Status mcon_cut_mesh_get_host_points(CutMeshHandle cut, [Out] uint[] patchTriangles,
+            [Out] double[] barycentric, UIntPtr capacity);
+        [DllImport(Lib)] internal static extern Status mcon_cut_mesh_get_guide_edges(CutMeshHandle cut, [Out] uint[] edges, UIntPtr capacity);
+        [DllImport(Lib)] internal static extern Status mcon_cut_mesh_get_guides(CutMeshHandle cut, [Out] uint[] sizes, UIntPtr sizeCapacity,
+            [Out] uint[] vertices, UIntPtr vertexCapacity);
+        [DllImport(Lib)] internal static extern Status mcon_cut_mesh_carry_field(CutMeshHandle cut, uint dimension, IntPtr patchValues,
+            UIntPtr valueCount, [Out] double[] outValues, UIntPtr capacity);
+        [DllImport(Lib)] internal static extern Status mcon_cut_mesh_compute_cross_field(CutMeshHandle cut, [Out] double[] directions, UIntPtr capacity);
+        [DllImport(Lib)] internal static extern Status mcon_cut_mesh_write_quadwild(CutMeshHandle cut, byte[] pathPrefix);
+
         /// <summary>A NUL-terminated UTF-8 copy of a string (paths and metadata); a NUL inside would cut it short.</summary>
         internal static byte[] Utf8(string s)
         {
@@ -627,6 +681,17 @@ namespace Macrocon
         public PolylineSetHandle() : base(IntPtr.Zero, true) { Native.Track(this); }
         public override bool IsInvalid => handle == IntPtr.Zero;
         protected override bool ReleaseHandle() => Native.mcon_polyline_set_release(handle) == Status.Ok;
+    }
+
+    /// <summary>Owns one reference on an mcon_cut_mesh (released with mcon_cut_mesh_release).</summary>
+    public sealed class CutMeshHandle : SafeHandle
+    {
+        /// <summary>An empty handle, filled by mcon_patch_cut_guides.</summary>
+        public CutMeshHandle() : base(IntPtr.Zero, true) { Native.Track(this); }
+        /// <summary>True while no native cut mesh is held.</summary>
+        public override bool IsInvalid => handle == IntPtr.Zero;
+        /// <summary>Releases the native reference.</summary>
+        protected override bool ReleaseHandle() => Native.mcon_cut_mesh_release(handle) == Status.Ok;
     }
 
     public static class Library
@@ -1031,6 +1096,18 @@ namespace Macrocon
             fixed (double* d = &MemoryMarshal.GetReference(directions))
                 Native.CheckPath(Native.mcon_patch_write_rosy(Handle, (IntPtr)d, (UIntPtr)TriangleCount, Native.Utf8(path)), path,
                                  writing: true);
+        }
+
+        /// <summary>Cuts `guides` (a PolylineSet transferred onto this patch) into it: a new mesh in which every guide is a chain of edges; null fractions keep mcon_guide_cut_options_init's defaults.</summary>
+        public CutMesh CutGuides(PolylineSet guides, double? snapFraction = null, double? simplifyFraction = null)
+        {
+            if (guides == null) throw new ArgumentNullException(nameof(guides));
+            var o = new Native.GuideCutOptions();
+            Native.Check(Native.mcon_guide_cut_options_init(ref o));
+            if (snapFraction.HasValue) o.snap_fraction = snapFraction.Value;
+            if (simplifyFraction.HasValue) o.simplify_fraction = simplifyFraction.Value;
+            Native.Check(Native.mcon_patch_cut_guides(Handle, guides.Handle, ref o, out CutMeshHandle h));
+            return new CutMesh(h, VertexCount);
         }
 
         public int VertexCount => (int)info.vertex_count;

@@ -581,6 +581,139 @@ static class Tests
         System.IO.Directory.Delete(dir, true);
     }
 
+    // The source triangle whose uv contains (u, v), as a surface point (false if none).
+    static bool LocateUv(double[] uv, uint[] tri, double u, double v, out SurfacePoint point)
+    {
+        for (int f = 0; f < tri.Length / 3; ++f)
+        {
+            uint a = tri[3 * f], b = tri[3 * f + 1], c = tri[3 * f + 2];
+            double x0 = uv[2 * a], y0 = uv[2 * a + 1], x1 = uv[2 * b], y1 = uv[2 * b + 1], x2 = uv[2 * c], y2 = uv[2 * c + 1];
+            double det = (y1 - y2) * (x0 - x2) + (x2 - x1) * (y0 - y2);
+            if (det == 0) continue;
+            double l0 = ((y1 - y2) * (u - x2) + (x2 - x1) * (v - y2)) / det;
+            double l1 = ((y2 - y0) * (u - x2) + (x0 - x2) * (v - y2)) / det;
+            double l2 = 1 - l0 - l1;
+            if (l0 >= -1e-12 && l1 >= -1e-12 && l2 >= -1e-12) { point = new SurfacePoint((uint)f, l0, l1, l2); return true; }
+        }
+        point = default(SurfacePoint);
+        return false;
+    }
+
+    static ulong EdgeKey(uint a, uint b) => a < b ? ((ulong)a << 32) | b : ((ulong)b << 32) | a;
+
+    // cut mesh: guides transferred by the map of Test9 (a closed loop and a line across it, as in
+    // tests/capi/test_capi_cut_mesh.cpp) cut into the target; chains of edges, host points,
+    // carried fields, cross field, QuadWild's files, bad arguments.
+    static void TestCutMesh()
+    {
+        var r = Bumpy(41); var p = r.Item1; var t = r.Item2;
+        string dir = System.IO.Path.Combine(System.IO.Path.GetTempPath(), "macrocon-cs-cut-" + System.Diagnostics.Process.GetCurrentProcess().Id);
+        System.IO.Directory.CreateDirectory(dir);
+        using (var ctx = new Context())
+        using (var m = new Mesh(ctx, p, t))
+        using (var target = Patch.Extract(m, 21 * 41 + 20, 0.25))
+        using (var source = Patch.FromArrays(ctx, target.Positions(), target.Triangles(), target.CenterPatchTriangle,
+                                             target.CenterBarycentric, target.Center, target.Radius))
+        using (var map = Map.Compute(source, target, new MapSettings { Seed = 3, AlignmentSamples = 400, MaxIterations = 30 }))
+        {
+            var uv = source.Uv(); var stri = source.Triangles();
+            var loop = new SurfacePoint[30];
+            for (int i = 0; i < 30; ++i)
+                Check(LocateUv(uv, stri, 0.4 * Math.Cos(2 * Math.PI * i / 30), 0.4 * Math.Sin(2 * Math.PI * i / 30), out loop[i]), "loop point " + i);
+            var across = new SurfacePoint[2];
+            Check(LocateUv(uv, stri, -0.6, -0.05, out across[0]) && LocateUv(uv, stri, 0.6, 0.08, out across[1]), "line points");
+            using (var guides = map.TransferPolylines(new[] { new Polyline { Points = loop, Closed = true }, new Polyline { Points = across } }))
+            using (var cut = target.CutGuides(guides))
+            {
+                var info = cut.Info;
+                Check(info.GuideEdgeCount.ToUInt64() > 0, "guide edges");
+                Check((int)info.TriangleCount > target.TriangleCount && (int)info.GuideCount == guides.Counts.Polylines, "info: " +
+                      info.TriangleCount + " triangles, " + info.GuideCount + " guides");
+                var xyz = cut.Positions(); var tri = cut.Triangles();
+                Check(xyz.Length == 3 * (int)info.VertexCount && tri.Length == 3 * (int)info.TriangleCount, "array sizes");
+                // Each vertex is at its host point on the patch (host = center + radius * normalized).
+                var ht = cut.HostTriangles(); var hb = cut.HostBarycentric();
+                var tpos = target.Positions(); var ttri = target.Triangles(); var center = target.Center;
+                for (int v = 0; v < (int)info.VertexCount; ++v)
+                    for (int k = 0; k < 3; ++k)
+                    {
+                        double q = 0;
+                        for (int c = 0; c < 3; ++c) q += hb[3 * v + c] * tpos[3 * ttri[3 * ht[v] + c] + k];
+                        Near(center[k] + target.Radius * q, xyz[3 * v + k], 1e-9, "host point of vertex " + v);
+                    }
+                // Every chain is a path of mesh edges; the guide edges are exactly the chains' steps.
+                var meshEdges = new HashSet<ulong>();
+                for (int f = 0; f < tri.Length / 3; ++f)
+                    for (int k = 0; k < 3; ++k) meshEdges.Add(EdgeKey(tri[3 * f + k], tri[3 * f + (k + 1) % 3]));
+                var chains = cut.Guides();
+                Check(chains.Length == (int)info.GuideCount, "one chain per guide");
+                var steps = new HashSet<ulong>();
+                long chainVertices = 0;
+                foreach (var chain in chains)
+                {
+                    chainVertices += chain.Length;
+                    for (int k = 0; k + 1 < chain.Length; ++k)
+                    {
+                        Check(meshEdges.Contains(EdgeKey(chain[k], chain[k + 1])), $"chain step {chain[k]}-{chain[k + 1]} is a mesh edge");
+                        steps.Add(EdgeKey(chain[k], chain[k + 1]));
+                    }
+                }
+                Check(chainVertices == (long)info.GuideVertexCount, "chain vertices");
+                var ge = cut.GuideEdges();
+                Check(ge.Length == 2 * (int)info.GuideEdgeCount, "guide edge array");
+                var listed = new HashSet<ulong>();
+                for (int e = 0; e < ge.Length / 2; ++e) listed.Add(EdgeKey(ge[2 * e], ge[2 * e + 1]));
+                Check(listed.SetEquals(steps), "guide edges are the chains' steps");
+                // The patch's host-unit x coordinate, carried, is the cut vertices' x.
+                var field = new double[target.VertexCount];
+                for (int v = 0; v < field.Length; ++v) field[v] = center[0] + target.Radius * tpos[3 * v];
+                var carried = cut.CarryField(field, 1);
+                Check(carried.Length == (int)info.VertexCount, "carried size");
+                for (int v = 0; v < carried.Length; ++v) Near(carried[v], xyz[3 * v], 1e-9, "carried x of vertex " + v);
+                Check(cut.CarryField(tpos, 3).Length == 3 * (int)info.VertexCount, "dimension 3");
+                Expect<ArgumentException>(() => cut.CarryField(new double[field.Length + 1], 1));
+                Expect<ArgumentException>(() => cut.CarryField(field, 0));
+                var nan = (double[])field.Clone(); nan[3] = double.NaN;
+                Check(Expect<InvalidMeshException>(() => cut.CarryField(nan, 1)).Status == Status.NonFinite, "NaN field");
+                // The cross field: unit directions, one per triangle.
+                var dirs = cut.CrossField();
+                Check(dirs.Length == 3 * (int)info.TriangleCount, "cross field size");
+                for (int f = 0; f < dirs.Length / 3; ++f)
+                    Near(Math.Sqrt(dirs[3 * f] * dirs[3 * f] + dirs[3 * f + 1] * dirs[3 * f + 1] + dirs[3 * f + 2] * dirs[3 * f + 2]), 1, 1e-6, "unit");
+                // QuadWild's three files agree with the cut mesh.
+                string prefix = System.IO.Path.Combine(dir, "cut");
+                cut.WriteQuadWild(prefix);
+                var obj = System.IO.File.ReadAllLines(prefix + ".obj");
+                int faces = 0, vertices = 0;
+                foreach (var line in obj) { if (line.StartsWith("f ")) ++faces; if (line.StartsWith("v ")) ++vertices; }
+                Check(faces == (int)info.TriangleCount && vertices == (int)info.VertexCount, $".obj: {vertices} v, {faces} f");
+                Check(long.Parse(System.IO.File.ReadAllLines(prefix + ".rosy")[0].Trim()) == (long)info.TriangleCount, ".rosy count");
+                Check(long.Parse(System.IO.File.ReadAllLines(prefix + ".sharp")[0].Trim()) == (long)info.GuideEdgeCount, ".sharp count");
+                var io = Expect<System.IO.DirectoryNotFoundException>(() => cut.WriteQuadWild(System.IO.Path.Combine(dir, "no", "cut")));
+                Check(((MacroconException)io.InnerException).Status == Status.IO, "io");
+                Check(Expect<MacroconException>(() => cut.WriteQuadWild("")).Status == Status.InvalidArgument, "empty prefix");
+                Expect<ArgumentNullException>(() => cut.WriteQuadWild(null));
+                // Bad arguments: a snap fraction out of range, guides of another patch, no guides.
+                var bad = Expect<MacroconException>(() => target.CutGuides(guides, snapFraction: 0.6));
+                Check(bad.Status == Status.InvalidArgument && bad.Message.Contains("snap_fraction"), "bad snap fraction: " + bad.Message);
+                Check(Expect<InvalidMeshException>(() => target.CutGuides(guides, snapFraction: double.NaN)).Status == Status.NonFinite, "NaN snap");
+                var other = Expect<MacroconException>(() => source.CutGuides(guides));
+                Check(other.Status == Status.InvalidArgument && other.Message.Contains("another patch"), "guides of another patch: " + other.Message);
+                Expect<ArgumentNullException>(() => target.CutGuides(null));
+                // Explicit fractions give a valid cut too; a disposed cut mesh throws.
+                using (var fine = target.CutGuides(guides, snapFraction: 0.0, simplifyFraction: 0.0))
+                    Check(fine.Info.GuideEdgeCount.ToUInt64() > 0, "explicit fractions");
+            }
+            using (var line = map.TransferPolylines(new[] { new Polyline { Points = across } }))
+            {
+                var disposed = target.CutGuides(line);
+                disposed.Dispose();
+                Expect<ObjectDisposedException>(() => { var i = disposed.Info; });
+            }
+        }
+        System.IO.Directory.Delete(dir, true);
+    }
+
     // map: forced orientation (the "flip" workflow) and the evidence of the automatic call
     static void TestOrientation()
     {
@@ -759,6 +892,7 @@ static class Tests
             { "mcon_singularity", typeof(Singularity) }, { "mcon_library_info", typeof(LibraryInfo) },
             { "mcon_library_entry_info", typeof(EntryInfo) }, { "mcon_map_info", typeof(MapInfo) },
             { "mcon_mesh_orientation_info", typeof(Native.MeshOrientationInfo) },
+            { "mcon_guide_cut_options", typeof(Native.GuideCutOptions) }, { "mcon_cut_mesh_info", typeof(CutMeshInfo) },
         };
         var probe = new System.Text.StringBuilder("#include <stddef.h>\n#include <stdio.h>\n#include \"macrocon/macrocon.h\"\nint main(void) {\n");
         var expected = new List<string>();
@@ -808,7 +942,7 @@ static class Tests
     // No tuple deconstruction (`var (a, b) = ...`) anywhere here: mcs 6.8 silently drops a lambda that
     // contains one (which hid most of this runner's tests before) or crashes when a lambda captures
     // a deconstructed variable. The runner also checks how many tests ran.
-    const int ExpectedTests = 21;
+    const int ExpectedTests = 22;
 
     // The log callback receives the status and the message of the exception (mesh and patch
     // errors of the context); other contexts do not log; a disposed context drops late messages.
@@ -1145,6 +1279,7 @@ static class Tests
         Run("library: retrieval finds each entry itself; cancel leaves it unchanged", Test7);
         Run("library: bad input, forged bytes, disposed handles", Test8);
         Run("map: from arrays, compute, correspondences, transfer, cross field", Test9);
+        Run("cut mesh: guides become edge chains; carry, cross field, QuadWild files, bad arguments", TestCutMesh);
         Run("map: forced orientation and the evidence of the automatic call", TestOrientation);
         Run("map: guidance channels decide what the geometry cannot", TestGuidance);
         Run("winding: reversed host triangles are repaired and reported", TestWinding);
