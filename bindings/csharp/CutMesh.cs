@@ -110,7 +110,7 @@ namespace Macrocon
             return d;
         }
 
-        /// <summary>Writes QuadWild's `pathPrefix`.obj/.rosy/.sharp; a folder that does not exist is a System.IO.DirectoryNotFoundException naming it.</summary>
+        /// <summary>Writes QuadWild's `pathPrefix`.obj/.rosy/.sharp and a .quadwild.json manifest; a folder that does not exist is a System.IO.DirectoryNotFoundException naming it.</summary>
         public void WriteQuadWild(string pathPrefix)
         {
             if (pathPrefix == null) throw new ArgumentNullException(nameof(pathPrefix));

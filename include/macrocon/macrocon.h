@@ -877,7 +877,8 @@ MCON_API mcon_status mcon_cut_mesh_carry_field(mcon_cut_mesh cut, uint32_t dimen
 MCON_API mcon_status mcon_cut_mesh_compute_cross_field(mcon_cut_mesh cut, double* out_directions, size_t capacity);
 /* Writes QuadWild's inputs side by side: `<path_prefix>.obj` (host units, exact doubles),
  * `<path_prefix>.rosy` (mcon_cut_mesh_compute_cross_field) and `<path_prefix>.sharp` (the guide
- * edges; convex/concave from the dihedral angle). IO on failure. */
+ * edges; convex/concave from the dihedral angle), and `<path_prefix>.quadwild.json` (face count,
+ * the OBJ's FNV-1a 64 hash, QuadWild's command lines). IO on failure. */
 MCON_API mcon_status mcon_cut_mesh_write_quadwild(mcon_cut_mesh cut, const char* path_prefix);
 
 /* @@map-api@@ (insertion point; keep this line) */

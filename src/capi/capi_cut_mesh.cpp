@@ -2,10 +2,13 @@
 // (docs/design.md §14).
 #include <cmath>
 #include <cstddef>
+#include <cstdio>
 #include <memory>
+#include <string>
 
 #include "capi/capi_map_handles.h"
 #include "io/mesh_io.h"
+#include "library/library_file.h"
 #include "transfer/cross_field.h"
 #include "transfer/guide_cutting.h"
 
@@ -46,6 +49,50 @@ CrossField guide_field(const mcon_cut_mesh_t& c) {
   });
   align_field_to_edges(mesh, c.cut.guide_edges, field);
   return field;
+}
+
+// A JSON string literal (quotes, backslashes and control characters escaped).
+std::string json_string(const std::string& text) {
+  std::string out = "\"";
+  for (const char c : text) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char buffer[8];
+      std::snprintf(buffer, sizeof buffer, "\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(c)));
+      out += buffer;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
+// `<prefix>.quadwild.json`: what belongs together (face count, the OBJ's FNV-1a 64 hash, the
+// .sharp's edge count) and QuadWild's command lines, so a mismatched field is caught before
+// QuadWild silently reads zeros or crashes (docs/design.md §14).
+void write_manifest(const std::string& prefix, const TriMesh& mesh, std::size_t sharp_edges) {
+  const std::string obj_bytes = io::read_file_maybe_gz(prefix + ".obj");
+  char hash[24];
+  std::snprintf(hash, sizeof hash, "%016llx",
+                static_cast<unsigned long long>(library_content_checksum(
+                    reinterpret_cast<const std::uint8_t*>(obj_bytes.data()), obj_bytes.size(), obj_bytes.size())));
+  const std::size_t slash = prefix.find_last_of('/');
+  const std::string name = slash == std::string::npos ? prefix : prefix.substr(slash + 1);
+  std::string j = "{\n";
+  j += "  \"mesh\": " + json_string(name + ".obj") + ",\n";
+  j += "  \"rosy\": " + json_string(name + ".rosy") + ",\n";
+  j += "  \"sharp\": " + json_string(name + ".sharp") + ",\n";
+  j += "  \"faces\": " + std::to_string(mesh.triangles.size()) + ",\n";
+  j += "  \"vertices\": " + std::to_string(mesh.positions.size()) + ",\n";
+  j += "  \"sharp_edges\": " + std::to_string(sharp_edges) + ",\n";
+  j += "  \"mesh_fnv1a64\": \"" + std::string(hash) + "\",\n";
+  j += "  \"quadwild_commands\": [\n";
+  j += "    " + json_string("quadwild " + name + ".obj 2 " + name + ".rosy " + name + ".sharp <quadwild>/config/prep_config/basic_setup.txt") + ",\n";
+  j += "    " + json_string("quad_from_patches " + name + "_rem_p0.obj 123 <quadwild>/config/main_config/flow_noalign_lemon.txt") + "\n";
+  j += "  ]\n}\n";
+  io::write_file_maybe_gz(prefix + ".quadwild.json", j);
 }
 
 }  // namespace
@@ -213,6 +260,7 @@ mcon_status mcon_cut_mesh_write_quadwild(mcon_cut_mesh cut, const char* path_pre
     io::write_obj(prefix + ".obj", mesh);
     io::write_rosy(prefix + ".rosy", mesh, field.directions);
     io::write_sharp(prefix + ".sharp", mesh, cut->cut.guide_edges);
+    write_manifest(prefix, mesh, cut->cut.guide_edges.size());
   });
 }
 

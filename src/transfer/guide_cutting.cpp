@@ -53,6 +53,104 @@ double min_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
   return std::min({angle(a, b, c), angle(b, c, a), angle(c, a, b)});
 }
 
+// One input triangle's points in its own isometric 2D frame (corner 0 at the origin, corner 1
+// on +x, counterclockwise), with the edges that must appear in its retriangulation.
+struct LocalPoints {
+  Vec2 c[3];
+  double scale = 0, eps = 0;        // longest side; length tolerance 1e-9 * scale
+  std::vector<int> ids;             // local point -> cut-mesh vertex
+  std::vector<Vec2> xy;
+  std::unordered_map<int, int> local;
+  std::set<std::pair<int, int>> forced;
+  int boundary_points = 0;
+
+  int add(int id, const Vec2& x) {
+    const auto [it, inserted] = local.emplace(id, static_cast<int>(ids.size()));
+    if (inserted) {
+      ids.push_back(id);
+      xy.push_back(x);
+    }
+    return it->second;
+  }
+  void force(int a, int b) { forced.insert({std::min(a, b), std::max(a, b)}); }
+  double orient(const Vec2& a, const Vec2& b, const Vec2& x) const { return cross2(b - a, x - a); }
+  // x strictly inside the segment (a, b)?
+  bool on_segment(const Vec2& a, const Vec2& b, const Vec2& x) const {
+    const Vec2 d = b - a;
+    const double len = d.norm();
+    if (len == 0 || std::abs(orient(a, b, x)) > eps * len) return false;
+    const double s = (x - a).dot(d) / (len * len);
+    return s * len > eps && (1 - s) * len > eps;
+  }
+  // Do the segments (a, b) and (p, q) of local points cross properly (not at a shared end)?
+  bool crosses(int a, int b, int p, int q) const {
+    if (a == p || a == q || b == p || b == q) return false;
+    const double o1 = orient(xy[a], xy[b], xy[p]), o2 = orient(xy[a], xy[b], xy[q]);
+    const double o3 = orient(xy[p], xy[q], xy[a]), o4 = orient(xy[p], xy[q], xy[b]);
+    return ((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0));
+  }
+  Vec3 barycentric_of(const Vec2& x) const {
+    const double area = cross2(c[1] - c[0], c[2] - c[0]);
+    const double w1 = cross2(x - c[0], c[2] - c[0]) / area, w2 = cross2(c[1] - c[0], x - c[0]) / area;
+    return Vec3(1 - w1 - w2, w1, w2);
+  }
+};
+
+// Greedy constrained triangulation of a triangle's local points: the forced edges first, then the
+// shortest segment that crosses nothing accepted and passes through no point (a maximal set of
+// non-crossing segments of points in a convex polygon is a triangulation); its triangles are the
+// empty counterclockwise 3-cycles. Throws NUMERICAL unless there are 2n - b - 2 of them (n points,
+// b on the boundary).
+std::vector<Tri> triangulate(const LocalPoints& P, int t) {
+  const int count = static_cast<int>(P.xy.size());
+  std::vector<std::array<int, 2>> accepted;
+  for (const auto& [a, b] : P.forced) accepted.push_back({a, b});
+  for (std::size_t i = 0; i < accepted.size(); ++i)
+    for (std::size_t j = i + 1; j < accepted.size(); ++j)
+      require(!P.crosses(accepted[i][0], accepted[i][1], accepted[j][0], accepted[j][1]), MCON_ERROR_NUMERICAL,
+              "cutting guides into triangle " + std::to_string(t) + ": two guide pieces cross");
+  std::vector<std::pair<double, std::array<int, 2>>> candidates;
+  for (int a = 0; a < count; ++a)
+    for (int b = a + 1; b < count; ++b)
+      if (!P.forced.count({a, b})) candidates.push_back({(P.xy[a] - P.xy[b]).squaredNorm(), {a, b}});
+  std::sort(candidates.begin(), candidates.end());
+  for (const auto& [length, e] : candidates) {
+    bool ok = true;
+    for (int k = 0; k < count && ok; ++k) ok = !P.on_segment(P.xy[e[0]], P.xy[e[1]], P.xy[k]);
+    for (std::size_t i = 0; i < accepted.size() && ok; ++i) ok = !P.crosses(e[0], e[1], accepted[i][0], accepted[i][1]);
+    if (ok) accepted.push_back(e);
+  }
+  std::vector<std::set<int>> adjacent(static_cast<std::size_t>(count));
+  for (const auto& e : accepted) {
+    adjacent[e[0]].insert(e[1]);
+    adjacent[e[1]].insert(e[0]);
+  }
+  const double area_eps = P.eps * P.scale;
+  std::vector<Tri> pieces;
+  for (int a = 0; a < count; ++a)
+    for (int b : adjacent[a]) {
+      if (b <= a) continue;
+      for (int k : adjacent[b]) {
+        if (k <= b || !adjacent[a].count(k)) continue;
+        int i = a, j = b, l = k;
+        const double o = P.orient(P.xy[i], P.xy[j], P.xy[l]);
+        if (std::abs(o) <= area_eps) continue;
+        if (o < 0) std::swap(j, l);
+        bool empty = true;
+        for (int m = 0; m < count && empty; ++m)
+          if (m != i && m != j && m != l)
+            empty = !(P.orient(P.xy[i], P.xy[j], P.xy[m]) > -area_eps && P.orient(P.xy[j], P.xy[l], P.xy[m]) > -area_eps &&
+                      P.orient(P.xy[l], P.xy[i], P.xy[m]) > -area_eps);
+        if (empty) pieces.push_back({P.ids[i], P.ids[j], P.ids[l]});
+      }
+    }
+  const int expected = 2 * count - P.boundary_points - 2;
+  require(static_cast<int>(pieces.size()) == expected, MCON_ERROR_NUMERICAL,
+          "cutting guides into triangle " + std::to_string(t) + " gave " + std::to_string(pieces.size()) +
+              " triangles instead of " + std::to_string(expected) + "; try a larger snap_fraction");
+  return pieces;
+}
+
 class GuideCutter {
  public:
   GuideCutter(const TriMesh& mesh, const GuideCutOptions& options)
@@ -69,6 +167,10 @@ class GuideCutter {
   void resolve(std::vector<std::vector<Node>>& lines);
   void assign_segments(const std::vector<std::vector<Node>>& lines, const std::vector<bool>& closed);
   void cut_triangle(int t);
+  LocalPoints local_points(int t) const;
+  void assemble_mesh(const std::vector<bool>& cut);
+  void chain_guides();
+  SurfacePoint closest_guide_point(int v, const std::vector<SurfacePoint>& line, bool closed, Vec3& x, double& distance) const;
   void relocate_snapped_vertices(const std::vector<std::vector<SurfacePoint>>& polylines, const std::vector<bool>& closed);
   std::vector<int> triangles_of(const Node& n) const;
   int edge_of(int a, int b) const {
@@ -350,162 +452,110 @@ void GuideCutter::assign_segments(const std::vector<std::vector<Node>>& lines, c
   }
 }
 
-// Retriangulates input triangle t with its boundary vertices, inner vertices and guide segments
-// (greedy constrained triangulation: forced edges first, then the shortest edge that crosses
-// nothing accepted; a maximal set of non-crossing edges of a convex polygon is a triangulation).
-void GuideCutter::cut_triangle(int t) {
+// The corners of input triangle t, the vertices on its sides (each side piece forced) and the
+// vertices inside it.
+LocalPoints GuideCutter::local_points(int t) const {
   const Tri& tri = mesh_.triangles[t];
   const Vec3 p0 = mesh_.positions[tri[0]], p1 = mesh_.positions[tri[1]], p2 = mesh_.positions[tri[2]];
-  // Local isometric 2D frame: corner 0 at the origin, corner 1 on +x, counterclockwise.
   const Vec3 ex = (p1 - p0).normalized();
-  const Vec3 n = (p1 - p0).cross(p2 - p0);
-  const Vec3 ey = n.normalized().cross(ex);
-  const double scale = std::max({(p1 - p0).norm(), (p2 - p1).norm(), (p0 - p2).norm()});
+  const Vec3 ey = (p1 - p0).cross(p2 - p0).normalized().cross(ex);
   auto to_2d = [&](const Vec3& x) { return Vec2((x - p0).dot(ex), (x - p0).dot(ey)); };
-  const Vec2 c[3] = {to_2d(p0), to_2d(p1), to_2d(p2)};
-  auto barycentric_of = [&](const Vec2& x) {
-    const double area = cross2(c[1] - c[0], c[2] - c[0]);
-    const double w1 = cross2(x - c[0], c[2] - c[0]) / area, w2 = cross2(c[1] - c[0], x - c[0]) / area;
-    return Vec3(1 - w1 - w2, w1, w2);
-  };
-
-  std::vector<int> ids;  // local point -> cut-mesh vertex
-  std::vector<Vec2> xy;
-  std::unordered_map<int, int> local;
-  auto add_point = [&](int id, const Vec2& x) {
-    const auto [it, inserted] = local.emplace(id, static_cast<int>(ids.size()));
-    if (inserted) {
-      ids.push_back(id);
-      xy.push_back(x);
-    }
-    return it->second;
-  };
-  std::set<std::pair<int, int>> forced;
-  auto force = [&](int a, int b) { forced.insert({std::min(a, b), std::max(a, b)}); };
-  // Corners and the boundary vertices, side by side, with the boundary sub-edges.
-  int boundary_points = 0;
+  LocalPoints P;
+  P.c[0] = to_2d(p0);
+  P.c[1] = to_2d(p1);
+  P.c[2] = to_2d(p2);
+  P.scale = std::max({(p1 - p0).norm(), (p2 - p1).norm(), (p0 - p2).norm()});
+  P.eps = 1e-9 * P.scale;
   for (int k = 0; k < 3; ++k) {
     const int a = tri[k], b = tri[(k + 1) % 3];
-    const int e = edge_of(a, b);
     std::vector<std::pair<double, int>> side{{0.0, a}, {1.0, b}};
-    const auto it = edge_vertices_.find(e);
+    const auto it = edge_vertices_.find(edge_of(a, b));
     if (it != edge_vertices_.end()) {
       side = it->second;
       if (a > b)
         for (auto& [s, id] : side) s = 1 - s;
       std::sort(side.begin(), side.end());
     }
-    for (std::size_t i = 0; i + 1 < side.size(); ++i) {
-      const int la = add_point(side[i].second, (1 - side[i].first) * c[k] + side[i].first * c[(k + 1) % 3]);
-      const int lb =
-          add_point(side[i + 1].second, (1 - side[i + 1].first) * c[k] + side[i + 1].first * c[(k + 1) % 3]);
-      force(la, lb);
-    }
-    boundary_points += static_cast<int>(side.size()) - 1;
+    auto at = [&](std::size_t i) { return Vec2((1 - side[i].first) * P.c[k] + side[i].first * P.c[(k + 1) % 3]); };
+    for (std::size_t i = 0; i + 1 < side.size(); ++i)
+      P.force(P.add(side[i].second, at(i)), P.add(side[i + 1].second, at(i + 1)));
+    P.boundary_points += static_cast<int>(side.size()) - 1;
   }
-  for (int id : face_vertices_[t]) add_point(id, to_2d(position_of(mesh_, host_[id].triangle, host_[id].barycentric)));
+  const auto inside = face_vertices_.find(t);
+  if (inside != face_vertices_.end())
+    for (int id : inside->second)
+      P.add(id, to_2d(position_of(mesh_, host_[id].triangle, host_[id].barycentric)));
+  return P;
+}
 
-  const double eps = 1e-9 * scale;
-  auto orient = [&](const Vec2& a, const Vec2& b, const Vec2& x) { return cross2(b - a, x - a); };
-  // x strictly inside the segment (a, b)?
-  auto on_segment = [&](const Vec2& a, const Vec2& b, const Vec2& x) {
-    const Vec2 d = b - a;
-    const double len = d.norm();
-    if (len == 0 || std::abs(orient(a, b, x)) > eps * len) return false;
-    const double s = (x - a).dot(d) / (len * len);
-    return s * len > eps && (1 - s) * len > eps;
-  };
-  auto crosses = [&](int a, int b, int p, int q) {
-    if (a == p || a == q || b == p || b == q) return false;
-    const double o1 = orient(xy[a], xy[b], xy[p]), o2 = orient(xy[a], xy[b], xy[q]);
-    const double o3 = orient(xy[p], xy[q], xy[a]), o4 = orient(xy[p], xy[q], xy[b]);
-    return ((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0));
-  };
-
-  // The guide segments in this triangle, split where they cross each other or pass a point.
+// Retriangulates input triangle t with its guide pieces as forced edges, split where they cross
+// each other (a new vertex) or pass through a point.
+void GuideCutter::cut_triangle(int t) {
+  LocalPoints P = local_points(t);
   auto& here = in_triangle_[t];
-  std::vector<std::vector<std::pair<double, int>>> on(here.size());
   std::vector<std::array<int, 2>> ends(here.size());
   for (std::size_t s = 0; s < here.size(); ++s) {
     const Segment& seg = segments_[here[s].first][here[s].second];
-    ends[s] = {local.at(seg.u), local.at(seg.v)};
+    ends[s] = {P.local.at(seg.u), P.local.at(seg.v)};
   }
   for (std::size_t s = 0; s < here.size(); ++s)
     for (std::size_t r = s + 1; r < here.size(); ++r) {
       const int a = ends[s][0], b = ends[s][1], p = ends[r][0], q = ends[r][1];
-      if (!crosses(a, b, p, q)) continue;
-      const Vec2 d1 = xy[b] - xy[a], d2 = xy[q] - xy[p];
-      const double u = cross2(xy[p] - xy[a], d2) / cross2(d1, d2);
-      const Vec2 x = xy[a] + u * d1;
+      if (!P.crosses(a, b, p, q)) continue;
+      const Vec2 d1 = P.xy[b] - P.xy[a], d2 = P.xy[q] - P.xy[p];
+      const Vec2 x = P.xy[a] + cross2(P.xy[p] - P.xy[a], d2) / cross2(d1, d2) * d1;
       // A third guide through the same point reuses it; the split below finds it on both.
       bool known = false;
-      for (std::size_t k = 0; k < xy.size() && !known; ++k) known = (xy[k] - x).norm() <= eps;
-      if (!known) add_point(new_vertex(t, barycentric_of(x)), x);
+      for (std::size_t k = 0; k < P.xy.size() && !known; ++k) known = (P.xy[k] - x).norm() <= P.eps;
+      if (!known) P.add(new_vertex(t, P.barycentric_of(x)), x);
     }
   for (std::size_t s = 0; s < here.size(); ++s) {
     const int a = ends[s][0], b = ends[s][1];
-    const Vec2 d = xy[b] - xy[a];
-    for (std::size_t k = 0; k < xy.size(); ++k)
-      if (on_segment(xy[a], xy[b], xy[k])) on[s].push_back({(xy[k] - xy[a]).dot(d) / d.squaredNorm(), static_cast<int>(k)});
-    std::sort(on[s].begin(), on[s].end());
+    const Vec2 d = P.xy[b] - P.xy[a];
+    std::vector<std::pair<double, int>> on;
+    for (std::size_t k = 0; k < P.xy.size(); ++k)
+      if (P.on_segment(P.xy[a], P.xy[b], P.xy[k])) on.push_back({(P.xy[k] - P.xy[a]).dot(d) / d.squaredNorm(), static_cast<int>(k)});
+    std::sort(on.begin(), on.end());
     Segment& seg = segments_[here[s].first][here[s].second];
     int prev = a;
-    for (const auto& [param, k] : on[s]) {
-      seg.inner.push_back(ids[k]);
-      force(prev, k);
+    for (const auto& [param, k] : on) {
+      seg.inner.push_back(P.ids[k]);
+      P.force(prev, k);
       prev = k;
     }
-    force(prev, b);
+    P.force(prev, b);
   }
+  pieces_[t] = triangulate(P, t);
+}
 
-  // Greedy triangulation around the forced edges.
-  const int count = static_cast<int>(xy.size());
-  std::vector<std::array<int, 2>> accepted;
-  for (const auto& [a, b] : forced) accepted.push_back({a, b});
-  for (std::size_t i = 0; i < accepted.size(); ++i)
-    for (std::size_t j = i + 1; j < accepted.size(); ++j)
-      require(!crosses(accepted[i][0], accepted[i][1], accepted[j][0], accepted[j][1]), MCON_ERROR_NUMERICAL,
-              "cutting guides into triangle " + std::to_string(t) + ": two guide pieces cross");
-  std::vector<std::pair<double, std::array<int, 2>>> candidates;
-  for (int a = 0; a < count; ++a)
-    for (int b = a + 1; b < count; ++b)
-      if (!forced.count({a, b})) candidates.push_back({(xy[a] - xy[b]).squaredNorm(), {a, b}});
-  std::sort(candidates.begin(), candidates.end());
-  for (const auto& [length, e] : candidates) {
-    bool ok = true;
-    for (int k = 0; k < count && ok; ++k) ok = !on_segment(xy[e[0]], xy[e[1]], xy[k]);
-    for (std::size_t i = 0; i < accepted.size() && ok; ++i) ok = !crosses(e[0], e[1], accepted[i][0], accepted[i][1]);
-    if (ok) accepted.push_back(e);
+// The point of the traced polyline closest to input vertex v (and its position and distance):
+// the segment's triangle and the point's weights in it.
+SurfacePoint GuideCutter::closest_guide_point(int v, const std::vector<SurfacePoint>& line, bool closed, Vec3& x_out,
+                                              double& distance) const {
+  const Vec3 x = mesh_.positions[v];
+  const std::size_t segments = closed ? line.size() : line.size() - 1;
+  distance = std::numeric_limits<double>::infinity();
+  SurfacePoint target;
+  for (std::size_t i = 0; i < segments; ++i) {
+    const SurfacePoint& next = line[(i + 1) % line.size()];
+    const int t = line[i].triangle;
+    const Vec3 a = position_of(mesh_, t, line[i].barycentric);
+    const Vec3 d = position_of(mesh_, next.triangle, next.barycentric) - a;
+    const double s = d.squaredNorm() > 0 ? std::clamp((x - a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+    const Vec3 q = a + s * d;
+    if (!((q - x).norm() < distance)) continue;
+    distance = (q - x).norm();
+    x_out = q;
+    // The segment lies in triangle t: the weights of q in it (least squares in its plane).
+    const Tri& tri = mesh_.triangles[t];
+    const Vec3 p0 = mesh_.positions[tri[0]], e1 = mesh_.positions[tri[1]] - p0, e2 = mesh_.positions[tri[2]] - p0;
+    const double d11 = e1.dot(e1), d12 = e1.dot(e2), d22 = e2.dot(e2), r1 = (q - p0).dot(e1), r2 = (q - p0).dot(e2);
+    const double det = d11 * d22 - d12 * d12;
+    const double u = (d22 * r1 - d12 * r2) / det, w = (d11 * r2 - d12 * r1) / det;
+    const Vec3 bary = Vec3(1 - u - w, u, w).cwiseMax(0.0);
+    target = {t, bary / bary.sum()};
   }
-  std::vector<std::set<int>> adjacent(static_cast<std::size_t>(count));
-  for (const auto& e : accepted) {
-    adjacent[e[0]].insert(e[1]);
-    adjacent[e[1]].insert(e[0]);
-  }
-  std::vector<Tri> pieces;
-  for (int a = 0; a < count; ++a)
-    for (int b : adjacent[a]) {
-      if (b <= a) continue;
-      for (int k : adjacent[b]) {
-        if (k <= b || !adjacent[a].count(k)) continue;
-        int i = a, j = b, l = k;
-        const double o = orient(xy[i], xy[j], xy[l]);
-        if (std::abs(o) <= eps * scale) continue;
-        if (o < 0) std::swap(j, l);
-        bool empty = true;
-        for (int m = 0; m < count && empty; ++m)
-          if (m != i && m != j && m != l)
-            empty = !(orient(xy[i], xy[j], xy[m]) > -eps * scale && orient(xy[j], xy[l], xy[m]) > -eps * scale &&
-                      orient(xy[l], xy[i], xy[m]) > -eps * scale);
-        if (empty) pieces.push_back({ids[i], ids[j], ids[l]});
-      }
-    }
-  // A triangulation of n points, b of them on the boundary, has 2n - b - 2 triangles.
-  require(static_cast<int>(pieces.size()) == 2 * count - boundary_points - 2, MCON_ERROR_NUMERICAL,
-          "cutting guides into triangle " + std::to_string(t) + " gave " + std::to_string(pieces.size()) +
-              " triangles instead of " + std::to_string(2 * count - boundary_points - 2) +
-              "; try a larger snap_fraction");
-  pieces_[t] = std::move(pieces);
+  return target;
 }
 
 // A snapped input vertex on one guide moves onto that guide (the closest point of the traced
@@ -540,33 +590,10 @@ void GuideCutter::relocate_snapped_vertices(const std::vector<std::vector<Surfac
   for (int v = 0; v < n; ++v) {
     if (owner[v] < 0 || boundary[v]) continue;
     const auto& line = polylines[static_cast<std::size_t>(owner[v])];
-    const std::size_t segments = closed[static_cast<std::size_t>(owner[v])] ? line.size() : line.size() - 1;
     const Vec3 x = mesh_.positions[v];
-    double best = std::numeric_limits<double>::infinity();
-    SurfacePoint target;
+    double best = 0;
     Vec3 target_x = x;
-    for (std::size_t i = 0; i < segments; ++i) {
-      const SurfacePoint& next = line[(i + 1) % line.size()];
-      const int t = line[i].triangle;
-      const Vec3 a = position_of(mesh_, t, line[i].barycentric);
-      const Vec3 b = position_of(mesh_, next.triangle, next.barycentric);
-      const Vec3 d = b - a;
-      const double s = d.squaredNorm() > 0 ? std::clamp((x - a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
-      const Vec3 q = a + s * d;
-      if ((q - x).norm() < best) {
-        best = (q - x).norm();
-        target_x = q;
-        // The segment lies in triangle t: the weights of q in it, from those of its ends.
-        const Tri& tri = mesh_.triangles[t];
-        const Vec3 p0 = mesh_.positions[tri[0]], e1 = mesh_.positions[tri[1]] - p0, e2 = mesh_.positions[tri[2]] - p0;
-        const double d11 = e1.dot(e1), d12 = e1.dot(e2), d22 = e2.dot(e2), r1 = (q - p0).dot(e1), r2 = (q - p0).dot(e2);
-        const double det = d11 * d22 - d12 * d12;
-        const double u = (d22 * r1 - d12 * r2) / det, w = (d11 * r2 - d12 * r1) / det;
-        Vec3 bary(1 - u - w, u, w);
-        bary = bary.cwiseMax(0.0);
-        target = {t, bary / bary.sum()};
-      }
-    }
+    SurfacePoint target = closest_guide_point(v, line, closed[static_cast<std::size_t>(owner[v])], target_x, best);
     // A crossing exactly at the vertex needs no move.
     if (!(best > 1e-12 * mean_side(mesh_, topology_.vertex_triangles[v].front()))) continue;
     std::vector<Vec3> normals;
@@ -646,8 +673,15 @@ CutMesh GuideCutter::run(const std::vector<std::vector<SurfacePoint>>& polylines
     if (!s.empty()) cut[f] = true;
   for (int t = 0; t < mesh_.num_triangles(); ++t)
     if (cut[t]) cut_triangle(t);
+  assemble_mesh(cut);
+  chain_guides();
+  relocate_snapped_vertices(polylines, closed);
+  return std::move(out_);
+}
 
-  // The cut mesh.
+// The cut mesh: the input's vertices, then the new ones; uncut triangles as they were, cut ones
+// replaced by their pieces.
+void GuideCutter::assemble_mesh(const std::vector<bool>& cut) {
   out_.host = host_;
   out_.mesh.positions.reserve(host_.size());
   for (const SurfacePoint& h : host_) out_.mesh.positions.push_back(position_of(mesh_, h.triangle, h.barycentric));
@@ -669,10 +703,11 @@ CutMesh GuideCutter::run(const std::vector<std::vector<SurfacePoint>>& polylines
       out_.min_angle_created = std::min(out_.min_angle_created, min_angle(x[piece[0]], x[piece[1]], x[piece[2]]));
     }
   }
+}
 
-  // The guides as vertex chains.
-  std::set<std::pair<int, int>> guide_edges;
-  out_.guides.resize(polylines.size());
+// The guides as vertex chains of the cut mesh, and their distinct edges.
+void GuideCutter::chain_guides() {
+  out_.guides.resize(segments_.size());
   for (std::size_t g = 0; g < segments_.size(); ++g) {
     std::vector<int>& chain = out_.guides[g];
     for (const Segment& s : segments_[g]) {
@@ -699,7 +734,7 @@ CutMesh GuideCutter::run(const std::vector<std::vector<SurfacePoint>>& polylines
       }
     }
   }
-  std::set<std::pair<int, int>> mesh_edges;
+  std::set<std::pair<int, int>> mesh_edges, guide_edges;
   for (const Tri& tri : out_.mesh.triangles)
     for (int k = 0; k < 3; ++k) mesh_edges.insert({std::min(tri[k], tri[(k + 1) % 3]), std::max(tri[k], tri[(k + 1) % 3])});
   // A chain that steps through a snapped input vertex v between p and q where (p, q) is an edge
@@ -725,8 +760,6 @@ CutMesh GuideCutter::run(const std::vector<std::vector<SurfacePoint>>& polylines
                 ") is not an edge of the cut mesh");
     out_.guide_edges.push_back({e.first, e.second});
   }
-  relocate_snapped_vertices(polylines, closed);
-  return std::move(out_);
 }
 
 }  // namespace

@@ -188,7 +188,18 @@ TEST(CapiCutMesh, QuadWildFilesAgreeWithTheCutMesh) {
   sharp >> sharp_count;
   EXPECT_EQ(rosy_count, info.triangle_count);
   EXPECT_EQ(sharp_count, info.guide_edge_count);
-  for (const char* ext : {".obj", ".rosy", ".sharp"}) std::remove((prefix + ext).c_str());
+  // The manifest names the three files, the face count and QuadWild's command line.
+  std::ifstream manifest_file(prefix + ".quadwild.json");
+  std::stringstream manifest;
+  manifest << manifest_file.rdbuf();
+  const std::string m = manifest.str();
+  EXPECT_NE(m.find("\"faces\": " + std::to_string(info.triangle_count)), std::string::npos) << m;
+  EXPECT_NE(m.find("\"sharp_edges\": " + std::to_string(info.guide_edge_count)), std::string::npos) << m;
+  EXPECT_NE(m.find("quadwild capi_cut_mesh_nose.obj 2 capi_cut_mesh_nose.rosy capi_cut_mesh_nose.sharp"),
+            std::string::npos)
+      << m;
+  EXPECT_NE(m.find("\"mesh_fnv1a64\": \""), std::string::npos) << m;
+  for (const char* ext : {".obj", ".rosy", ".sharp", ".quadwild.json"}) std::remove((prefix + ext).c_str());
 }
 
 TEST(CapiCutMesh, BadArgumentsAreRefusedByName) {

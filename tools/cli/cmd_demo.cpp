@@ -142,6 +142,21 @@ std::size_t write_polylines_obj(const std::string& path, mcon_polyline_set set) 
   return lines;
 }
 
+// The guides cut into the region: QuadWild's .obj/.rosy/.sharp, every guide on mesh edges.
+void write_cut_guides(const macrocon::Patch& region, mcon_polyline_set lines, const std::string& base) {
+  mcon_cut_mesh raw_cut = nullptr;
+  check(mcon_patch_cut_guides(region.get(), lines, nullptr, &raw_cut));
+  const std::unique_ptr<mcon_cut_mesh_t, Releaser<mcon_cut_mesh, mcon_cut_mesh_release>> cut(raw_cut);
+  check(mcon_cut_mesh_write_quadwild(cut.get(), (base + "_cut").c_str()));
+  mcon_cut_mesh_info cinfo;
+  check(mcon_cut_mesh_info_init(&cinfo));
+  check(mcon_cut_mesh_get_info(cut.get(), &cinfo));
+  std::printf("  guides cut in: %zu triangles, %zu guide edges, smallest angle made %.1f degrees (of the cut "
+              "region triangles %.1f) -> %s_cut.{obj,rosy,sharp}\n",
+              cinfo.triangle_count, cinfo.guide_edge_count, cinfo.min_angle_created, cinfo.min_angle_of_cut_input,
+              base.c_str());
+}
+
 // Runs one region; returns false if the result fails a sanity check (printed).
 bool run_region(const macrocon::Context& ctx, const macrocon::Mesh& body, mcon_library lib, const Region& r,
                 const std::string& out_dir, bool cut_guides) {
@@ -231,20 +246,7 @@ bool run_region(const macrocon::Context& ctx, const macrocon::Mesh& body, mcon_l
               entry_string(lib, best, MCON_ENTRY_CLASS_LABEL).c_str(), static_cast<unsigned long long>(ids[0]),
               minfo.overlap_ratio, minfo.matching_score, minfo.reflected ? "mirrored" : "direct",
               minfo.flipped_triangles, attributes.size() - 1, polylines, seconds, base.c_str(), base.c_str());
-  if (cut_guides) {
-    // The guides cut into the region: QuadWild's .obj/.rosy/.sharp, every guide on mesh edges.
-    mcon_cut_mesh raw_cut = nullptr;
-    check(mcon_patch_cut_guides(region.get(), lines.get(), nullptr, &raw_cut));
-    const std::unique_ptr<mcon_cut_mesh_t, Releaser<mcon_cut_mesh, mcon_cut_mesh_release>> cut(raw_cut);
-    check(mcon_cut_mesh_write_quadwild(cut.get(), (base + "_cut").c_str()));
-    mcon_cut_mesh_info cinfo;
-    check(mcon_cut_mesh_info_init(&cinfo));
-    check(mcon_cut_mesh_get_info(cut.get(), &cinfo));
-    std::printf("  guides cut in: %zu triangles, %zu guide edges, smallest angle made %.1f degrees (of the cut "
-                "region triangles %.1f) -> %s_cut.{obj,rosy,sharp}\n",
-                cinfo.triangle_count, cinfo.guide_edge_count, cinfo.min_angle_created, cinfo.min_angle_of_cut_input,
-                base.c_str());
-  }
+  if (cut_guides) write_cut_guides(region, lines.get(), base);
   const bool ok = minfo.flipped_triangles == 0 && minfo.overlap_ratio > 0.5;
   if (!ok) std::printf("  %s: the re-embedding looks wrong (flips or overlap below 0.5)\n", r.name);
   return ok;

@@ -44,7 +44,8 @@ const char* kUsage =
     "Source constraints: its uv, mean curvature, geodesic distance from the center and a ring label\n"
     "(distance in steps of 0.25) per vertex, and guide loops at geodesic distance 0.3 and 0.6.\n"
     "--out DIR (default embed-out) receives target.ply (target patch in target mesh units with the\n"
-    "transferred fields and 'outside' = 1 where no source point maps), guides.obj (re-traced guides),\n"
+    "transferred fields and 'outside' = 1 where no source point maps), target.obj (the same triangles\n"
+    "with exact doubles, for QuadWild), guides.obj (re-traced guides),\n"
     "source_guides.obj, target.rosy (cross field following the guides) and summary.json; --json\n"
     "also prints the summary. Vertex numbers and face ranges refer to the files.\n"
     "--orientation (default auto) forces an orientation-preserving or -reversing map, e.g. to flip a\n"
@@ -451,6 +452,8 @@ void write_target_ply(const std::string& ply, const EmbedPatches& e, const Embed
     host_vertex.values.push_back(hp.v0 < 0 ? -1.0 : static_cast<double>(e.target_mesh.mesh_to_file[hp.t < 0.5 ? hp.v0 : hp.v1]));
   }
   io::write_ply(ply, target_host, {uv, h, g, ring, out_attr, host_vertex});
+  // The same triangles as OBJ with exact doubles (QuadWild reads OBJ), next to the PLY.
+  io::write_obj(ply.substr(0, ply.size() - 4) + ".obj", target_host);
 }
 
 EmbedFiles write_embed_files(const std::string& out_dir, const EmbedPatches& e, const EmbedTransfer& x) {
@@ -654,6 +657,7 @@ tools::Json embed_summary(const EmbedOptions& o, const EmbedPatches& e, const Em
   timings.set("total", seconds_since(t_start));
   Json files = Json::object();
   files.set("target_ply", f.ply);
+  files.set("target_obj", f.ply.substr(0, f.ply.size() - 4) + ".obj");
   files.set("guides_obj", f.obj);
   files.set("source_guides_obj", f.src_obj);
   files.set("rosy", f.rosy);
@@ -721,6 +725,13 @@ int run_embed(const Args& args) {
     files.set("cut_rosy", cut->rosy);
     files.set("cut_guides_obj", cut->guides);
     summary.set("files", files);
+    // QuadWild's command lines for the cut patch (run in the output folder; <quadwild> is its build).
+    tools::Json commands = tools::Json::array();
+    commands.push_back(std::string("quadwild target_cut.obj 2 target_cut.rosy target_cut.sharp "
+                                   "<quadwild>/config/prep_config/basic_setup.txt"));
+    commands.push_back(std::string("quad_from_patches target_cut_rem_p0.obj 123 "
+                                   "<quadwild>/config/main_config/flow_noalign_lemon.txt"));
+    summary.set("quadwild_commands", commands);
   }
   tools::write_json_file(f.summary_path, summary);
   if (p.flag("json")) {

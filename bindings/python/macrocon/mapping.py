@@ -219,7 +219,8 @@ class CutMesh(_Handle):
         return out
 
     def write_quadwild(self, path_prefix) -> None:
-        """Writes QuadWild's inputs side by side: ``<prefix>.obj``, ``<prefix>.rosy``, ``<prefix>.sharp``."""
+        """Writes QuadWild's inputs side by side: ``<prefix>.obj``, ``.rosy``, ``.sharp``, and a
+        ``.quadwild.json`` manifest (face count, the OBJ's hash, QuadWild's command lines)."""
         import os
 
         from .errors import check_path
