@@ -34,8 +34,6 @@ mcon_guide_cut_options default_cut_options() {
   return o;
 }
 
-Vec3 to_host(const Patch& p, const Vec3& x) { return p.center_position + p.radius * x; }
-
 TriMesh host_units(const mcon_cut_mesh_t& c) {
   TriMesh m = c.cut.mesh;
   for (Vec3& x : m.positions) x = to_host(c.patch->patch, x);

@@ -11,6 +11,11 @@
 #include "transfer/polyline_transfer.h"
 #include "map/surface_map.h"
 
+namespace mcon::capi {
+// Patch coordinates -> the patch's host units (host = center + radius * p).
+inline Vec3 to_host(const Patch& p, const Vec3& x) { return p.center_position + p.radius * x; }
+}  // namespace mcon::capi
+
 struct mcon_map_t {
   static constexpr std::uint32_t kMagic = 0x4d434d50;  // "MCMP"
   mcon::capi::HandleHeader header{kMagic};

@@ -12,9 +12,6 @@ mcon_polyline_set_t::~mcon_polyline_set_t() { release_owned(patch); }
 
 namespace {
 
-// Patch coordinates -> the patch's host units (host = center + radius * p).
-Vec3 to_host(const Patch& p, const Vec3& x) { return p.center_position + p.radius * x; }
-
 // Source points from the caller's arrays (validated: triangle range, finite, on the triangle).
 std::vector<SurfacePoint> read_points(const Patch& source, const uint32_t* triangles, const double* barycentric,
                                             std::size_t count) {

@@ -10,6 +10,7 @@
 #include <unordered_map>
 
 #include "base/error.h"
+#include "mesh/closest_point_3d.h"
 #include "mesh/edge_key.h"
 #include "mesh/mesh_topology.h"
 
@@ -546,14 +547,11 @@ SurfacePoint GuideCutter::closest_guide_point(int v, const std::vector<SurfacePo
     if (!((q - x).norm() < distance)) continue;
     distance = (q - x).norm();
     x_out = q;
-    // The segment lies in triangle t: the weights of q in it (least squares in its plane).
+    // The segment lies in triangle t: the weights of q in it.
     const Tri& tri = mesh_.triangles[t];
-    const Vec3 p0 = mesh_.positions[tri[0]], e1 = mesh_.positions[tri[1]] - p0, e2 = mesh_.positions[tri[2]] - p0;
-    const double d11 = e1.dot(e1), d12 = e1.dot(e2), d22 = e2.dot(e2), r1 = (q - p0).dot(e1), r2 = (q - p0).dot(e2);
-    const double det = d11 * d22 - d12 * d12;
-    const double u = (d22 * r1 - d12 * r2) / det, w = (d11 * r2 - d12 * r1) / det;
-    const Vec3 bary = Vec3(1 - u - w, u, w).cwiseMax(0.0);
-    target = {t, bary / bary.sum()};
+    Vec3 bary;
+    closest_point_on_triangle(q, mesh_.positions[tri[0]], mesh_.positions[tri[1]], mesh_.positions[tri[2]], bary);
+    target = {t, bary};
   }
   return target;
 }

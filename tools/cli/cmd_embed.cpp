@@ -553,16 +553,18 @@ EmbedCut cut_and_write(const EmbedOptions& o, const EmbedPatches& e, const Embed
   io::write_rosy(c.rosy, host_units, c.field.directions);
   // The cut guides as OBJ lines through the cut mesh's own vertices (same numbering as target_cut.obj).
   c.guides = o.out_dir + "/target_cut_guides.obj";
-  std::string lines = "# macrocon embed: the guides as chains of target_cut.obj's edges\n";
-  for (const Vec3& v : host_units.positions)
-    lines += "v " + std::to_string(v.x()) + ' ' + std::to_string(v.y()) + ' ' + std::to_string(v.z()) + '\n';
+  // 17 digits: the vertices read back as target_cut.obj's (std::to_string would keep 6 decimals).
+  std::ostringstream lines;
+  lines.precision(17);
+  lines << "# macrocon embed: the guides as chains of target_cut.obj's edges\n";
+  for (const Vec3& v : host_units.positions) lines << "v " << v.x() << ' ' << v.y() << ' ' << v.z() << '\n';
   for (const std::vector<int>& chain : c.cut.guides) {
     if (chain.size() < 2) continue;
-    lines += 'l';
-    for (int v : chain) lines += ' ' + std::to_string(v + 1);
-    lines += '\n';
+    lines << 'l';
+    for (int v : chain) lines << ' ' << v + 1;
+    lines << '\n';
   }
-  io::write_file_maybe_gz(c.guides, lines);
+  io::write_file_maybe_gz(c.guides, lines.str());
   return c;
 }
 
