@@ -267,3 +267,38 @@ TEST(CapiCutMesh, BadArgumentsAreRefusedByName) {
   EXPECT_EQ(mcon_cut_mesh_release(kept), MCON_OK);
   EXPECT_EQ(mcon_cut_mesh_release(kept), MCON_ERROR_INVALID_ARGUMENT);
 }
+
+TEST(CapiCutMesh, NullHandlesAndOutputsAreRefused) {
+  CutSetup& x = setup();
+  double d[3];
+  uint32_t u[3];
+  mcon_cut_mesh_info info;
+  ASSERT_EQ(mcon_cut_mesh_info_init(&info), MCON_OK);
+  EXPECT_EQ(mcon_guide_cut_options_init(nullptr), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_cut_mesh_info_init(nullptr), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_cut_mesh_get_info(nullptr, &info), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_cut_mesh_get_positions(nullptr, d, 3), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_cut_mesh_get_triangles(nullptr, u, 3), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_cut_mesh_get_host_points(nullptr, u, d, 1), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_cut_mesh_get_guide_edges(nullptr, u, 2), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_cut_mesh_get_guides(nullptr, u, 1, u, 1), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_cut_mesh_carry_field(nullptr, 1, d, 1, d, 1), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_cut_mesh_compute_cross_field(nullptr, d, 1), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_cut_mesh_write_quadwild(nullptr, "x"), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_cut_mesh_retain(nullptr), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_cut_mesh_release(nullptr), MCON_OK);  // as every other release: NULL is a no-op
+  const CutPtr cut = cut_of(x);
+  EXPECT_EQ(mcon_cut_mesh_get_info(cut.get(), nullptr), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_cut_mesh_get_positions(cut.get(), nullptr, 3), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_cut_mesh_get_triangles(cut.get(), nullptr, 3), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_cut_mesh_get_guide_edges(cut.get(), nullptr, 2), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_cut_mesh_compute_cross_field(cut.get(), nullptr, 1), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_cut_mesh_carry_field(cut.get(), 1, nullptr, 1, d, 1), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_cut_mesh_carry_field(cut.get(), 0, d, 1, d, 1), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(mcon_cut_mesh_write_quadwild(cut.get(), nullptr), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_cut_mesh_get_triangles(cut.get(), u, 3), MCON_ERROR_BUFFER_TOO_SMALL);
+  EXPECT_EQ(mcon_cut_mesh_get_guides(cut.get(), u, 0, nullptr, 0), MCON_ERROR_BUFFER_TOO_SMALL);
+  EXPECT_EQ(mcon_cut_mesh_compute_cross_field(cut.get(), d, 1), MCON_ERROR_BUFFER_TOO_SMALL);
+  info.struct_size = 4;
+  EXPECT_EQ(mcon_cut_mesh_get_info(cut.get(), &info), MCON_ERROR_STRUCT_SIZE);
+}
