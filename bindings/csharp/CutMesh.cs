@@ -5,7 +5,13 @@ using System.Runtime.InteropServices;
 
 namespace Macrocon
 {
-    /// <summary>A patch's surface re-meshed so that every guide is a chain of edges (Patch.CutGuides); keeps its patch alive.</summary>
+    /// <summary>Where a cut-mesh guide chain comes from: its guide set and the polyline of that set.</summary>
+    public struct GuideOrigin
+    {
+        public uint Set, Polyline;
+    }
+
+    /// <summary>A patch's surface (Patch.CutGuides) or a whole mesh (Mesh.CutGuides) re-meshed so that every guide is a chain of edges; keeps its input alive.</summary>
     public sealed class CutMesh : IDisposable
     {
         internal readonly CutMeshHandle Handle;
@@ -89,11 +95,23 @@ namespace Macrocon
             return chains;
         }
 
-        /// <summary>A per-vertex field of the patch (dimension values per patch vertex) interpolated at the cut mesh's vertices.</summary>
+        /// <summary>Per guide chain its guide set (0 for Patch.CutGuides) and the polyline of that set it comes from.</summary>
+        public GuideOrigin[] GuideOrigins()
+        {
+            int n = (int)Info.GuideCount;
+            var sets = new uint[n];
+            var lines = new uint[n];
+            Native.Check(Native.mcon_cut_mesh_get_guide_origins(Handle, sets, lines, (UIntPtr)n));
+            var o = new GuideOrigin[n];
+            for (int g = 0; g < n; ++g) o[g] = new GuideOrigin { Set = sets[g], Polyline = lines[g] };
+            return o;
+        }
+
+        /// <summary>A per-vertex field of the patch (of the mesh for Mesh.CutGuides; dimension values per vertex) interpolated at the cut mesh's vertices.</summary>
         public unsafe double[] CarryField(ReadOnlySpan<double> patchValues, int dimension)
         {
             if (dimension < 1 || patchValues.Length != (long)dimension * patchVertices)
-                throw new ArgumentException($"patchValues must hold {dimension} per patch vertex ({patchVertices})");
+                throw new ArgumentException($"patchValues must hold {dimension} per input vertex ({patchVertices})");
             var o = new double[dimension * (int)Info.VertexCount];
             fixed (double* v = &MemoryMarshal.GetReference(patchValues))
                 Native.Check(Native.mcon_cut_mesh_carry_field(Handle, checked((uint)dimension), (IntPtr)v, (UIntPtr)patchValues.Length, o,

@@ -114,6 +114,8 @@ namespace Macrocon
         public uint Shortcuts;
         /// <summary>Snapped patch vertices moved onto their guide.</summary>
         public uint MovedVertices;
+        /// <summary>Mesh.CutGuides only: guide points on hole-filling patch triangles (dropped), and the guides split there.</summary>
+        public uint UnplacedPoints, SplitGuides;
     }
 
     /// <summary>A failed Macrocon call: the C status code and the library's message.</summary>
@@ -409,6 +411,10 @@ namespace Macrocon
         [DllImport(Lib)] internal static extern Status mcon_cut_mesh_info_init(ref CutMeshInfo info);
         [DllImport(Lib)] internal static extern Status mcon_patch_cut_guides(PatchHandle patch, PolylineSetHandle guides, ref GuideCutOptions options,
             out CutMeshHandle cut);
+        [DllImport(Lib)] internal static extern Status mcon_mesh_cut_guides(MeshHandle mesh, IntPtr[] guideSets, UIntPtr setCount,
+            ref GuideCutOptions options, out CutMeshHandle cut);
+        [DllImport(Lib)] internal static extern Status mcon_cut_mesh_get_guide_origins(CutMeshHandle cut, [Out] uint[] sets,
+            [Out] uint[] polylines, UIntPtr capacity);
         [DllImport(Lib)] internal static extern Status mcon_cut_mesh_release(IntPtr cut);
         [DllImport(Lib)] internal static extern Status mcon_cut_mesh_get_info(CutMeshHandle cut, ref CutMeshInfo info);
         [DllImport(Lib)] internal static extern Status mcon_cut_mesh_get_positions(CutMeshHandle cut, [Out] double[] xyz, UIntPtr capacity);
@@ -913,6 +919,31 @@ namespace Macrocon
             }
         }
 
+        /// <summary>Cuts the guides of several macro constraints (each set transferred onto a patch extracted from this mesh) into the whole mesh: the result covers every face; null fractions keep the defaults.</summary>
+        public CutMesh CutGuides(PolylineSet[] guideSets, double? snapFraction = null, double? simplifyFraction = null)
+        {
+            if (guideSets == null) throw new ArgumentNullException(nameof(guideSets));
+            var o = Patch.CutOptions(snapFraction, simplifyFraction);
+            var raw = new IntPtr[guideSets.Length];
+            var added = new bool[guideSets.Length];
+            try
+            {
+                for (int i = 0; i < guideSets.Length; ++i)
+                {
+                    if (guideSets[i] == null) throw new ArgumentNullException($"guideSets[{i}]");
+                    guideSets[i].Handle.DangerousAddRef(ref added[i]);  // alive for the call
+                    raw[i] = guideSets[i].Handle.DangerousGetHandle();
+                }
+                Native.Check(Native.mcon_mesh_cut_guides(Handle, raw, (UIntPtr)raw.Length, ref o, out CutMeshHandle h));
+                return new CutMesh(h, Counts.Vertices);
+            }
+            finally
+            {
+                for (int i = 0; i < guideSets.Length; ++i)
+                    if (added[i]) guideSets[i].Handle.DangerousRelease();
+            }
+        }
+
         /// <summary>What creating the mesh changed to orient it consistently and outward.</summary>
         public MeshOrientation Orientation
         {
@@ -1102,12 +1133,18 @@ namespace Macrocon
         public CutMesh CutGuides(PolylineSet guides, double? snapFraction = null, double? simplifyFraction = null)
         {
             if (guides == null) throw new ArgumentNullException(nameof(guides));
+            var o = CutOptions(snapFraction, simplifyFraction);
+            Native.Check(Native.mcon_patch_cut_guides(Handle, guides.Handle, ref o, out CutMeshHandle h));
+            return new CutMesh(h, VertexCount);
+        }
+
+        internal static Native.GuideCutOptions CutOptions(double? snapFraction, double? simplifyFraction)
+        {
             var o = new Native.GuideCutOptions();
             Native.Check(Native.mcon_guide_cut_options_init(ref o));
             if (snapFraction.HasValue) o.snap_fraction = snapFraction.Value;
             if (simplifyFraction.HasValue) o.simplify_fraction = simplifyFraction.Value;
-            Native.Check(Native.mcon_patch_cut_guides(Handle, guides.Handle, ref o, out CutMeshHandle h));
-            return new CutMesh(h, VertexCount);
+            return o;
         }
 
         public int VertexCount => (int)info.vertex_count;

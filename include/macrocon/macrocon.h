@@ -845,6 +845,10 @@ typedef struct mcon_cut_mesh_info {
   uint32_t dropped_points;       /* guide points dropped as adding no shape */
   uint32_t shortcuts;            /* steps through a snapped vertex replaced by the edge across */
   uint32_t moved_vertices;       /* snapped patch vertices moved onto their guide */
+  /* mcon_mesh_cut_guides only: guide points on patch triangles that fill a hole of the host
+   * (dropped), and the guides split into pieces there. */
+  uint32_t unplaced_points;
+  uint32_t split_guides;
 } mcon_cut_mesh_info;
 
 MCON_API mcon_status mcon_cut_mesh_info_init(mcon_cut_mesh_info* info);
@@ -852,6 +856,13 @@ MCON_API mcon_status mcon_cut_mesh_info_init(mcon_cut_mesh_info* info);
  * INVALID_ARGUMENT if the guides lie on another patch. The cut mesh keeps a reference on the patch. */
 MCON_API mcon_status mcon_patch_cut_guides(mcon_patch patch, mcon_polyline_set guides,
                                            const mcon_guide_cut_options* options, mcon_cut_mesh* out_cut);
+/* Cuts the guides of one or several macro constraints into the whole host: `guide_sets[i]` lie on
+ * patches extracted from `mesh` (e.g. both eyes and the mouth), and the result covers every face of
+ * `mesh`, so its cross field and QuadWild files cover the whole model (docs/design.md §15).
+ * Positions are the mesh's; host points are mesh triangles. INVALID_ARGUMENT if a set lies on a
+ * patch that was not extracted from `mesh`. The cut mesh keeps a reference on the mesh. */
+MCON_API mcon_status mcon_mesh_cut_guides(mcon_mesh mesh, const mcon_polyline_set* guide_sets, size_t set_count,
+                                          const mcon_guide_cut_options* options, mcon_cut_mesh* out_cut);
 MCON_API mcon_status mcon_cut_mesh_retain(mcon_cut_mesh cut);
 MCON_API mcon_status mcon_cut_mesh_release(mcon_cut_mesh cut);
 MCON_API mcon_status mcon_cut_mesh_get_info(mcon_cut_mesh cut, mcon_cut_mesh_info* info);
@@ -859,7 +870,8 @@ MCON_API mcon_status mcon_cut_mesh_get_info(mcon_cut_mesh cut, mcon_cut_mesh_inf
 MCON_API mcon_status mcon_cut_mesh_get_positions(mcon_cut_mesh cut, double* out_xyz, size_t capacity);
 /* Triangles (3 indices each, the patch's winding); capacity in indices. */
 MCON_API mcon_status mcon_cut_mesh_get_triangles(mcon_cut_mesh cut, uint32_t* out_indices, size_t capacity);
-/* Per vertex its point on the patch: patch triangle and 3 weights. Either may be NULL; capacity in vertices. */
+/* Per vertex its point on the patch (on the mesh for mcon_mesh_cut_guides): triangle and 3 weights.
+ * Either may be NULL; capacity in vertices. */
 MCON_API mcon_status mcon_cut_mesh_get_host_points(mcon_cut_mesh cut, uint32_t* out_patch_triangles,
                                                    double* out_barycentric, size_t capacity);
 /* The distinct guide edges as vertex pairs (2 indices each); capacity in indices. */
@@ -868,8 +880,12 @@ MCON_API mcon_status mcon_cut_mesh_get_guide_edges(mcon_cut_mesh cut, uint32_t* 
  * (capacity in vertices; a closed guide repeats its first vertex at its end). Either may be NULL. */
 MCON_API mcon_status mcon_cut_mesh_get_guides(mcon_cut_mesh cut, uint32_t* out_sizes, size_t size_capacity,
                                               uint32_t* out_vertices, size_t vertex_capacity);
-/* A per-vertex field of the patch (patch vertices x dimension doubles) at the cut mesh's vertices,
- * interpolated at their host points; counts and capacity in doubles. */
+/* Per guide chain the guide set (0 for mcon_patch_cut_guides) and the polyline of that set it comes
+ * from (a polyline split at a filled hole gives several chains). Either may be NULL; capacity in guides. */
+MCON_API mcon_status mcon_cut_mesh_get_guide_origins(mcon_cut_mesh cut, uint32_t* out_sets, uint32_t* out_polylines,
+                                                     size_t capacity);
+/* A per-vertex field of the patch (of the mesh for mcon_mesh_cut_guides; vertices x dimension
+ * doubles) at the cut mesh's vertices, interpolated at their host points; counts and capacity in doubles. */
 MCON_API mcon_status mcon_cut_mesh_carry_field(mcon_cut_mesh cut, uint32_t dimension, const double* patch_values,
                                                size_t value_count, double* out_values, size_t capacity);
 /* A per-face 4-RoSy cross field on the cut mesh that lies exactly along the guide edges on their

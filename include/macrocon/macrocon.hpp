@@ -1006,6 +1006,22 @@ class CutMesh {
     c.ref_ = Ref(out);
     return c;
   }
+  // The guides of several macro constraints cut into the whole host (mcon_mesh_cut_guides): each
+  // set lies on a patch extracted from `mesh`; the result covers every face of `mesh`.
+  static CutMesh cut_whole_host(const Mesh& mesh, const std::vector<PolylineSet>& guide_sets,
+                                std::optional<double> snap_fraction = {}, std::optional<double> simplify_fraction = {}) {
+    mcon_guide_cut_options o;
+    check(mcon_guide_cut_options_init(&o));
+    if (snap_fraction) o.snap_fraction = *snap_fraction;
+    if (simplify_fraction) o.simplify_fraction = *simplify_fraction;
+    std::vector<mcon_polyline_set> sets;
+    for (const PolylineSet& s : guide_sets) sets.push_back(detail::require(s.get(), "PolylineSet"));
+    mcon_cut_mesh out = nullptr;
+    check(mcon_mesh_cut_guides(detail::require(mesh.get(), "Mesh"), sets.data(), sets.size(), &o, &out));
+    CutMesh c;
+    c.ref_ = Ref(out);
+    return c;
+  }
   mcon_cut_mesh_info info() const {
     mcon_cut_mesh_info i;
     check(mcon_cut_mesh_info_init(&i));
@@ -1040,7 +1056,17 @@ class CutMesh {
     }
     return out;
   }
-  // A per-vertex field of the patch (patch vertices x dimension) at the cut mesh's vertices.
+  // Per chain: {guide set, polyline of that set}.
+  std::vector<std::array<std::uint32_t, 2>> guide_origins() const {
+    const std::size_t n = info().guide_count;
+    std::vector<std::uint32_t> sets(n), lines(n);
+    check(mcon_cut_mesh_get_guide_origins(handle(), sets.data(), lines.data(), n));
+    std::vector<std::array<std::uint32_t, 2>> out;
+    for (std::size_t g = 0; g < n; ++g) out.push_back({sets[g], lines[g]});
+    return out;
+  }
+  // A per-vertex field of the patch (of the mesh for cut_whole_host; vertices x dimension) at the
+  // cut mesh's vertices.
   std::vector<double> carry_field(const std::vector<double>& patch_values, std::uint32_t dimension) const {
     std::vector<double> out(static_cast<std::size_t>(dimension) * info().vertex_count);
     check(mcon_cut_mesh_carry_field(handle(), dimension, patch_values.data(), patch_values.size(), out.data(),

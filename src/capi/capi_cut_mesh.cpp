@@ -1,5 +1,7 @@
 // Guides cut into a patch (transfer/guide_cutting.h) and QuadWild's inputs written from the result
 // (docs/design.md §14).
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdio>
@@ -11,6 +13,7 @@
 #include "library/library_file.h"
 #include "transfer/cross_field.h"
 #include "transfer/guide_cutting.h"
+#include "transfer/host_polylines.h"
 
 using namespace mcon;
 using namespace mcon::capi;
@@ -18,10 +21,18 @@ using namespace mcon::capi;
 struct mcon_cut_mesh_t {
   static constexpr std::uint32_t kMagic = 0x4d43435a;  // "MCCZ"
   mcon::capi::HandleHeader header{kMagic};
-  mcon_context context = nullptr;  // the patch's (not retained: the patch holds it)
-  mcon_patch patch = nullptr;      // retained
-  mcon::CutMesh cut;               // in the patch's normalized coordinates
-  ~mcon_cut_mesh_t() { release_owned(patch); }
+  mcon_context context = nullptr;  // the patch's or mesh's (not retained: they hold it)
+  mcon_patch patch = nullptr;      // retained; or
+  mcon_mesh mesh = nullptr;        // retained (mcon_mesh_cut_guides: the whole host)
+  mcon::CutMesh cut;               // in the patch's normalized coordinates, or the mesh's
+  // Per chain of cut.guides: its guide set and polyline in that set.
+  std::vector<std::array<std::uint32_t, 2>> origins;
+  std::uint32_t unplaced_points = 0, split_guides = 0;
+  const TriMesh& input() const { return patch ? patch->patch.mesh : mesh->mesh; }
+  ~mcon_cut_mesh_t() {
+    release_owned(patch);
+    release_owned(mesh);
+  }
 };
 
 namespace {
@@ -36,8 +47,49 @@ mcon_guide_cut_options default_cut_options() {
 
 TriMesh host_units(const mcon_cut_mesh_t& c) {
   TriMesh m = c.cut.mesh;
-  for (Vec3& x : m.positions) x = to_host(c.patch->patch, x);
+  if (c.patch)
+    for (Vec3& x : m.positions) x = to_host(c.patch->patch, x);
   return m;
+}
+
+GuideCutOptions cut_options(const mcon_guide_cut_options* options) {
+  const auto o =
+      read_options(options, sizeof(mcon_guide_cut_options), "mcon_guide_cut_options", default_cut_options());
+  require(std::isfinite(o.snap_fraction) && std::isfinite(o.simplify_fraction), MCON_ERROR_NON_FINITE,
+          "snap_fraction and simplify_fraction must be finite");
+  GuideCutOptions co;
+  co.snap_fraction = o.snap_fraction;
+  co.simplify_fraction = o.simplify_fraction;
+  return co;
+}
+
+// Every set's polylines on the host mesh, one list for one cut (docs/design.md §15).
+HostPolylines sets_on_host(const mcon_mesh_t& mesh, const mcon_polyline_set* sets, std::size_t count,
+                           std::vector<std::array<std::uint32_t, 2>>& origins) {
+  HostPolylines all;
+  std::vector<mcon_patch> checked;
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::string what = "guide_sets[" + std::to_string(i) + "]";
+    check_handle(sets[i], what.c_str());
+    const mcon_patch patch = sets[i]->patch;
+    if (std::find(checked.begin(), checked.end(), patch) == checked.end()) {
+      try {
+        check_patch_of_host(mesh.mesh, patch->patch);
+      } catch (const Error& e) {
+        fail(e.status(), what + ": " + e.what() + " (give polylines transferred onto patches extracted from this mesh)");
+      }
+      checked.push_back(patch);
+    }
+    HostPolylines h = polylines_on_host(mesh.mesh, patch->patch, sets[i]->polylines);
+    for (std::size_t j = 0; j < h.lines.size(); ++j) {
+      all.lines.push_back(std::move(h.lines[j]));
+      all.closed.push_back(h.closed[j]);
+      origins.push_back({static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(h.origin[j])});
+    }
+    all.dropped_points += h.dropped_points;
+    all.split_polylines += h.split_polylines;
+  }
+  return all;
 }
 
 CrossField guide_field(const mcon_cut_mesh_t& c) {
@@ -111,13 +163,7 @@ mcon_status mcon_patch_cut_guides(mcon_patch patch, mcon_polyline_set guides, co
     check_handle(guides, "polyline set");
     require(guides->patch == patch, MCON_ERROR_INVALID_ARGUMENT,
             "the guides lie on another patch (use polylines transferred onto this patch)");
-    const auto o = read_options(options, sizeof(mcon_guide_cut_options), "mcon_guide_cut_options",
-                                default_cut_options());
-    require(std::isfinite(o.snap_fraction) && std::isfinite(o.simplify_fraction), MCON_ERROR_NON_FINITE,
-            "snap_fraction and simplify_fraction must be finite");
-    GuideCutOptions co;
-    co.snap_fraction = o.snap_fraction;
-    co.simplify_fraction = o.simplify_fraction;
+    const GuideCutOptions co = cut_options(options);
     std::vector<std::vector<SurfacePoint>> lines;
     std::vector<bool> closed;
     for (const TracedPolyline& p : guides->polylines) {
@@ -126,9 +172,28 @@ mcon_status mcon_patch_cut_guides(mcon_patch patch, mcon_polyline_set guides, co
     }
     auto cut = std::make_unique<mcon_cut_mesh_t>();
     cut->cut = run_in_arena(patch->context, [&] { return cut_guides_into_mesh(patch->patch.mesh, lines, closed, co); });
+    for (std::size_t i = 0; i < lines.size(); ++i) cut->origins.push_back({0u, static_cast<std::uint32_t>(i)});
     retain_owned(patch);
     cut->patch = patch;
     cut->context = patch->context;
+    *out_cut = cut.release();
+  });
+}
+
+mcon_status mcon_mesh_cut_guides(mcon_mesh mesh, const mcon_polyline_set* guide_sets, size_t set_count,
+                                 const mcon_guide_cut_options* options, mcon_cut_mesh* out_cut) {
+  return guard_create("mcon_mesh_cut_guides", out_cut, "out_cut", mesh, "mesh", [&] {
+    require(set_count == 0 || guide_sets != nullptr, MCON_ERROR_INVALID_ARGUMENT,
+            "guide_sets is NULL with set_count " + std::to_string(set_count));
+    const GuideCutOptions co = cut_options(options);
+    auto cut = std::make_unique<mcon_cut_mesh_t>();
+    const HostPolylines lines = sets_on_host(*mesh, guide_sets, set_count, cut->origins);
+    cut->cut = run_in_arena(mesh->context, [&] { return cut_guides_into_mesh(mesh->mesh, lines.lines, lines.closed, co); });
+    cut->unplaced_points = static_cast<std::uint32_t>(lines.dropped_points);
+    cut->split_guides = static_cast<std::uint32_t>(lines.split_polylines);
+    retain_owned(mesh);
+    cut->mesh = mesh;
+    cut->context = mesh->context;
     *out_cut = cut.release();
   });
 }
@@ -158,6 +223,8 @@ mcon_status mcon_cut_mesh_get_info(mcon_cut_mesh cut, mcon_cut_mesh_info* info) 
     v.dropped_points = static_cast<std::uint32_t>(c.dropped_points);
     v.shortcuts = static_cast<std::uint32_t>(c.shortcuts);
     v.moved_vertices = static_cast<std::uint32_t>(c.moved_vertices);
+    v.unplaced_points = cut->unplaced_points;
+    v.split_guides = cut->split_guides;
     write_info(info, sizeof(mcon_cut_mesh_info), "mcon_cut_mesh_info", v);
   });
 }
@@ -213,6 +280,18 @@ mcon_status mcon_cut_mesh_get_guides(mcon_cut_mesh cut, uint32_t* out_sizes, siz
   });
 }
 
+mcon_status mcon_cut_mesh_get_guide_origins(mcon_cut_mesh cut, uint32_t* out_sets, uint32_t* out_polylines,
+                                            size_t capacity) {
+  return guard_object("mcon_cut_mesh_get_guide_origins", cut, "cut mesh", [&] {
+    if (out_sets == nullptr && out_polylines == nullptr) return;
+    require_capacity(capacity, cut->origins.size(), "origin arrays (capacity in guides)");
+    for (std::size_t g = 0; g < cut->origins.size(); ++g) {
+      if (out_sets) out_sets[g] = cut->origins[g][0];
+      if (out_polylines) out_polylines[g] = cut->origins[g][1];
+    }
+  });
+}
+
 mcon_status mcon_cut_mesh_carry_field(mcon_cut_mesh cut, uint32_t dimension, const double* patch_values,
                                       size_t value_count, double* out_values, size_t capacity) {
   return guard_object("mcon_cut_mesh_carry_field", cut, "cut mesh", [&] {
@@ -220,11 +299,11 @@ mcon_status mcon_cut_mesh_carry_field(mcon_cut_mesh cut, uint32_t dimension, con
             "dimension must be in [1, 65536] (got " + std::to_string(dimension) + ")");
     require_pointer(patch_values, "patch_values");
     require_pointer(out_values, "out_values");
-    const TriMesh& patch_mesh = cut->patch->patch.mesh;
+    const TriMesh& patch_mesh = cut->input();
     const std::size_t n = patch_mesh.positions.size();
     require(value_count == n * dimension, MCON_ERROR_INVALID_ARGUMENT,
-            "value_count is " + std::to_string(value_count) + ", expected patch vertices x dimension = " +
-                std::to_string(n * dimension));
+            "value_count is " + std::to_string(value_count) + ", expected " + (cut->patch ? "patch" : "mesh") +
+                " vertices x dimension = " + std::to_string(n * dimension));
     require_capacity(capacity, cut->cut.host.size() * dimension, "out_values (capacity in doubles)");
     Eigen::MatrixXd values(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(dimension));
     for (std::size_t i = 0; i < value_count; ++i) {

@@ -29,6 +29,30 @@ struct CutSetup {
   PolylineSetPtr guides;
 };
 
+// A closed loop and a line across it, in the source's uv, transferred through `map`.
+PolylineSetPtr loop_and_line(mcon_map map, const PatchArrays& source) {
+  std::vector<uint32_t> tri;
+  std::vector<double> bary;
+  auto add = [&](double u, double v) {
+    uint32_t t = 0;
+    double b[3];
+    EXPECT_TRUE(locate_uv(source, u, v, t, b));
+    tri.push_back(t);
+    bary.insert(bary.end(), b, b + 3);
+  };
+  for (int i = 0; i < 30; ++i) add(0.4 * std::cos(2 * 3.141592653589793 * i / 30), 0.4 * std::sin(2 * 3.141592653589793 * i / 30));
+  add(-0.6, -0.05);
+  add(0.6, 0.08);
+  const std::vector<uint32_t> sizes = {30, 2};
+  const std::vector<uint8_t> closed = {1, 0};
+  mcon_polyline_set set = nullptr;
+  EXPECT_EQ(mcon_map_transfer_polylines(map, tri.data(), bary.data(), tri.size(), sizes.data(), closed.data(),
+                                        sizes.size(), &set),
+            MCON_OK)
+      << last_message();
+  return PolylineSetPtr(set);
+}
+
 CutSetup& setup() {
   static CutSetup* st = [] {
     auto* x = new CutSetup;
@@ -39,27 +63,7 @@ CutSetup& setup() {
     x->map = compute(x->source.get(), x->target.get(), fast_options());
     x->s = arrays_of_patch(x->source.get());
     x->t = arrays_of_patch(x->target.get());
-    // A closed loop and a line across it, in the source's uv.
-    std::vector<uint32_t> tri;
-    std::vector<double> bary;
-    auto add = [&](double u, double v) {
-      uint32_t t = 0;
-      double b[3];
-      EXPECT_TRUE(locate_uv(x->s, u, v, t, b));
-      tri.push_back(t);
-      bary.insert(bary.end(), b, b + 3);
-    };
-    for (int i = 0; i < 30; ++i) add(0.4 * std::cos(2 * 3.141592653589793 * i / 30), 0.4 * std::sin(2 * 3.141592653589793 * i / 30));
-    add(-0.6, -0.05);
-    add(0.6, 0.08);
-    const std::vector<uint32_t> sizes = {30, 2};
-    const std::vector<uint8_t> closed = {1, 0};
-    mcon_polyline_set set = nullptr;
-    EXPECT_EQ(mcon_map_transfer_polylines(x->map.get(), tri.data(), bary.data(), tri.size(), sizes.data(),
-                                          closed.data(), sizes.size(), &set),
-              MCON_OK)
-        << last_message();
-    x->guides.reset(set);
+    x->guides = loop_and_line(x->map.get(), x->s);
     return x;
   }();
   return *st;
@@ -200,6 +204,102 @@ TEST(CapiCutMesh, QuadWildFilesAgreeWithTheCutMesh) {
       << m;
   EXPECT_NE(m.find("\"mesh_fnv1a64\": \""), std::string::npos) << m;
   for (const char* ext : {".obj", ".rosy", ".sharp", ".quadwild.json"}) std::remove((prefix + ext).c_str());
+}
+
+// Two macro constraints (the nose and an eye) cut into the whole body: one mesh over every face of
+// the host with both sets' guides on its edges, one cross field over all of it.
+TEST(CapiCutMesh, WholeHostCombinesSeveralConstraints) {
+  CutSetup& x = setup();
+  const PatchPtr eye_source = extract(x.mesh.get(), 8021, 0.45);
+  const PatchPtr eye_target = extract(x.mesh.get(), 8021, 0.55);
+  const MapPtr eye_map = compute(eye_source.get(), eye_target.get(), fast_options());
+  const PolylineSetPtr eye_guides = loop_and_line(eye_map.get(), arrays_of_patch(eye_source.get()));
+  const mcon_polyline_set sets[2] = {x.guides.get(), eye_guides.get()};
+  mcon_cut_mesh raw = nullptr;
+  ASSERT_EQ(mcon_mesh_cut_guides(x.mesh.get(), sets, 2, nullptr, &raw), MCON_OK) << last_message();
+  const CutPtr cut(raw);
+  const mcon_cut_mesh_info info = info_of(cut.get());
+  const Arrays& host = body().arrays;
+  const size_t host_triangles = host.indices.size() / 3, host_vertices = host.positions.size() / 3;
+  std::printf("whole body: %zu triangles (host %zu), %zu guides, %zu guide edges, smallest angle made %.1f\n",
+              info.triangle_count, host_triangles, info.guide_count, info.guide_edge_count, info.min_angle_created);
+  EXPECT_GT(info.triangle_count, host_triangles);
+  EXPECT_EQ(info.unplaced_points, 0u);
+  std::vector<double> xyz(3 * info.vertex_count);
+  std::vector<uint32_t> tri(3 * info.triangle_count), host_tri(info.vertex_count);
+  std::vector<double> host_bary(3 * info.vertex_count);
+  ASSERT_EQ(mcon_cut_mesh_get_positions(cut.get(), xyz.data(), xyz.size()), MCON_OK);
+  ASSERT_EQ(mcon_cut_mesh_get_triangles(cut.get(), tri.data(), tri.size()), MCON_OK);
+  ASSERT_EQ(mcon_cut_mesh_get_host_points(cut.get(), host_tri.data(), host_bary.data(), info.vertex_count), MCON_OK);
+  // Every vertex sits at its point on the host mesh, in the mesh's own units.
+  for (size_t v = 0; v < info.vertex_count; ++v) {
+    ASSERT_LT(host_tri[v], host_triangles);
+    for (int k = 0; k < 3; ++k) {
+      double p = 0;
+      for (int c = 0; c < 3; ++c) p += host_bary[3 * v + c] * host.positions[3 * host.indices[3 * host_tri[v] + c] + k];
+      ASSERT_NEAR(p, xyz[3 * v + k], 1e-9) << v;
+    }
+  }
+  // The same surface: the areas agree.
+  auto area = [](const std::vector<double>& p, const std::vector<uint32_t>& t) {
+    double a = 0;
+    for (size_t f = 0; f < t.size() / 3; ++f) {
+      const double* q[3] = {&p[3 * t[3 * f]], &p[3 * t[3 * f + 1]], &p[3 * t[3 * f + 2]]};
+      const double u[3] = {q[1][0] - q[0][0], q[1][1] - q[0][1], q[1][2] - q[0][2]};
+      const double w[3] = {q[2][0] - q[0][0], q[2][1] - q[0][1], q[2][2] - q[0][2]};
+      const double c[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+      a += 0.5 * std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+    }
+    return a;
+  };
+  EXPECT_NEAR(area(xyz, tri) / area(host.positions, host.indices), 1.0, 1e-3);
+  // Both sets give chains of mesh edges.
+  std::vector<uint32_t> sizes(info.guide_count), chain(info.guide_vertex_count), from_set(info.guide_count);
+  ASSERT_EQ(mcon_cut_mesh_get_guides(cut.get(), sizes.data(), sizes.size(), chain.data(), chain.size()), MCON_OK);
+  ASSERT_EQ(mcon_cut_mesh_get_guide_origins(cut.get(), from_set.data(), nullptr, info.guide_count), MCON_OK);
+  const auto mesh_edges = edges_of(tri);
+  size_t at = 0, edges_per_set[2] = {0, 0};
+  for (size_t g = 0; g < sizes.size(); ++g) {
+    ASSERT_LT(from_set[g], 2u);
+    for (uint32_t k = 0; k + 1 < sizes[g]; ++k) {
+      const uint32_t a = chain[at + k], b = chain[at + k + 1];
+      EXPECT_TRUE(mesh_edges.count({std::min(a, b), std::max(a, b)}));
+      ++edges_per_set[from_set[g]];
+    }
+    at += sizes[g];
+  }
+  EXPECT_GT(edges_per_set[0], 20u);
+  EXPECT_GT(edges_per_set[1], 20u);
+  // A field of the mesh is carried; the cross field covers every face with unit directions.
+  std::vector<double> field(host_vertices), carried(info.vertex_count);
+  for (size_t v = 0; v < host_vertices; ++v) field[v] = host.positions[3 * v + 1];
+  ASSERT_EQ(mcon_cut_mesh_carry_field(cut.get(), 1, field.data(), field.size(), carried.data(), carried.size()), MCON_OK);
+  for (size_t v = 0; v < info.vertex_count; ++v) EXPECT_NEAR(carried[v], xyz[3 * v + 1], 1e-9);
+  std::vector<double> dir(3 * info.triangle_count);
+  ASSERT_EQ(mcon_cut_mesh_compute_cross_field(cut.get(), dir.data(), info.triangle_count), MCON_OK);
+  for (size_t f = 0; f < info.triangle_count; ++f)
+    ASSERT_NEAR(dir[3 * f] * dir[3 * f] + dir[3 * f + 1] * dir[3 * f + 1] + dir[3 * f + 2] * dir[3 * f + 2], 1, 1e-9);
+
+  // Refused: a set on a patch of another mesh, NULL sets, a mesh-sized field of the wrong size.
+  Arrays moved = host;
+  for (size_t i = 0; i < moved.positions.size(); i += 3) moved.positions[i] += 0.01;
+  const MeshPtr other = make_mesh(x.ctx.get(), moved);
+  mcon_cut_mesh c = nullptr;
+  EXPECT_EQ(mcon_mesh_cut_guides(other.get(), sets, 2, nullptr, &c), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(last_message().find("guide_sets[0]"), std::string::npos) << last_message();
+  EXPECT_EQ(mcon_mesh_cut_guides(x.mesh.get(), nullptr, 2, nullptr, &c), MCON_ERROR_INVALID_ARGUMENT);
+  const mcon_polyline_set with_null[2] = {x.guides.get(), nullptr};
+  EXPECT_EQ(mcon_mesh_cut_guides(x.mesh.get(), with_null, 2, nullptr, &c), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(c, nullptr);
+  field.pop_back();
+  EXPECT_EQ(mcon_cut_mesh_carry_field(cut.get(), 1, field.data(), field.size(), carried.data(), carried.size()),
+            MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(last_message().find("mesh vertices"), std::string::npos) << last_message();
+  // No set at all: the host itself with its smoothest field.
+  ASSERT_EQ(mcon_mesh_cut_guides(x.mesh.get(), nullptr, 0, nullptr, &c), MCON_OK) << last_message();
+  const CutPtr plain(c);
+  EXPECT_EQ(info_of(plain.get()).triangle_count, host_triangles);
+  EXPECT_EQ(info_of(plain.get()).guide_count, 0u);
 }
 
 TEST(CapiCutMesh, BadArgumentsAreRefusedByName) {

@@ -119,6 +119,17 @@ TEST(CppMap, ComputeTransferAndCrossField) {
             std::vector<double>(ci.vertex_count, 2.0));
   EXPECT_EQ(status_of([&] { (void)macrocon::CutMesh::cut(target, set, 0.9); }), MCON_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(status_of([&] { (void)macrocon::CutMesh::cut(source, set); }), MCON_ERROR_INVALID_ARGUMENT);
+
+  // The same guides cut into the whole body: every host face, chains from set 0.
+  const macrocon::CutMesh whole = macrocon::CutMesh::cut_whole_host(body, {set});
+  const mcon_cut_mesh_info wi = whole.info();
+  EXPECT_GT(wi.triangle_count, body.triangle_count());
+  EXPECT_GT(wi.guide_edge_count, 0u);
+  for (const auto& origin : whole.guide_origins()) EXPECT_EQ(origin[0], 0u);
+  EXPECT_EQ(whole.guide_origins().size(), wi.guide_count);
+  const std::vector<double> carried = whole.carry_field(std::vector<double>(body.vertex_count(), 3.0), 1);
+  ASSERT_EQ(carried.size(), wi.vertex_count);
+  for (double c : carried) ASSERT_NEAR(c, 3.0, 1e-12);
 }
 
 TEST(CppMap, ProgressExceptionsAndCancellation) {

@@ -34,6 +34,9 @@ struct Region {
 // identities; the eye is queried on the left, where the library's nearest entries are both eyes.
 const Region kRegions[] = {
     {"eye_l", 8021, 0.55}, {"mouth", 537, 0.6}, {"nose", 297, 0.45}, {"hand_r", 3197, 1.2}};
+// --whole-host adds the other eye (vertex 1329 is 8021 mirrored in x), so both eyes, the nose,
+// the mouth and the hand go into one field of the whole body.
+const Region kOtherEye = {"eye_r", 1329, 0.55};
 
 template <typename T, mcon_status (*Release)(T)>
 struct Releaser {
@@ -157,9 +160,31 @@ void write_cut_guides(const macrocon::Patch& region, mcon_polyline_set lines, co
               base.c_str());
 }
 
-// Runs one region; returns false if the result fails a sanity check (printed).
+// Every region's guides cut into the whole body: one mesh, one field, one .sharp for QuadWild.
+void write_whole_host(const macrocon::Mesh& body, const std::vector<PolylinesRef>& sets, const std::string& out_dir) {
+  const auto t0 = std::chrono::steady_clock::now();
+  std::vector<mcon_polyline_set> raw;
+  for (const PolylinesRef& s : sets) raw.push_back(s.get());
+  mcon_cut_mesh raw_cut = nullptr;
+  check(mcon_mesh_cut_guides(body.get(), raw.data(), raw.size(), nullptr, &raw_cut));
+  const std::unique_ptr<mcon_cut_mesh_t, Releaser<mcon_cut_mesh, mcon_cut_mesh_release>> cut(raw_cut);
+  const std::string base = out_dir + "/body_whole";
+  check(mcon_cut_mesh_write_quadwild(cut.get(), base.c_str()));
+  mcon_cut_mesh_info cinfo;
+  check(mcon_cut_mesh_info_init(&cinfo));
+  check(mcon_cut_mesh_get_info(cut.get(), &cinfo));
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::printf("whole body: %zu regions' guides cut in (%zu guides, %zu guide edges, smallest angle made %.1f degrees, "
+              "%u points on filled holes dropped), one cross field over %zu triangles, %.2f s -> "
+              "%s.{obj,rosy,sharp,quadwild.json}\n",
+              sets.size(), cinfo.guide_count, cinfo.guide_edge_count, cinfo.min_angle_created, cinfo.unplaced_points,
+              cinfo.triangle_count, seconds, base.c_str());
+}
+
+// Runs one region; returns false if the result fails a sanity check (printed). With `keep`, the
+// transferred guides are appended to it.
 bool run_region(const macrocon::Context& ctx, const macrocon::Mesh& body, mcon_library lib, const Region& r,
-                const std::string& out_dir, bool cut_guides) {
+                const std::string& out_dir, bool cut_guides, std::vector<PolylinesRef>* keep) {
   const auto t0 = std::chrono::steady_clock::now();
   const macrocon::Patch region = macrocon::Patch::extract(body, macrocon::PatchOptions::at_vertex(r.center_vertex, r.radius));
   const mcon_patch_info rinfo = region.info();
@@ -218,7 +243,7 @@ bool run_region(const macrocon::Context& ctx, const macrocon::Mesh& body, mcon_l
   }
 
   // Guides and features, and a cross field that follows them (QuadWild's .rosy).
-  const PolylinesRef lines = transfer_polylines(lib, best, einfo, map.get());
+  PolylinesRef lines = transfer_polylines(lib, best, einfo, map.get());
   std::vector<double> directions(3 * rinfo.triangle_count);
   mcon_cross_field_options co;
   check(mcon_cross_field_options_init(&co));
@@ -247,6 +272,7 @@ bool run_region(const macrocon::Context& ctx, const macrocon::Mesh& body, mcon_l
               minfo.overlap_ratio, minfo.matching_score, minfo.reflected ? "mirrored" : "direct",
               minfo.flipped_triangles, attributes.size() - 1, polylines, seconds, base.c_str(), base.c_str());
   if (cut_guides) write_cut_guides(region, lines.get(), base);
+  if (keep) keep->push_back(PolylinesRef(lines.release()));
   const bool ok = minfo.flipped_triangles == 0 && minfo.overlap_ratio > 0.5;
   if (!ok) std::printf("  %s: the re-embedding looks wrong (flips or overlap below 0.5)\n", r.name);
   return ok;
@@ -254,14 +280,16 @@ bool run_region(const macrocon::Context& ctx, const macrocon::Mesh& body, mcon_l
 
 int run_demo(const Args& args) {
   if (!args.empty() && (args[0] == "--help" || args[0] == "-h")) {
-    std::puts("usage: macrocon demo [--data DIR] [--library FILE.mclb] [--out DIR] [--cut-guides]\n"
+    std::puts("usage: macrocon demo [--data DIR] [--library FILE.mclb] [--out DIR] [--cut-guides] [--whole-host]\n"
               "Queries the bundled MakeHuman body at a few regions against the starter constraint library,\n"
               "re-embeds the best match and writes PLY/OBJ/.rosy results to --out (default demo-out).\n"
               "--cut-guides also cuts the transferred guides into each region and writes QuadWild's inputs\n"
-              "<region>_cut.obj, .rosy and .sharp (guides on mesh edges, as feature edges).");
+              "<region>_cut.obj, .rosy and .sharp (guides on mesh edges, as feature edges).\n"
+              "--whole-host also queries the other eye and cuts every region's guides into the whole body:\n"
+              "body_whole.obj, .rosy (one field over every face), .sharp and .quadwild.json.");
     return 0;
   }
-  const ArgParser p(args, {"data", "out", "library"}, {"cut-guides"});
+  const ArgParser p(args, {"data", "out", "library"}, {"cut-guides", "whole-host"});
   const std::string data = p.get("data", MACROCON_SAMPLE_DATA_DIR);
   const std::string out_dir = p.get("out", "demo-out");
   const std::string library_path = p.get("library", default_library_path());
@@ -285,12 +313,24 @@ int run_demo(const Args& args) {
     check(mcon_library_get_count(lib.get(), &entries));
     std::printf("body: %zu vertices, %zu triangles (MakeHuman, CC0); library %s: %zu entries\n", body.vertex_count(),
                 body.triangle_count(), library_path.c_str(), entries);
-    for (const Region& r : kRegions) {
+    const bool whole = p.flag("whole-host");
+    std::vector<Region> regions(std::begin(kRegions), std::end(kRegions));
+    if (whole) regions.insert(regions.begin() + 1, kOtherEye);
+    std::vector<PolylinesRef> sets;
+    for (const Region& r : regions) {
       // Region vertices are file numbers; the bundled body has no unreferenced vertices.
       try {
-        if (!run_region(ctx, body, lib.get(), r, out_dir, p.flag("cut-guides"))) ++failures;
+        if (!run_region(ctx, body, lib.get(), r, out_dir, p.flag("cut-guides"), whole ? &sets : nullptr)) ++failures;
       } catch (const macrocon::Error& e) {
         std::printf("  %s failed: %s: %s\n", r.name, macrocon::status_name(e.status()).c_str(), e.what());
+        ++failures;
+      }
+    }
+    if (whole) {
+      try {
+        write_whole_host(body, sets, out_dir);
+      } catch (const macrocon::Error& e) {
+        std::printf("  whole body failed: %s: %s\n", macrocon::status_name(e.status()).c_str(), e.what());
         ++failures;
       }
     }

@@ -703,6 +703,29 @@ static class Tests
                 // Explicit fractions give a valid cut too; a disposed cut mesh throws.
                 using (var fine = target.CutGuides(guides, snapFraction: 0.0, simplifyFraction: 0.0))
                     Check(fine.Info.GuideEdgeCount.ToUInt64() > 0, "explicit fractions");
+                // The whole host: every face of the mesh, its host points on mesh triangles, a mesh field carried.
+                using (var whole = m.CutGuides(new[] { guides }))
+                {
+                    var wi = whole.Info;
+                    Check((int)wi.TriangleCount > m.Counts.Triangles && wi.GuideEdgeCount.ToUInt64() > 0 && wi.UnplacedPoints == 0,
+                          "whole host: " + wi.TriangleCount + " triangles");
+                    var origins = whole.GuideOrigins();
+                    Check(origins.Length == (int)wi.GuideCount && origins[0].Set == 0, "guide origins");
+                    var wx = whole.Positions();
+                    var y = new double[m.Counts.Vertices];
+                    for (int v = 0; v < y.Length; ++v) y[v] = p[3 * v + 1];
+                    var wy = whole.CarryField(y, 1);
+                    for (int v = 0; v < wy.Length; ++v) Near(wy[v], wx[3 * v + 1], 1e-9, "carried y of vertex " + v);
+                    Check(whole.CrossField().Length == 3 * (int)wi.TriangleCount, "whole-host cross field");
+                }
+                var moved = (double[])p.Clone();
+                for (int v = 0; v < moved.Length; v += 3) moved[v] += 0.01;
+                using (var otherMesh = new Mesh(ctx, moved, t))
+                {
+                    var notCut = Expect<MacroconException>(() => otherMesh.CutGuides(new[] { guides }));
+                    Check(notCut.Status == Status.InvalidArgument && notCut.Message.Contains("not cut from this mesh"), "other mesh: " + notCut.Message);
+                }
+                Expect<ArgumentNullException>(() => m.CutGuides(new PolylineSet[] { null }));
             }
             using (var line = map.TransferPolylines(new[] { new Polyline { Points = across } }))
             {

@@ -323,6 +323,8 @@ class CutMeshInfo(Struct):
         ("dropped_points", ctypes.c_uint32),
         ("shortcuts", ctypes.c_uint32),
         ("moved_vertices", ctypes.c_uint32),
+        ("unplaced_points", ctypes.c_uint32),
+        ("split_guides", ctypes.c_uint32),
     ]
 
 
@@ -501,6 +503,9 @@ _SIGNATURES = {
     "mcon_cut_mesh_info_init": [ctypes.POINTER(CutMeshInfo)],
     "mcon_patch_cut_guides": [ctypes.c_void_p, ctypes.c_void_p, ctypes.POINTER(GuideCutOptions),
                               ctypes.POINTER(ctypes.c_void_p)],
+    "mcon_mesh_cut_guides": [ctypes.c_void_p, ctypes.c_void_p, c_size, ctypes.POINTER(GuideCutOptions),
+                             ctypes.POINTER(ctypes.c_void_p)],
+    "mcon_cut_mesh_get_guide_origins": [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_void_p, c_size],
     "mcon_cut_mesh_retain": [ctypes.c_void_p],
     "mcon_cut_mesh_release": [ctypes.c_void_p],
     "mcon_cut_mesh_get_info": [ctypes.c_void_p, ctypes.POINTER(CutMeshInfo)],

@@ -286,6 +286,17 @@ _INDEX_FORMATS = {np.dtype(np.uint32): _native.INDEX_FORMAT_UINT32, np.dtype(np.
                   np.dtype(np.int64): _native.INDEX_FORMAT_INT64}
 
 
+def _guide_cut_options(snap_fraction: Optional[float], simplify_fraction: Optional[float]):
+    """mcon_guide_cut_options with the defaults, overridden where given."""
+    o = _native.GuideCutOptions()
+    check(_native.lib.mcon_guide_cut_options_init(ctypes.byref(o)))
+    if snap_fraction is not None:
+        o.snap_fraction = float(snap_fraction)
+    if simplify_fraction is not None:
+        o.simplify_fraction = float(simplify_fraction)
+    return o
+
+
 class Mesh(_Handle):
     """A validated triangle mesh. ``positions``: (n, 3) float32/float64, ``triangles``: (m, 3) uint32,
     int32 or int64 (read as they are, no conversion; a negative or too large index is an
@@ -335,6 +346,23 @@ class Mesh(_Handle):
         out = np.zeros((self.counts[1], 3), dtype=np.uint32)
         check(_native.lib.mcon_mesh_get_triangles(self.handle, out.ctypes.data_as(_native.c_uint32_p), out.size))
         return out
+
+    def cut_guides(self, guide_sets, snap_fraction: Optional[float] = None,
+                   simplify_fraction: Optional[float] = None):
+        """Cuts the guides of several macro constraints into this whole mesh: ``guide_sets`` is a
+        list of PolylineSets, each transferred onto a patch extracted from this mesh. Returns a
+        :class:`CutMesh` covering every face, so its cross field and QuadWild files cover the
+        whole model. Options as ``Patch.cut_guides``."""
+        from .mapping import CutMesh, PolylineSet  # mapping imports this module
+
+        sets = list(guide_sets)
+        for i, s in enumerate(sets):
+            require_type(s, PolylineSet, f"guide_sets[{i}]")
+        o = _guide_cut_options(snap_fraction, simplify_fraction)
+        handles = (ctypes.c_void_p * max(len(sets), 1))(*[s.handle for s in sets])
+        out = ctypes.c_void_p()
+        check(_native.lib.mcon_mesh_cut_guides(self.handle, handles, len(sets), ctypes.byref(o), ctypes.byref(out)))
+        return CutMesh(out)
 
     def _repr_fields(self) -> str:
         nv, nt = self.counts
@@ -503,12 +531,7 @@ class Patch(_Handle):
         from .mapping import CutMesh, PolylineSet  # mapping imports this module
 
         require_type(guides, PolylineSet, "guides")
-        o = _native.GuideCutOptions()
-        check(_native.lib.mcon_guide_cut_options_init(ctypes.byref(o)))
-        if snap_fraction is not None:
-            o.snap_fraction = float(snap_fraction)
-        if simplify_fraction is not None:
-            o.simplify_fraction = float(simplify_fraction)
+        o = _guide_cut_options(snap_fraction, simplify_fraction)
         out = ctypes.c_void_p()
         check(_native.lib.mcon_patch_cut_guides(self.handle, guides.handle, ctypes.byref(o), ctypes.byref(out)))
         return CutMesh(out)

@@ -136,12 +136,16 @@ class CutMeshInfo:
     dropped_points: int
     shortcuts: int
     moved_vertices: int
+    unplaced_points: int  # Mesh.cut_guides only: points on hole-filling triangles, dropped
+    split_guides: int  # Mesh.cut_guides only: guides split into pieces there
 
 
 class CutMesh(_Handle):
-    """A patch with its guides cut in: every guide a chain of edges (``Patch.cut_guides``).
+    """A patch with its guides cut in: every guide a chain of edges (``Patch.cut_guides``), or the
+    whole host mesh with the guides of several patches cut in (``Mesh.cut_guides``).
 
-    Positions are in the patch's host units; each vertex keeps its point on the patch."""
+    Positions are in the host's units; each vertex keeps its point on the patch (on the mesh for
+    ``Mesh.cut_guides``)."""
 
     _release = _native.lib.mcon_cut_mesh_release
 
@@ -198,9 +202,18 @@ class CutMesh(_Handle):
         starts = np.concatenate([[0], np.cumsum(sizes, dtype=np.int64)])
         return [chain[a:b].copy() for a, b in zip(starts[:-1], starts[1:])]
 
+    @property
+    def guide_origins(self) -> np.ndarray:
+        """(guides, 2) uint32: per guide chain its guide set (0 for ``Patch.cut_guides``) and the
+        polyline of that set it comes from."""
+        n = self.info.guide_count
+        sets, lines = np.zeros(n, np.uint32), np.zeros(n, np.uint32)
+        check(_native.lib.mcon_cut_mesh_get_guide_origins(self.handle, ptr(sets), ptr(lines), n))
+        return np.stack([sets, lines], axis=1)
+
     def carry_field(self, values) -> np.ndarray:
-        """A per-vertex field of the patch ((patch vertices,) or (patch vertices, d) float64) at the
-        cut mesh's vertices, interpolated at their host points."""
+        """A per-vertex field of the patch (of the mesh for ``Mesh.cut_guides``; (vertices,) or
+        (vertices, d) float64) at the cut mesh's vertices, interpolated at their host points."""
         a = np.ascontiguousarray(np.asarray(values, dtype=np.float64))
         one = a.ndim == 1
         a2 = a.reshape(a.shape[0], 1) if one else a

@@ -484,3 +484,34 @@ def test_cut_guides_gives_edge_chains_and_quadwild_files(phi, source, target, tm
             source.cut_guides(lines)
         with pytest.raises(FileNotFoundError):
             cut.write_quadwild(tmp_path / "no such dir" / "x")
+
+
+def test_mesh_cut_guides_covers_the_whole_host(context, host, phi, source, target, tmp_path):
+    mesh, p, t = host
+    uv, tri = source.uv, source.triangles
+    centroid = uv[tri].mean(1)
+    row = np.where(np.abs(centroid[:, 1]) < 0.05)[0]
+    row = row[np.argsort(centroid[row, 0])].astype(np.uint32)
+    guide = macrocon.Polyline(row, np.full((row.size, 3), 1 / 3))
+    with phi.transfer_polylines([guide]) as lines, mesh.cut_guides([lines]) as cut:
+        info = cut.info
+        assert info.triangle_count > t.shape[0] and info.guide_edge_count > 5
+        assert info.unplaced_points == 0 and info.split_guides == 0
+        assert cut.guide_origins.tolist() == [[0, 0]]
+        # Host points are mesh triangles; a mesh field (the y coordinate) is carried exactly.
+        tris, bary = cut.host_points()
+        assert np.all(tris < t.shape[0])
+        assert np.allclose(cut.carry_field(p[:, 1]), cut.positions[:, 1], atol=1e-9)
+        assert cut.cross_field().shape == (info.triangle_count, 3)
+        cut.write_quadwild(tmp_path / "whole")
+        assert int((tmp_path / "whole.rosy").read_text().split()[0]) == info.triangle_count
+        with pytest.raises(macrocon.InvalidArgumentError, match="mesh vertices"):
+            cut.carry_field(p[:-1, 1])
+        with pytest.raises(TypeError, match=r"guide_sets\[0\]"):
+            mesh.cut_guides([guide])
+        # A mesh the patch was not cut from is refused by name.
+        with macrocon.Mesh(context, p + [0.01, 0, 0], t) as other:
+            with pytest.raises(macrocon.InvalidArgumentError, match="not cut from this mesh"):
+                other.cut_guides([lines])
+    with mesh.cut_guides([]) as plain:
+        assert plain.info.triangle_count == t.shape[0] and plain.info.guide_count == 0
