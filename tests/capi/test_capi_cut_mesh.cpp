@@ -401,4 +401,17 @@ TEST(CapiCutMesh, NullHandlesAndOutputsAreRefused) {
   EXPECT_EQ(mcon_cut_mesh_compute_cross_field(cut.get(), d, 1), MCON_ERROR_BUFFER_TOO_SMALL);
   info.struct_size = 4;
   EXPECT_EQ(mcon_cut_mesh_get_info(cut.get(), &info), MCON_ERROR_STRUCT_SIZE);
+  // The whole-host call and the origins getter: NULL handle, NULL output, short buffer.
+  const mcon_polyline_set sets[1] = {x.guides.get()};
+  mcon_cut_mesh c = nullptr;
+  EXPECT_EQ(mcon_mesh_cut_guides(nullptr, sets, 1, nullptr, &c), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_mesh_cut_guides(x.mesh.get(), sets, 1, nullptr, nullptr), MCON_ERROR_NULL_POINTER);
+  mcon_guide_cut_options o;
+  ASSERT_EQ(mcon_guide_cut_options_init(&o), MCON_OK);
+  o.struct_size = 4;
+  EXPECT_EQ(mcon_mesh_cut_guides(x.mesh.get(), sets, 1, &o, &c), MCON_ERROR_STRUCT_SIZE);
+  EXPECT_EQ(c, nullptr);
+  EXPECT_EQ(mcon_cut_mesh_get_guide_origins(nullptr, u, u, 1), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_cut_mesh_get_guide_origins(cut.get(), u, nullptr, 0), MCON_ERROR_BUFFER_TOO_SMALL);
+  EXPECT_EQ(mcon_cut_mesh_get_guide_origins(cut.get(), nullptr, nullptr, 0), MCON_OK);  // nothing asked
 }
