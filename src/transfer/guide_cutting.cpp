@@ -83,12 +83,16 @@ struct LocalPoints {
     const double s = (x - a).dot(d) / (len * len);
     return s * len > eps && (1 - s) * len > eps;
   }
-  // Do the segments (a, b) and (p, q) of local points cross properly (not at a shared end)?
+  // Do the segments (a, b) and (p, q) of local points cross properly (not at a shared end)? A
+  // point within eps of the other segment's line counts as on it, so two pieces of one triangle
+  // side (collinear up to rounding) never "cross".
   bool crosses(int a, int b, int p, int q) const {
     if (a == p || a == q || b == p || b == q) return false;
-    const double o1 = orient(xy[a], xy[b], xy[p]), o2 = orient(xy[a], xy[b], xy[q]);
-    const double o3 = orient(xy[p], xy[q], xy[a]), o4 = orient(xy[p], xy[q], xy[b]);
-    return ((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0));
+    const double lab = (xy[b] - xy[a]).norm(), lpq = (xy[q] - xy[p]).norm();
+    const auto side = [&](double o, double len) { return o > eps * len ? 1 : o < -eps * len ? -1 : 0; };
+    const int o1 = side(orient(xy[a], xy[b], xy[p]), lab), o2 = side(orient(xy[a], xy[b], xy[q]), lab);
+    const int o3 = side(orient(xy[p], xy[q], xy[a]), lpq), o4 = side(orient(xy[p], xy[q], xy[b]), lpq);
+    return o1 * o2 < 0 && o3 * o4 < 0;
   }
   Vec3 barycentric_of(const Vec2& x) const {
     const double area = cross2(c[1] - c[0], c[2] - c[0]);
