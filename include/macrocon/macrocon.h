@@ -744,8 +744,8 @@ typedef struct mcon_polyline_set_t* mcon_polyline_set;
  * points (triangles + 3 barycentric each), grouped in polyline_count polylines of
  * polyline_sizes[i] >= 2 consecutive points (>= 3 if closed); polyline_closed (may be NULL = all
  * open) marks polylines whose last point joins the first. Between two consecutive points the trace
- * follows the straight segment in the target disk's plane (phi-space). The set keeps a reference on
- * the target patch. */
+ * is the shortest path on the target through the triangles that phi-space's straight segment
+ * crosses. The set keeps a reference on the target patch. */
 MCON_API mcon_status mcon_map_transfer_polylines(mcon_map map, const uint32_t* triangles, const double* barycentric,
                                                  size_t point_count, const uint32_t* polyline_sizes,
                                                  const uint8_t* polyline_closed, size_t polyline_count,

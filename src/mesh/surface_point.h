@@ -20,4 +20,11 @@ struct SurfacePoint {
 // INVALID_ARGUMENT (NON_FINITE for NaN/inf) naming the point by `what`.
 Vec3 checked_barycentric(int triangle, const Vec3& barycentric, int triangle_count, const std::string& what);
 
+// The point's position on `mesh` (its weights applied to its triangle's corners; not checked).
+inline Vec3 position_on(const TriMesh& mesh, const SurfacePoint& p) {
+  const Tri& t = mesh.triangles[p.triangle];
+  return p.barycentric[0] * mesh.positions[t[0]] + p.barycentric[1] * mesh.positions[t[1]] +
+         p.barycentric[2] * mesh.positions[t[2]];
+}
+
 }  // namespace mcon

@@ -9,6 +9,7 @@
 #include "base/error.h"
 #include "mesh/mesh_topology.h"
 #include "mesh/point_location_2d.h"
+#include "transfer/polyline_straightening.h"
 
 namespace mcon {
 
@@ -24,6 +25,7 @@ struct TracePoint {
   int triangle;
   Vec3 barycentric;
   Vec2 uv;  // in the target disk's plane
+  bool fixed = true;  // false: where the walk crossed an edge (straightened later)
 };
 
 struct SegmentExit {
@@ -56,19 +58,20 @@ struct Trace {
   int cur = -1;               // target triangle of the walk, -1 outside
   int entry = -1;             // corner of `cur` opposite the edge the walk came in through
 
-  void append(int t, const Vec3& b, const Vec2& uv);
+  void append(int t, const Vec3& b, const Vec2& uv, bool fixed = true);
 };
 
-void Trace::append(int t, const Vec3& b, const Vec2& uv) {
+void Trace::append(int t, const Vec3& b, const Vec2& uv, bool fixed) {
   std::vector<TracePoint>& piece = pieces.back();
   // The same point again (a segment starting on an edge, or passing a vertex): keep one, in
-  // the triangle of the segment that follows it.
+  // the triangle of the segment that follows it (fixed if either was).
   if (!piece.empty() && (piece.back().uv - uv).norm() <= 1e-14) {
     piece.back().triangle = t;
     piece.back().barycentric = clamp_barycentric(b);
+    piece.back().fixed = piece.back().fixed || fixed;
     return;
   }
-  piece.push_back({t, clamp_barycentric(b), uv});
+  piece.push_back({t, clamp_barycentric(b), uv, fixed});
 }
 
 // A closed polyline that starts inside and is still inside at its end.
@@ -88,7 +91,8 @@ void join_loop_ends(Trace& tr) {
   }
 }
 
-// The traced pieces of input polyline `pi` as target polylines (closed if the whole loop survived).
+// The traced pieces of input polyline `pi` as target polylines (closed if the whole loop
+// survived), each straightened through the triangles it crosses (polyline_straightening.h).
 void emit_pieces(const Trace& tr, bool closed, std::size_t pi, const TriMesh& T, std::vector<TracedPolyline>& result) {
   const bool closed_out = closed && tr.starts_inside && tr.breaks == 0 && tr.pieces.size() == 1;
   for (const auto& piece : tr.pieces) {
@@ -97,11 +101,13 @@ void emit_pieces(const Trace& tr, bool closed, std::size_t pi, const TriMesh& T,
     out.closed = closed_out && piece.size() >= 3;
     if (closed_out && !out.closed) continue;
     out.input = static_cast<int>(pi);
-    for (const TracePoint& q : piece) {
-      out.points.push_back({q.triangle, q.barycentric});
-      const Tri& t = T.triangles[q.triangle];
-      out.positions.push_back(q.barycentric[0] * T.positions[t[0]] + q.barycentric[1] * T.positions[t[1]] +
-                              q.barycentric[2] * T.positions[t[2]]);
+    std::vector<StripPoint> strip;
+    for (const TracePoint& q : piece) strip.push_back({{q.triangle, q.barycentric}, q.fixed});
+    straighten_polyline(T, strip, out.closed);
+    if (strip.size() < 2 || (out.closed && strip.size() < 3)) continue;
+    for (const StripPoint& s : strip) {
+      out.points.push_back(s.point);
+      out.positions.push_back(position_on(T, s.point));
     }
     result.push_back(std::move(out));
   }
@@ -270,7 +276,10 @@ void PolylineTransfer::Impl::trace_segment(const Vec2& a, const Vec2& b, std::si
     entry = corner_facing(next, cur);
     cur = next;
     s = s_exit;
-    tr.append(cur, bary(cur, x), x);
+    // On the shared edge exactly (the weight of the corner facing it is 0), free to slide along it.
+    Vec3 on_edge = bary(cur, x);
+    on_edge[entry] = 0.0;
+    tr.append(cur, on_edge, x, false);
   }
 }
 

@@ -5,6 +5,8 @@
 // segment between two consecutive mapped points in that plane (phi-space) is walked triangle by
 // triangle through the target's uv triangulation and split at every target edge it crosses, so
 // every output segment lies inside one target triangle and therefore on the target surface.
+// Then each crossing slides along its edge to the shortest path through those triangles
+// (polyline_straightening.h): the line of phi-space zig-zags on the surface where g is squeezed.
 // Parts that leave the target disk (outside the overlap) are dropped: one input polyline may give
 // several output polylines, or none.
 #pragma once

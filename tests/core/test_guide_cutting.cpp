@@ -157,8 +157,9 @@ TEST(GuideCutting, SnappingAvoidsSliversAndMergesGuidesThatRunTooClose) {
   EXPECT_GT(snapped.merged_crossings, 0);
   EXPECT_EQ(unsnapped.merged_crossings, 0);
   EXPECT_LT(unsnapped.min_angle_created, 2.0);
-  // Measured: 10.6 degrees against 20.6 for the input triangles that were cut, 0.012 unsnapped.
-  EXPECT_GT(snapped.min_angle_created, 0.4 * snapped.min_angle_of_cut_input);
+  // Measured: 6.9 degrees against 20.6 for the input triangles that were cut, 0.012 unsnapped (the
+  // traces are straightened on the surface and pass closer to vertices; 10.6 before that).
+  EXPECT_GT(snapped.min_angle_created, 0.3 * snapped.min_angle_of_cut_input);
   EXPECT_LT(snapped.mesh.num_vertices(), unsnapped.mesh.num_vertices());
   // Same input, same output.
   const CutMesh again = cut_guides_into_mesh(m.target, g.points, g.closed);

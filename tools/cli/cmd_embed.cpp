@@ -226,12 +226,6 @@ std::vector<PolylineInput> iso_lines(const TriMesh& mesh, const Eigen::VectorXd&
   return out;
 }
 
-Vec3 on_mesh(const TriMesh& m, const SurfacePoint& p) {
-  const Tri& t = m.triangles[p.triangle];
-  return p.barycentric[0] * m.positions[t[0]] + p.barycentric[1] * m.positions[t[1]] +
-         p.barycentric[2] * m.positions[t[2]];
-}
-
 void write_polylines_obj(const std::string& path, const std::vector<std::vector<Vec3>>& lines,
                          const std::vector<bool>& closed) {
   std::ostringstream s;
@@ -478,7 +472,7 @@ EmbedFiles write_embed_files(const std::string& out_dir, const EmbedPatches& e, 
   }
   for (const PolylineInput& in : x.guides) {
     std::vector<Vec3> line;
-    for (const SurfacePoint& q : in.points) line.push_back(to_host(source, on_mesh(source.mesh, q)));
+    for (const SurfacePoint& q : in.points) line.push_back(to_host(source, position_on(source.mesh, q)));
     source_lines.push_back(std::move(line));
     source_closed.push_back(in.closed);
   }
@@ -585,7 +579,7 @@ tools::Json turning_summary(const EmbedPatches& e, const EmbedTransfer& x, const
   std::vector<bool> source_closed, traced_closed, cut_closed;
   for (const PolylineInput& in : x.guides) {
     std::vector<Vec3> line;
-    for (const SurfacePoint& q : in.points) line.push_back(on_mesh(e.source.mesh, q));
+    for (const SurfacePoint& q : in.points) line.push_back(position_on(e.source.mesh, q));
     source.push_back(std::move(line));
     source_closed.push_back(in.closed);
   }
