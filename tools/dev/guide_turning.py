@@ -2,7 +2,7 @@
 """Turning angle per unit length of every demo guide: source, transferred (traced) and cut chain.
 
     guide_turning.py [--library share/macrocon/starter.mclb] [--body samples/data/makehuman-body.obj.gz]
-                     [--region NAME:VERTEX:RADIUS ...] [--snap F] [--fail-over R] > turning.json
+                     [--region NAME:VERTEX:RADIUS ...] [--snap F] [--simplify F] [--fail-over R] > turning.json
 
 The demo's regions by default (tools/cli/cmd_demo.cpp). For each region the best library match is
 re-embedded, its guides transferred and cut into the region, and each guide's turning (sum of
@@ -24,7 +24,6 @@ import numpy as np
 import macrocon
 from transfer_fields import entry_patch, load_obj
 
-SIMPLIFY = None
 DEMO_REGIONS = ["eye_l:8021:0.55", "mouth:537:0.6", "nose:297:0.45", "hand_r:3197:1.2"]
 
 
@@ -57,7 +56,7 @@ def on_patch(positions, triangles, faces, bary):
     return np.einsum("nk,nkj->nj", bary, corners)
 
 
-def measure_region(ctx, library, body, name, vertex, radius, snap):
+def measure_region(ctx, library, body, name, vertex, radius, snap, simplify):
     region = macrocon.Patch.extract(body, radius, center_vertex=vertex)
     result = library.query(region, n=1)
     best = library.entry(int(result.indices[0]))
@@ -65,7 +64,7 @@ def measure_region(ctx, library, body, name, vertex, radius, snap):
     phi = macrocon.Map.compute(source, region)
     src_lines = best.polylines
     guides = phi.transfer_polylines(src_lines)
-    cut = region.cut_guides(guides, snap_fraction=snap, simplify_fraction=SIMPLIFY)
+    cut = region.cut_guides(guides, snap_fraction=snap, simplify_fraction=simplify)
     R = region.info.radius
     spos, stri = np.asarray(best.positions, np.float64), np.asarray(best.triangles, np.int64)
     sizes, closed, origin = guides.polyline_arrays()
@@ -103,7 +102,8 @@ def main(argv=None):
     ap.add_argument("--library", default="build/share/macrocon/starter.mclb")
     ap.add_argument("--body", default="samples/data/makehuman-body.obj.gz")
     ap.add_argument("--region", action="append", default=None, help="NAME:VERTEX:RADIUS (default: the demo's)")
-    ap.add_argument("--snap", type=float, default=None)
+    ap.add_argument("--snap", type=float, default=None, help="snap_fraction of the cut (default the SDK's)")
+    ap.add_argument("--simplify", type=float, default=None, help="simplify_fraction of the cut")
     ap.add_argument("--fail-over", type=float, default=None, help="exit 1 if a traced ratio exceeds this")
     a = ap.parse_args(argv)
     ctx = macrocon.Context()
@@ -113,7 +113,7 @@ def main(argv=None):
     regions = []
     for spec in a.region or DEMO_REGIONS:
         name, vertex, radius = spec.split(":")
-        regions.append(measure_region(ctx, library, body, name, int(vertex), float(radius), a.snap))
+        regions.append(measure_region(ctx, library, body, name, int(vertex), float(radius), a.snap, a.simplify))
     all_cut = [g["cut_ratio"] for r in regions for g in r["guides"] if g["cut_ratio"] is not None]
     all_tr = [g["traced_ratio"] for r in regions for g in r["guides"] if g["traced_ratio"] is not None]
     json.dump({"regions": regions, "traced_ratio_max": max(all_tr), "cut_ratio_max": max(all_cut),
