@@ -853,14 +853,16 @@ typedef struct mcon_cut_mesh_info {
 
 MCON_API mcon_status mcon_cut_mesh_info_init(mcon_cut_mesh_info* info);
 /* Cuts `guides` (polylines transferred onto `patch`) into the patch. `options` may be NULL.
- * INVALID_ARGUMENT if the guides lie on another patch. The cut mesh keeps a reference on the patch. */
+ * INVALID_ARGUMENT if the guides lie on another patch or a guide crosses itself. The cut mesh keeps
+ * a reference on the patch. */
 MCON_API mcon_status mcon_patch_cut_guides(mcon_patch patch, mcon_polyline_set guides,
                                            const mcon_guide_cut_options* options, mcon_cut_mesh* out_cut);
 /* Cuts the guides of one or several macro constraints into the whole host: `guide_sets[i]` lie on
  * patches extracted from `mesh` (e.g. both eyes and the mouth), and the result covers every face of
  * `mesh`, so its cross field and QuadWild files cover the whole model (docs/design.md §15).
  * Positions are the mesh's; host points are mesh triangles. INVALID_ARGUMENT if a set lies on a
- * patch that was not extracted from `mesh`. The cut mesh keeps a reference on the mesh. */
+ * patch that was not extracted from `mesh` or a guide crosses itself. The cut mesh keeps a
+ * reference on the mesh. */
 MCON_API mcon_status mcon_mesh_cut_guides(mcon_mesh mesh, const mcon_polyline_set* guide_sets, size_t set_count,
                                           const mcon_guide_cut_options* options, mcon_cut_mesh* out_cut);
 MCON_API mcon_status mcon_cut_mesh_retain(mcon_cut_mesh cut);

@@ -13,6 +13,7 @@
 #include "mesh/closest_point_3d.h"
 #include "mesh/edge_key.h"
 #include "mesh/mesh_topology.h"
+#include "transfer/guide_self_crossing.h"
 
 namespace mcon {
 namespace {
@@ -659,6 +660,7 @@ CutMesh GuideCutter::run(const std::vector<std::vector<SurfacePoint>>& polylines
       lines[g].push_back(classify(polylines[g][i], "guide " + std::to_string(g) + " point " + std::to_string(i)));
     simplify(lines[g]);
   }
+  refuse_self_crossing_guides(mesh_, polylines, closed);
   for (const auto& line : lines)
     for (const Node& n : line) out_.snapped_to_vertices += n.snapped;
   resolve(lines);

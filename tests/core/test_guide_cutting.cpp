@@ -230,6 +230,17 @@ TEST(GuideCutting, BadInputIsRefusedWithTheFix) {
   GuideCutOptions bad;
   bad.snap_fraction = 0.5;
   EXPECT_EQ(status_of([&] { cut_guides_into_mesh(grid, {}, {}, bad); }), MCON_ERROR_INVALID_ARGUMENT);
+  // A guide that crosses itself inside one triangle (a bow tie through triangle 0) is refused by name;
+  // a closed triangle loop inside it is not.
+  const std::vector<SurfacePoint> bow_tie{{0, Vec3(0.8, 0.1, 0.1)}, {0, Vec3(0.5, 0.4, 0.1)},
+                                          {0, Vec3(0.5, 0.1, 0.4)}, {0, Vec3(0.2, 0.4, 0.4)}};
+  EXPECT_EQ(status_of([&] { cut_guides_into_mesh(grid, {bow_tie}, {true}); }, &message), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(message.find("guide 0 crosses itself in triangle 0"), std::string::npos) << message;
+  const std::vector<SurfacePoint> crossing_open{{0, Vec3(0.7, 0.15, 0.15)}, {0, Vec3(0.15, 0.7, 0.15)},
+                                                {0, Vec3(0.15, 0.15, 0.7)}, {0, Vec3(0.5, 0.45, 0.05)}};
+  EXPECT_EQ(status_of([&] { cut_guides_into_mesh(grid, {crossing_open}, {false}); }), MCON_ERROR_INVALID_ARGUMENT);
+  const std::vector<SurfacePoint> loop{{0, Vec3(0.6, 0.2, 0.2)}, {0, Vec3(0.2, 0.6, 0.2)}, {0, Vec3(0.2, 0.2, 0.6)}};
+  EXPECT_NO_THROW(cut_guides_into_mesh(grid, {loop}, {true}));
   // Nothing to cut: the mesh comes back as it was.
   const CutMesh same = cut_guides_into_mesh(grid, {}, {});
   EXPECT_EQ(same.mesh.triangles, grid.triangles);
