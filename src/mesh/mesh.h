@@ -19,6 +19,17 @@ using Tri = std::array<int, 3>;
 // The z component of the 2D cross product: twice the signed area of (0, a, b).
 inline double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
+// Do the segments (a, b) and (p, q) cross properly, each strictly separating the other's ends? A
+// point within eps of the other segment's line counts as on it, so collinear pieces (up to
+// rounding) and touching ends never cross.
+inline bool segments_cross_properly(const Vec2& a, const Vec2& b, const Vec2& p, const Vec2& q, double eps) {
+  const auto side = [eps](const Vec2& u, const Vec2& v, const Vec2& x) {
+    const double o = cross2(v - u, x - u), tol = eps * (v - u).norm();
+    return o > tol ? 1 : o < -tol ? -1 : 0;
+  };
+  return side(a, b, p) * side(a, b, q) < 0 && side(p, q, a) * side(p, q, b) < 0;
+}
+
 struct TriMesh {
   std::vector<Vec3> positions;
   std::vector<Tri> triangles;

@@ -41,11 +41,6 @@ double mean_side(const TriMesh& m, int t) {
          3.0;
 }
 
-Vec3 position_of(const TriMesh& m, int t, const Vec3& w) {
-  const Tri& tri = m.triangles[t];
-  return w[0] * m.positions[tri[0]] + w[1] * m.positions[tri[1]] + w[2] * m.positions[tri[2]];
-}
-
 // Smallest angle (degrees) of the triangle (a, b, c).
 double min_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
   auto angle = [](const Vec3& p, const Vec3& q, const Vec3& r) {
@@ -89,11 +84,7 @@ struct LocalPoints {
   // side (collinear up to rounding) never "cross".
   bool crosses(int a, int b, int p, int q) const {
     if (a == p || a == q || b == p || b == q) return false;
-    const double lab = (xy[b] - xy[a]).norm(), lpq = (xy[q] - xy[p]).norm();
-    const auto side = [&](double o, double len) { return o > eps * len ? 1 : o < -eps * len ? -1 : 0; };
-    const int o1 = side(orient(xy[a], xy[b], xy[p]), lab), o2 = side(orient(xy[a], xy[b], xy[q]), lab);
-    const int o3 = side(orient(xy[p], xy[q], xy[a]), lpq), o4 = side(orient(xy[p], xy[q], xy[b]), lpq);
-    return o1 * o2 < 0 && o3 * o4 < 0;
+    return segments_cross_properly(xy[a], xy[b], xy[p], xy[q], eps);
   }
   Vec3 barycentric_of(const Vec2& x) const {
     const double area = cross2(c[1] - c[0], c[2] - c[0]);
@@ -242,7 +233,7 @@ Node GuideCutter::classify(const SurfacePoint& p, const std::string& what) const
     return on_edge(p.triangle, i, j, w[j] / (w[i] + w[j]));
   }
   // Inside: onto the nearest side if it is closer than snap_fraction of the mean side.
-  const Vec3 x = position_of(mesh_, p.triangle, w);
+  const Vec3 x = position_on(mesh_, {p.triangle, w});
   int best = -1;
   double best_distance = options_.snap_fraction * mean_side(mesh_, p.triangle), best_s = 0;
   for (int k = 0; k < 3; ++k) {
@@ -278,7 +269,7 @@ void GuideCutter::simplify(std::vector<Node>& line) {
     const double tolerance = options_.simplify_fraction * mean_side(mesh_, line[i].f);
     auto x = [&](std::size_t k) -> Vec3 {
       const Node& n = line[k];
-      if (n.kind == Node::face) return position_of(mesh_, n.f, n.w);
+      if (n.kind == Node::face) return position_on(mesh_, {n.f, n.w});
       if (n.kind == Node::vertex) return mesh_.positions[n.v];
       const auto& e = topology_.edges[n.e];
       return (1 - n.t) * mesh_.positions[e[0]] + n.t * mesh_.positions[e[1]];
@@ -391,7 +382,7 @@ void GuideCutter::resolve(std::vector<std::vector<Node>>& lines) {
     const double radius = options_.snap_fraction * mean_side(mesh_, f);
     std::vector<std::pair<Vec3, int>> representatives;
     for (Node* n : nodes) {
-      const Vec3 x = position_of(mesh_, f, n->w);
+      const Vec3 x = position_on(mesh_, {f, n->w});
       for (const auto& [y, id] : representatives)
         if ((x - y).norm() < radius) {
           n->id = id;
@@ -490,7 +481,7 @@ LocalPoints GuideCutter::local_points(int t) const {
   const auto inside = face_vertices_.find(t);
   if (inside != face_vertices_.end())
     for (int id : inside->second)
-      P.add(id, to_2d(position_of(mesh_, host_[id].triangle, host_[id].barycentric)));
+      P.add(id, to_2d(position_on(mesh_, host_[id])));
   return P;
 }
 
@@ -545,8 +536,8 @@ SurfacePoint GuideCutter::closest_guide_point(int v, const std::vector<SurfacePo
   for (std::size_t i = 0; i < segments; ++i) {
     const SurfacePoint& next = line[(i + 1) % line.size()];
     const int t = line[i].triangle;
-    const Vec3 a = position_of(mesh_, t, line[i].barycentric);
-    const Vec3 d = position_of(mesh_, next.triangle, next.barycentric) - a;
+    const Vec3 a = position_on(mesh_, line[i]);
+    const Vec3 d = position_on(mesh_, next) - a;
     const double s = d.squaredNorm() > 0 ? std::clamp((x - a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
     const Vec3 q = a + s * d;
     if (!((q - x).norm() < distance)) continue;
@@ -688,7 +679,7 @@ CutMesh GuideCutter::run(const std::vector<std::vector<SurfacePoint>>& polylines
 void GuideCutter::assemble_mesh(const std::vector<bool>& cut) {
   out_.host = host_;
   out_.mesh.positions.reserve(host_.size());
-  for (const SurfacePoint& h : host_) out_.mesh.positions.push_back(position_of(mesh_, h.triangle, h.barycentric));
+  for (const SurfacePoint& h : host_) out_.mesh.positions.push_back(position_on(mesh_, h));
   for (int v = 0; v < mesh_.num_vertices(); ++v) out_.mesh.positions[v] = mesh_.positions[v];
   for (int t = 0; t < mesh_.num_triangles(); ++t) {
     if (!cut[t]) {

@@ -30,18 +30,6 @@ struct Piece {
   Vec2 a, b;  // the ends' weights of corners 1 and 2 of the triangle
 };
 
-double orient(const Vec2& a, const Vec2& b, const Vec2& x) {
-  const Vec2 u = b - a, v = x - a;
-  return u.x() * v.y() - u.y() * v.x();
-}
-
-bool cross_properly(const Piece& p, const Piece& q) {
-  constexpr double kEps = 1e-12;  // in barycentric units
-  const auto side = [](double o) { return o > kEps ? 1 : o < -kEps ? -1 : 0; };
-  return side(orient(p.a, p.b, q.a)) * side(orient(p.a, p.b, q.b)) < 0 &&
-         side(orient(q.a, q.b, p.a)) * side(orient(q.a, q.b, p.b)) < 0;
-}
-
 }  // namespace
 
 void refuse_self_crossing_guides(const TriMesh& mesh, const std::vector<std::vector<SurfacePoint>>& polylines,
@@ -71,7 +59,7 @@ void refuse_self_crossing_guides(const TriMesh& mesh, const std::vector<std::vec
         for (std::size_t b = a + 1; b < pieces.size(); ++b) {
           const int i = pieces[a].segment, j = pieces[b].segment;
           const bool adjacent = j - i == 1 || (loop && i == 0 && j == segments - 1);
-          require(adjacent || !cross_properly(pieces[a], pieces[b]), MCON_ERROR_INVALID_ARGUMENT,
+          require(adjacent || !segments_cross_properly(pieces[a].a, pieces[a].b, pieces[b].a, pieces[b].b, 1e-12), MCON_ERROR_INVALID_ARGUMENT,
                   "guide " + std::to_string(g) + " crosses itself in triangle " + std::to_string(t) + " (segments " +
                       std::to_string(i) + " and " + std::to_string(j) +
                       "): give it as polylines that do not cross themselves (split it where it crosses)");

@@ -46,33 +46,28 @@ struct FreePoint {
 
 // Consecutive points at the same place become one (the later one's triangle holds the segment
 // that follows). A closed polyline also drops a last point that came back to the first.
-int merge_coincident(const TriMesh& mesh, std::vector<StripPoint>& points, bool closed) {
+void merge_coincident(const TriMesh& mesh, std::vector<StripPoint>& points, bool closed) {
   std::vector<StripPoint> out;
-  int merged = 0;
   for (const StripPoint& p : points) {
     if (!out.empty() && (position_on(mesh, out.back().point) - position_on(mesh, p.point)).norm() <= 1e-13) {
       const bool fixed = out.back().fixed || p.fixed;
       out.back() = p;
       out.back().fixed = fixed;
-      ++merged;
       continue;
     }
     out.push_back(p);
   }
   if (closed && out.size() > 2 && (position_on(mesh, out.back().point) - position_on(mesh, out.front().point)).norm() <= 1e-13) {
     out.pop_back();
-    ++merged;
   }
   points = std::move(out);
-  return merged;
 }
 
 }  // namespace
 
-StraighteningStats straighten_polyline(const TriMesh& mesh, std::vector<StripPoint>& points, bool closed) {
-  StraighteningStats stats;
+void straighten_polyline(const TriMesh& mesh, std::vector<StripPoint>& points, bool closed) {
   const int n = static_cast<int>(points.size());
-  if (n < 3) return stats;
+  if (n < 3) return;
   std::vector<FreePoint> free;
   for (int i = 0; i < n; ++i) {
     if (points[i].fixed || (!closed && (i == 0 || i == n - 1))) continue;
@@ -80,16 +75,13 @@ StraighteningStats straighten_polyline(const TriMesh& mesh, std::vector<StripPoi
     FreePoint f{i, -1, -1};
     if (crossing_edge(mesh, points[i].point, points[prev].point.triangle, f.a, f.b)) free.push_back(f);
   }
-  if (free.empty()) return stats;
-  std::vector<double> start(free.size());
-  for (std::size_t k = 0; k < free.size(); ++k) start[k] = points[free[k].index].point.barycentric[free[k].b];
+  if (free.empty()) return;
 
   // Gauss-Seidel over the crossings: each update is the exact minimizer of the path length through
   // its edge with its neighbours held, so the length never grows; the strip's length is convex in
   // the edge parameters, so the sweeps converge to its shortest path.
   constexpr int kMaxSweeps = 200;
-  for (stats.sweeps = 0; stats.sweeps < kMaxSweeps;) {
-    ++stats.sweeps;
+  for (int sweep = 0; sweep < kMaxSweeps; ++sweep) {
     double largest = 0;
     for (const FreePoint& f : free) {
       SurfacePoint& p = points[f.index].point;
@@ -114,10 +106,8 @@ StraighteningStats straighten_polyline(const TriMesh& mesh, std::vector<StripPoi
       w[free[k].b] = s < kAtVertex ? 0.0 : 1.0;
       w[free[k].a] = 1.0 - w[free[k].b];
     }
-    if (std::abs(w[free[k].b] - start[k]) > 1e-12) ++stats.moved;
   }
-  stats.merged = merge_coincident(mesh, points, closed);
-  return stats;
+  merge_coincident(mesh, points, closed);
 }
 
 }  // namespace mcon

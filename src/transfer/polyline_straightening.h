@@ -19,17 +19,11 @@ struct StripPoint {
   bool fixed = true;   // false: a crossing of the edge shared with the previous point's triangle
 };
 
-struct StraighteningStats {
-  int moved = 0;      // crossings that moved by more than 1e-12 of their edge
-  int merged = 0;     // crossings that reached a vertex shared with a neighbour, merged with it
-  int sweeps = 0;     // Gauss-Seidel sweeps run
-};
-
 // Straightens `points` in place (closed: the last point joins the first). A free point must have
 // exactly one zero weight, on the corner of its triangle opposite the edge it shares with the
 // previous point's triangle; a point that does not is treated as fixed. Consecutive points that
 // end at the same place are merged (the later one's triangle kept), so every segment still lies in
 // the triangle of its first point. Deterministic.
-StraighteningStats straighten_polyline(const TriMesh& mesh, std::vector<StripPoint>& points, bool closed);
+void straighten_polyline(const TriMesh& mesh, std::vector<StripPoint>& points, bool closed);
 
 }  // namespace mcon
