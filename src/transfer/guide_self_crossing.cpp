@@ -32,38 +32,44 @@ struct Piece {
 
 }  // namespace
 
+SelfCrossing find_self_crossing(const TriMesh& mesh, const std::vector<SurfacePoint>& line, bool closed) {
+  const int n = static_cast<int>(line.size());
+  const bool loop = closed && n > 2;
+  const int segments = loop ? n : n - 1;
+  std::map<int, std::vector<Piece>> in_triangle;
+  for (int i = 0; i < segments; ++i) {
+    const SurfacePoint& p = line[i];
+    const SurfacePoint& q = line[(i + 1) % n];
+    Vec3 wp, wq;
+    int t = p.triangle;
+    if (!weights_in(mesh, q, t, wq)) {
+      t = q.triangle;
+      if (!weights_in(mesh, p, t, wp)) continue;
+      wq = q.barycentric;
+    } else {
+      wp = p.barycentric;
+    }
+    in_triangle[t].push_back({i, wp.tail<2>(), wq.tail<2>()});
+  }
+  for (const auto& [t, pieces] : in_triangle)
+    for (std::size_t a = 0; a < pieces.size(); ++a)
+      for (std::size_t b = a + 1; b < pieces.size(); ++b) {
+        const int i = pieces[a].segment, j = pieces[b].segment;
+        const bool adjacent = j - i == 1 || (loop && i == 0 && j == segments - 1);
+        if (!adjacent && segments_cross_properly(pieces[a].a, pieces[a].b, pieces[b].a, pieces[b].b, 1e-12))
+          return {t, i, j};
+      }
+  return {};
+}
+
 void refuse_self_crossing_guides(const TriMesh& mesh, const std::vector<std::vector<SurfacePoint>>& polylines,
                                  const std::vector<bool>& closed) {
   for (std::size_t g = 0; g < polylines.size(); ++g) {
-    const auto& line = polylines[g];
-    const int n = static_cast<int>(line.size());
-    const bool loop = g < closed.size() && closed[g] && n > 2;
-    const int segments = loop ? n : n - 1;
-    std::map<int, std::vector<Piece>> in_triangle;
-    for (int i = 0; i < segments; ++i) {
-      const SurfacePoint& p = line[i];
-      const SurfacePoint& q = line[(i + 1) % n];
-      Vec3 wp, wq;
-      int t = p.triangle;
-      if (!weights_in(mesh, q, t, wq)) {
-        t = q.triangle;
-        if (!weights_in(mesh, p, t, wp)) continue;
-        wq = q.barycentric;
-      } else {
-        wp = p.barycentric;
-      }
-      in_triangle[t].push_back({i, wp.tail<2>(), wq.tail<2>()});
-    }
-    for (const auto& [t, pieces] : in_triangle)
-      for (std::size_t a = 0; a < pieces.size(); ++a)
-        for (std::size_t b = a + 1; b < pieces.size(); ++b) {
-          const int i = pieces[a].segment, j = pieces[b].segment;
-          const bool adjacent = j - i == 1 || (loop && i == 0 && j == segments - 1);
-          require(adjacent || !segments_cross_properly(pieces[a].a, pieces[a].b, pieces[b].a, pieces[b].b, 1e-12), MCON_ERROR_INVALID_ARGUMENT,
-                  "guide " + std::to_string(g) + " crosses itself in triangle " + std::to_string(t) + " (segments " +
-                      std::to_string(i) + " and " + std::to_string(j) +
-                      "): give it as polylines that do not cross themselves (split it where it crosses)");
-        }
+    const SelfCrossing x = find_self_crossing(mesh, polylines[g], g < closed.size() && closed[g]);
+    require(x.triangle < 0, MCON_ERROR_INVALID_ARGUMENT,
+            "guide " + std::to_string(g) + " crosses itself in triangle " + std::to_string(x.triangle) +
+                " (segments " + std::to_string(x.segment_a) + " and " + std::to_string(x.segment_b) +
+                "): give it as polylines that do not cross themselves (split it where it crosses)");
   }
 }
 

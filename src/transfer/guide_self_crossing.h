@@ -12,6 +12,15 @@
 
 namespace mcon {
 
+struct SelfCrossing {
+  int triangle = -1;  // -1: the polyline does not cross itself
+  int segment_a = -1, segment_b = -1;
+};
+
+// The first proper crossing of two non-neighbouring segments of one polyline (closed: the last
+// point joins the first), in the order of the triangles' numbers.
+SelfCrossing find_self_crossing(const TriMesh& mesh, const std::vector<SurfacePoint>& line, bool closed);
+
 // Throws INVALID_ARGUMENT naming the guide, its two segments and the triangle where it crosses
 // itself. Points must be valid (checked_barycentric); segments whose ends share no triangle are
 // skipped here (the cutter refuses them).

@@ -9,6 +9,7 @@
 #include "base/error.h"
 #include "mesh/mesh_topology.h"
 #include "mesh/point_location_2d.h"
+#include "transfer/guide_self_crossing.h"
 #include "transfer/polyline_straightening.h"
 
 namespace mcon {
@@ -91,6 +92,12 @@ void join_loop_ends(Trace& tr) {
   }
 }
 
+bool crosses_itself(const TriMesh& T, const std::vector<StripPoint>& strip, bool closed) {
+  std::vector<SurfacePoint> line;
+  for (const StripPoint& s : strip) line.push_back(s.point);
+  return find_self_crossing(T, line, closed).triangle >= 0;
+}
+
 // The traced pieces of input polyline `pi` as target polylines (closed if the whole loop
 // survived), each straightened through the triangles it crosses (polyline_straightening.h).
 void emit_pieces(const Trace& tr, bool closed, std::size_t pi, const TriMesh& T, std::vector<TracedPolyline>& result) {
@@ -103,7 +110,12 @@ void emit_pieces(const Trace& tr, bool closed, std::size_t pi, const TriMesh& T,
     out.input = static_cast<int>(pi);
     std::vector<StripPoint> strip;
     for (const TracePoint& q : piece) strip.push_back({{q.triangle, q.barycentric}, q.fixed});
+    const std::vector<StripPoint> traced = strip;
     straighten_polyline(T, strip, out.closed);
+    // A guide that goes out and back through the same triangles (along a toe and back) is pulled
+    // onto one line from both sides, and the two legs can end up crossing: then the piece keeps its
+    // trace as it was, which did not cross itself, rather than hand the cut a self-crossing guide.
+    if (crosses_itself(T, strip, out.closed) && !crosses_itself(T, traced, out.closed)) strip = traced;
     if (strip.size() < 2 || (out.closed && strip.size() < 3)) continue;
     for (const StripPoint& s : strip) {
       out.points.push_back(s.point);

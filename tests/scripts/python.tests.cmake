@@ -26,6 +26,15 @@ if(NOT MACROCON_SANITIZE)
             --fail-over 2.5)
   set_tests_properties(tools.guide_turning PROPERTIES TIMEOUT 600
     ENVIRONMENT "MACROCON_LIBRARY=$<TARGET_FILE:macrocon>;PYTHONPATH=${PROJECT_SOURCE_DIR}/bindings/python:${PROJECT_SOURCE_DIR}/samples/python")
+  # A guide that goes out and back along a toe (the foot entry on a hand with Gaussian noise of 0.1
+  # edge length) was straightened into a guide that crossed itself, and the cut refused it; the
+  # trace must reach the cut (docs/design.md §16).
+  add_test(NAME tools.guide_turning.out_and_back
+    COMMAND ${MACROCON_PYTHON} ${PROJECT_SOURCE_DIR}/tools/dev/guide_turning.py
+            --library ${MACROCON_STARTER_LIBRARY} --body ${PROJECT_SOURCE_DIR}/samples/data/makehuman-body.obj.gz
+            --noise 0.1 --region hand_r:3197:1.2:foot_r)
+  set_tests_properties(tools.guide_turning.out_and_back PROPERTIES TIMEOUT 600
+    ENVIRONMENT "MACROCON_LIBRARY=$<TARGET_FILE:macrocon>;PYTHONPATH=${PROJECT_SOURCE_DIR}/bindings/python:${PROJECT_SOURCE_DIR}/samples/python")
   # The wheel bundles the library: install it into a scratch folder and import it from there
   # without MACROCON_LIBRARY.
   add_test(NAME python.wheel
