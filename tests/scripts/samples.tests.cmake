@@ -6,6 +6,7 @@
 #   samples.csharp_transfer       the C# binding under Mono (samples/csharp)
 #   samples.python_dask_library   a library built on a Dask cluster (samples/python), if Dask is found
 #   samples.blender_headless      the Blender script, registered only if blender is found
+#   samples.build_without_tests   the sample binaries are targets with -DMACROCON_BUILD_TESTS=OFF
 # The region is not one the library was built from (another radius), so the map is not trivial.
 set(MACROCON_SAMPLE_BODY ${PROJECT_SOURCE_DIR}/samples/data/makehuman-body.obj.gz)
 set(MACROCON_SAMPLE_OUT ${PROJECT_BINARY_DIR}/samples-out)
@@ -27,24 +28,27 @@ function(macrocon_sample_test name ply)
   endif()
 endfunction()
 
-add_executable(sample_transfer_fields ${PROJECT_SOURCE_DIR}/samples/c/transfer_fields.c)
-set_target_properties(sample_transfer_fields PROPERTIES C_STANDARD 99 C_STANDARD_REQUIRED ON C_EXTENSIONS OFF)
-target_compile_options(sample_transfer_fields PRIVATE -Wall -Wextra -pedantic $<$<BOOL:${MACROCON_WERROR}>:-Werror>)
-target_link_libraries(sample_transfer_fields PRIVATE macrocon macrocon_sample_mesh)
-add_dependencies(sample_transfer_fields macrocon_starter_library)
-macrocon_sample_test(c_transfer_fields ${MACROCON_SAMPLE_OUT}/c_transfer_fields.ply COMMAND
-  $<TARGET_FILE:sample_transfer_fields> ${MACROCON_STARTER_LIBRARY} ${MACROCON_SAMPLE_BODY}
-  ${MACROCON_SAMPLE_REGION} ${MACROCON_SAMPLE_OUT}/c_transfer_fields.ply)
+# The binaries come from samples/CMakeLists.txt (MACROCON_BUILD_SAMPLES).
+if(NOT TARGET sample_transfer_fields)
+  message(STATUS "samples.c_transfer_fields and samples.cpp_transfer_guides NOT registered: "
+                 "the samples are off (-DMACROCON_BUILD_SAMPLES=ON builds them)")
+else()
+  macrocon_sample_test(c_transfer_fields ${MACROCON_SAMPLE_OUT}/c_transfer_fields.ply COMMAND
+    $<TARGET_FILE:sample_transfer_fields> ${MACROCON_STARTER_LIBRARY} ${MACROCON_SAMPLE_BODY}
+    ${MACROCON_SAMPLE_REGION} ${MACROCON_SAMPLE_OUT}/c_transfer_fields.ply)
 
-add_executable(sample_transfer_guides ${PROJECT_SOURCE_DIR}/samples/cpp/transfer_guides.cpp)
-target_link_libraries(sample_transfer_guides PRIVATE macrocon macrocon_sample_mesh)
-macrocon_warnings(sample_transfer_guides)
-add_dependencies(sample_transfer_guides macrocon_starter_library)
-macrocon_sample_test(cpp_transfer_guides ${MACROCON_SAMPLE_OUT}/cpp_transfer.ply COMMAND
-  $<TARGET_FILE:sample_transfer_guides> ${MACROCON_STARTER_LIBRARY} ${MACROCON_SAMPLE_BODY}
-  ${MACROCON_SAMPLE_REGION} ${MACROCON_SAMPLE_OUT}/cpp_transfer
-  CHECK_ARGS --guides ${MACROCON_SAMPLE_OUT}/cpp_transfer_guides.obj
-             --rosy ${MACROCON_SAMPLE_OUT}/cpp_transfer_region.rosy --region ${MACROCON_SAMPLE_OUT}/cpp_transfer_region.obj)
+  macrocon_sample_test(cpp_transfer_guides ${MACROCON_SAMPLE_OUT}/cpp_transfer.ply COMMAND
+    $<TARGET_FILE:sample_transfer_guides> ${MACROCON_STARTER_LIBRARY} ${MACROCON_SAMPLE_BODY}
+    ${MACROCON_SAMPLE_REGION} ${MACROCON_SAMPLE_OUT}/cpp_transfer
+    CHECK_ARGS --guides ${MACROCON_SAMPLE_OUT}/cpp_transfer_guides.obj
+               --rosy ${MACROCON_SAMPLE_OUT}/cpp_transfer_region.rosy --region ${MACROCON_SAMPLE_OUT}/cpp_transfer_region.obj)
+endif()
+
+# -DMACROCON_BUILD_TESTS=OFF still gives the sample binaries; MACROCON_BUILD_SAMPLES=OFF drops them.
+add_test(NAME samples.build_without_tests
+  COMMAND ${CMAKE_COMMAND} -DSRC=${PROJECT_SOURCE_DIR} -DWORK=${PROJECT_BINARY_DIR}/samples-without-tests
+          -DGENERATOR=${CMAKE_GENERATOR} -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_samples_without_tests.cmake)
+set_tests_properties(samples.build_without_tests PROPERTIES TIMEOUT 300)
 
 # The bindings load libmacrocon into an uninstrumented interpreter / Mono, which an ASan library
 # cannot be: not in the sanitizer build (as the binding tests).
@@ -110,5 +114,8 @@ if(NOT MACROCON_SANITIZE)
       COMMAND ${MACROCON_BLENDER} -b ${blend} --factory-startup --python-exit-code 1
               --python ${PROJECT_SOURCE_DIR}/samples/blender/check_blend.py -- ${blend_json})
     set_tests_properties(samples.blender_headless_output PROPERTIES TIMEOUT 300 FIXTURES_REQUIRED sample_blender)
+  else()
+    message(STATUS "samples.blender_headless NOT registered: blender was not found "
+                   "(apt-get install blender, see tools/debian-packages-extra.txt)")
   endif()
 endif()
