@@ -41,6 +41,19 @@ foreach(region eye_l mouth nose hand_r)
   endif()
 endforeach()
 
+# --snap reaches the cut (a smaller snap leaves more crossings off the vertices: more triangles);
+# out of [0, 0.45], or without a cut, it is refused.
+run_checked(WHAT "macrocon demo --cut-guides --snap 0.1" COMMAND ${CLI} demo --out ${OUT}/snap --cut-guides --snap 0.1)
+file(STRINGS ${OUT}/cut/eye_l_cut.obj default_faces REGEX "^f ")
+file(STRINGS ${OUT}/snap/eye_l_cut.obj snap_faces REGEX "^f ")
+list(LENGTH default_faces n_default)
+list(LENGTH snap_faces n_snap)
+if(NOT n_snap GREATER n_default)
+  message(FATAL_ERROR "--snap 0.1 did not change the cut: eye_l_cut has ${n_snap} faces, ${n_default} at the default")
+endif()
+run_checked(EXPECT_FAILURE "--snap must be in \\[0, 0.45\\]" COMMAND ${CLI} demo --out ${OUT}/snap --cut-guides --snap 0.5)
+run_checked(EXPECT_FAILURE "--snap needs --cut-guides or --whole-host" COMMAND ${CLI} demo --out ${OUT}/snap --snap 0.1)
+
 # --whole-host: every region's guides (and the other eye's) in one mesh of the whole body: more
 # faces than the body's 26,756 triangles, one direction per face, the five regions' guide edges.
 run_checked(WHAT "macrocon demo --whole-host" OUTPUT_VARIABLE out COMMAND ${CLI} demo --out ${OUT}/whole --whole-host)

@@ -146,9 +146,10 @@ std::size_t write_polylines_obj(const std::string& path, mcon_polyline_set set) 
 }
 
 // The guides cut into the region: QuadWild's .obj/.rosy/.sharp, every guide on mesh edges.
-void write_cut_guides(const macrocon::Patch& region, mcon_polyline_set lines, const std::string& base) {
+void write_cut_guides(const macrocon::Patch& region, mcon_polyline_set lines, const mcon_guide_cut_options& options,
+                      const std::string& base) {
   mcon_cut_mesh raw_cut = nullptr;
-  check(mcon_patch_cut_guides(region.get(), lines, nullptr, &raw_cut));
+  check(mcon_patch_cut_guides(region.get(), lines, &options, &raw_cut));
   const std::unique_ptr<mcon_cut_mesh_t, Releaser<mcon_cut_mesh, mcon_cut_mesh_release>> cut(raw_cut);
   check(mcon_cut_mesh_write_quadwild(cut.get(), (base + "_cut").c_str()));
   mcon_cut_mesh_info cinfo;
@@ -161,12 +162,13 @@ void write_cut_guides(const macrocon::Patch& region, mcon_polyline_set lines, co
 }
 
 // Every region's guides cut into the whole body: one mesh, one field, one .sharp for QuadWild.
-void write_whole_host(const macrocon::Mesh& body, const std::vector<PolylinesRef>& sets, const std::string& out_dir) {
+void write_whole_host(const macrocon::Mesh& body, const std::vector<PolylinesRef>& sets,
+                      const mcon_guide_cut_options& options, const std::string& out_dir) {
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<mcon_polyline_set> raw;
   for (const PolylinesRef& s : sets) raw.push_back(s.get());
   mcon_cut_mesh raw_cut = nullptr;
-  check(mcon_mesh_cut_guides(body.get(), raw.data(), raw.size(), nullptr, &raw_cut));
+  check(mcon_mesh_cut_guides(body.get(), raw.data(), raw.size(), &options, &raw_cut));
   const std::unique_ptr<mcon_cut_mesh_t, Releaser<mcon_cut_mesh, mcon_cut_mesh_release>> cut(raw_cut);
   const std::string base = out_dir + "/body_whole";
   check(mcon_cut_mesh_write_quadwild(cut.get(), base.c_str()));
@@ -181,10 +183,10 @@ void write_whole_host(const macrocon::Mesh& body, const std::vector<PolylinesRef
               cinfo.triangle_count, seconds, base.c_str());
 }
 
-// Runs one region; returns false if the result fails a sanity check (printed). With `keep`, the
-// transferred guides are appended to it.
+// Runs one region; returns false if the result fails a sanity check (printed). With `cut`, the
+// guides are cut into the region with those options; with `keep`, they are appended to it.
 bool run_region(const macrocon::Context& ctx, const macrocon::Mesh& body, mcon_library lib, const Region& r,
-                const std::string& out_dir, bool cut_guides, std::vector<PolylinesRef>* keep) {
+                const std::string& out_dir, const mcon_guide_cut_options* cut, std::vector<PolylinesRef>* keep) {
   const auto t0 = std::chrono::steady_clock::now();
   const macrocon::Patch region = macrocon::Patch::extract(body, macrocon::PatchOptions::at_vertex(r.center_vertex, r.radius));
   const mcon_patch_info rinfo = region.info();
@@ -271,7 +273,7 @@ bool run_region(const macrocon::Context& ctx, const macrocon::Mesh& body, mcon_l
               entry_string(lib, best, MCON_ENTRY_CLASS_LABEL).c_str(), static_cast<unsigned long long>(ids[0]),
               minfo.overlap_ratio, minfo.matching_score, minfo.reflected ? "mirrored" : "direct",
               minfo.flipped_triangles, attributes.size() - 1, polylines, seconds, base.c_str(), base.c_str());
-  if (cut_guides) write_cut_guides(region, lines.get(), base);
+  if (cut) write_cut_guides(region, lines.get(), *cut, base);
   if (keep) keep->push_back(PolylinesRef(lines.release()));
   const bool ok = minfo.flipped_triangles == 0 && minfo.overlap_ratio > 0.5;
   if (!ok) std::printf("  %s: the re-embedding looks wrong (flips or overlap below 0.5)\n", r.name);
@@ -280,16 +282,25 @@ bool run_region(const macrocon::Context& ctx, const macrocon::Mesh& body, mcon_l
 
 int run_demo(const Args& args) {
   if (!args.empty() && (args[0] == "--help" || args[0] == "-h")) {
-    std::puts("usage: macrocon demo [--data DIR] [--library FILE.mclb] [--out DIR] [--cut-guides] [--whole-host]\n"
+    std::puts("usage: macrocon demo [--data DIR] [--library FILE.mclb] [--out DIR] [--cut-guides] [--whole-host] [--snap F]\n"
               "Queries the bundled MakeHuman body at a few regions against the starter constraint library,\n"
               "re-embeds the best match and writes PLY/OBJ/.rosy results to --out (default demo-out).\n"
               "--cut-guides also cuts the transferred guides into each region and writes QuadWild's inputs\n"
-              "<region>_cut.obj, .rosy and .sharp (guides on mesh edges, as feature edges).\n"
+              "<region>_cut.obj, .rosy and .sharp (guides on mesh edges, as feature edges); crossings closer than\n"
+              "--snap F (default 0.25) edge lengths to a vertex snap to it.\n"
               "--whole-host also queries the other eye and cuts every region's guides into the whole body:\n"
               "body_whole.obj, .rosy (one field over every face), .sharp and .quadwild.json.");
     return 0;
   }
-  const ArgParser p(args, {"data", "out", "library"}, {"cut-guides", "whole-host"});
+  const ArgParser p(args, {"data", "out", "library", "snap"}, {"cut-guides", "whole-host"});
+  mcon_guide_cut_options cut_options;
+  check(mcon_guide_cut_options_init(&cut_options));
+  require(p.flag("cut-guides") || p.flag("whole-host") || !p.has("snap"), MCON_ERROR_INVALID_ARGUMENT,
+          "--snap needs --cut-guides or --whole-host");
+  cut_options.snap_fraction = p.number("snap", cut_options.snap_fraction);
+  require(cut_options.snap_fraction >= 0 && cut_options.snap_fraction <= 0.45, MCON_ERROR_INVALID_ARGUMENT,
+          "--snap must be in [0, 0.45] (a fraction of an edge length)");
+  const mcon_guide_cut_options* cut = p.flag("cut-guides") ? &cut_options : nullptr;
   const std::string data = p.get("data", MACROCON_SAMPLE_DATA_DIR);
   const std::string out_dir = p.get("out", "demo-out");
   const std::string library_path = p.get("library", default_library_path());
@@ -320,7 +331,7 @@ int run_demo(const Args& args) {
     for (const Region& r : regions) {
       // Region vertices are file numbers; the bundled body has no unreferenced vertices.
       try {
-        if (!run_region(ctx, body, lib.get(), r, out_dir, p.flag("cut-guides"), whole ? &sets : nullptr)) ++failures;
+        if (!run_region(ctx, body, lib.get(), r, out_dir, cut, whole ? &sets : nullptr)) ++failures;
       } catch (const macrocon::Error& e) {
         std::printf("  %s failed: %s: %s\n", r.name, macrocon::status_name(e.status()).c_str(), e.what());
         ++failures;
@@ -328,7 +339,7 @@ int run_demo(const Args& args) {
     }
     if (whole) {
       try {
-        write_whole_host(body, sets, out_dir);
+        write_whole_host(body, sets, cut_options, out_dir);
       } catch (const macrocon::Error& e) {
         std::printf("  whole body failed: %s: %s\n", macrocon::status_name(e.status()).c_str(), e.what());
         ++failures;

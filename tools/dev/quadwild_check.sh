@@ -4,6 +4,7 @@
 #   quadwild_check.sh MACROCON QUADWILD_DIR OUT_DIR [metrics options...]
 # MACROCON is the macrocon CLI; QUADWILD_DIR holds build/Build/bin/{quadwild,quad_from_patches}
 # and src/config (the OUT_DIR of the QuadWild build recipe in README "Quad meshing with QuadWild").
+# MACROCON_DEMO_ARGS adds options to `macrocon demo` (e.g. "--snap 0.1").
 # Writes OUT_DIR/<region>.metrics.json and OUT_DIR/quadwild_check.json (all regions, seconds).
 set -euo pipefail
 macrocon=$(realpath "$1"); qw=$(realpath "$2"); out=$3; shift 3
@@ -13,7 +14,7 @@ for f in "$bin/quadwild" "$bin/quad_from_patches" "$cfg/prep_config/basic_setup.
   [ -e "$f" ] || { echo "quadwild_check: $f is missing (give the QuadWild build folder)" >&2; exit 2; }
 done
 rm -rf "$out"; mkdir -p "$out"; out=$(realpath "$out")
-"$macrocon" demo --out "$out" --cut-guides --whole-host > "$out/demo.log"
+"$macrocon" demo --out "$out" --cut-guides --whole-host ${MACROCON_DEMO_ARGS:-} > "$out/demo.log"
 status=0; summary="{"
 for name in eye_l_cut eye_r_cut mouth_cut nose_cut hand_r_cut body_whole; do
   start=$(date +%s%N)
