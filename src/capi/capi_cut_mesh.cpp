@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdio>
 #include <memory>
+#include <mutex>
 #include <string>
 
 #include "capi/capi_map_handles.h"
@@ -28,6 +29,10 @@ struct mcon_cut_mesh_t {
   // Per chain of cut.guides: its guide set and polyline in that set.
   std::vector<std::array<std::uint32_t, 2>> origins;
   std::uint32_t unplaced_points = 0, split_guides = 0;
+  // The guide-aligned cross field, solved on first use and kept: the cut never changes, and both
+  // mcon_cut_mesh_compute_cross_field and mcon_cut_mesh_write_quadwild need it.
+  std::mutex field_mutex;
+  std::unique_ptr<const CrossField> field;
   const TriMesh& input() const { return patch ? patch->patch.mesh : mesh->mesh; }
   ~mcon_cut_mesh_t() {
     release_owned(patch);
@@ -92,13 +97,17 @@ HostPolylines sets_on_host(const mcon_mesh_t& mesh, const mcon_polyline_set* set
   return all;
 }
 
-CrossField guide_field(const mcon_cut_mesh_t& c) {
-  const TriMesh& mesh = c.cut.mesh;
-  CrossField field = run_in_arena(c.context, [&] {
-    return compute_cross_field(mesh, constraints_from_edges(mesh, c.cut.guide_edges));
-  });
-  align_field_to_edges(mesh, c.cut.guide_edges, field);
-  return field;
+const CrossField& guide_field(mcon_cut_mesh_t& c) {
+  const std::lock_guard<std::mutex> lock(c.field_mutex);
+  if (!c.field) {
+    const TriMesh& mesh = c.cut.mesh;
+    CrossField field = run_in_arena(c.context, [&] {
+      return compute_cross_field(mesh, constraints_from_edges(mesh, c.cut.guide_edges));
+    });
+    align_field_to_edges(mesh, c.cut.guide_edges, field);
+    c.field = std::make_unique<const CrossField>(std::move(field));
+  }
+  return *c.field;
 }
 
 // A JSON string literal (quotes, backslashes and control characters escaped).
@@ -321,7 +330,7 @@ mcon_status mcon_cut_mesh_compute_cross_field(mcon_cut_mesh cut, double* out_dir
   return guard_object("mcon_cut_mesh_compute_cross_field", cut, "cut mesh", [&] {
     require_pointer(out_directions, "out_directions");
     require_capacity(capacity, cut->cut.mesh.triangles.size(), "out_directions (capacity in triangles)");
-    const CrossField field = guide_field(*cut);
+    const CrossField& field = guide_field(*cut);
     for (std::size_t t = 0; t < field.directions.size(); ++t)
       for (int k = 0; k < 3; ++k) out_directions[3 * t + k] = field.directions[t][k];
   });
@@ -333,7 +342,7 @@ mcon_status mcon_cut_mesh_write_quadwild(mcon_cut_mesh cut, const char* path_pre
     const std::string prefix = path_prefix;
     require(!prefix.empty(), MCON_ERROR_INVALID_ARGUMENT, "path_prefix is empty");
     const TriMesh mesh = host_units(*cut);
-    const CrossField field = guide_field(*cut);
+    const CrossField& field = guide_field(*cut);
     io::write_obj(prefix + ".obj", mesh);
     io::write_rosy(prefix + ".rosy", mesh, field.directions);
     io::write_sharp(prefix + ".sharp", mesh, cut->cut.guide_edges);
