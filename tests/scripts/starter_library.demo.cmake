@@ -21,24 +21,32 @@ foreach(region eye_l mouth nose hand_r)
   endif()
 endforeach()
 
-# --cut-guides: QuadWild's three files per region, agreeing with each other (one direction per
-# OBJ face, a non-empty .sharp of guide edges).
-run_checked(WHAT "macrocon demo --cut-guides" OUTPUT_VARIABLE out COMMAND ${CLI} demo --out ${OUT}/cut --cut-guides)
-message(STATUS "${out}")
-foreach(region eye_l mouth nose hand_r)
-  set(base ${OUT}/cut/${region}_cut)
-  foreach(ext obj rosy sharp)
+# QuadWild's files at <base>: every extension written, one .rosy direction per OBJ face, more than
+# <min_faces> faces and at least <min_sharp> feature edges; the face count goes to <faces_var>.
+function(check_quadwild_files base extensions min_faces min_sharp faces_var)
+  get_filename_component(name ${base} NAME)
+  foreach(ext ${extensions})
     if(NOT EXISTS ${base}.${ext})
-      message(FATAL_ERROR "macrocon demo --cut-guides did not write ${region}_cut.${ext}")
+      message(FATAL_ERROR "macrocon demo did not write ${name}.${ext}")
     endif()
   endforeach()
   file(STRINGS ${base}.obj faces REGEX "^f ")
   list(LENGTH faces nf)
   file(STRINGS ${base}.rosy rosy LIMIT_COUNT 1)
   file(STRINGS ${base}.sharp sharp LIMIT_COUNT 1)
-  if(NOT rosy EQUAL nf OR sharp LESS 10)
-    message(FATAL_ERROR "${region}_cut: ${nf} OBJ faces, .rosy for ${rosy}, ${sharp} feature edges")
+  if(NOT rosy EQUAL nf OR nf LESS_EQUAL min_faces OR sharp LESS min_sharp)
+    message(FATAL_ERROR "${name}: ${nf} OBJ faces (more than ${min_faces} expected), .rosy for ${rosy}, "
+                        "${sharp} feature edges (at least ${min_sharp} expected)")
   endif()
+  set(${faces_var} ${nf} PARENT_SCOPE)
+endfunction()
+
+# --cut-guides: QuadWild's three files per region, agreeing with each other (one direction per
+# OBJ face, a non-empty .sharp of guide edges).
+run_checked(WHAT "macrocon demo --cut-guides" OUTPUT_VARIABLE out COMMAND ${CLI} demo --out ${OUT}/cut --cut-guides)
+message(STATUS "${out}")
+foreach(region eye_l mouth nose hand_r)
+  check_quadwild_files(${OUT}/cut/${region}_cut "obj;rosy;sharp" 0 10 faces)
 endforeach()
 
 # --snap reaches the cut (a smaller snap leaves more crossings off the vertices: more triangles);
@@ -58,19 +66,7 @@ run_checked(EXPECT_FAILURE "--snap needs --cut-guides or --whole-host" COMMAND $
 # faces than the body's 26,756 triangles, one direction per face, the five regions' guide edges.
 run_checked(WHAT "macrocon demo --whole-host" OUTPUT_VARIABLE out COMMAND ${CLI} demo --out ${OUT}/whole --whole-host)
 message(STATUS "${out}")
-set(base ${OUT}/whole/body_whole)
-foreach(ext obj rosy sharp quadwild.json)
-  if(NOT EXISTS ${base}.${ext})
-    message(FATAL_ERROR "macrocon demo --whole-host did not write body_whole.${ext}")
-  endif()
-endforeach()
-file(STRINGS ${base}.obj faces REGEX "^f ")
-list(LENGTH faces nf)
-file(STRINGS ${base}.rosy rosy LIMIT_COUNT 1)
-file(STRINGS ${base}.sharp sharp LIMIT_COUNT 1)
-if(NOT rosy EQUAL nf OR nf LESS_EQUAL 26756 OR sharp LESS 500)
-  message(FATAL_ERROR "body_whole: ${nf} OBJ faces, .rosy for ${rosy}, ${sharp} feature edges")
-endif()
+check_quadwild_files(${OUT}/whole/body_whole "obj;rosy;sharp;quadwild.json" 26756 500 faces)
 if(NOT out MATCHES "whole body: 5 regions' guides cut in")
   message(FATAL_ERROR "demo --whole-host did not combine the five regions:\n${out}")
 endif()
