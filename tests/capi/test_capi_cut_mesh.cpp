@@ -82,6 +82,26 @@ mcon_cut_mesh_info info_of(mcon_cut_mesh c) {
   return info;
 }
 
+// Every array of a cut mesh, sized from its info.
+struct CutArrays {
+  std::vector<double> xyz, host_bary;
+  std::vector<uint32_t> tri, host_tri, sizes, chain;
+};
+void fetch(mcon_cut_mesh c, const mcon_cut_mesh_info& info, CutArrays& a) {
+  a.xyz.resize(3 * info.vertex_count);
+  a.host_bary.resize(3 * info.vertex_count);
+  a.tri.resize(3 * info.triangle_count);
+  a.host_tri.resize(info.vertex_count);
+  a.sizes.resize(info.guide_count);
+  a.chain.resize(info.guide_vertex_count);
+  ASSERT_EQ(mcon_cut_mesh_get_positions(c, a.xyz.data(), a.xyz.size()), MCON_OK) << last_message();
+  ASSERT_EQ(mcon_cut_mesh_get_triangles(c, a.tri.data(), a.tri.size()), MCON_OK) << last_message();
+  ASSERT_EQ(mcon_cut_mesh_get_host_points(c, a.host_tri.data(), a.host_bary.data(), info.vertex_count), MCON_OK)
+      << last_message();
+  ASSERT_EQ(mcon_cut_mesh_get_guides(c, a.sizes.data(), a.sizes.size(), a.chain.data(), a.chain.size()), MCON_OK)
+      << last_message();
+}
+
 std::set<std::pair<uint32_t, uint32_t>> edges_of(const std::vector<uint32_t>& tri) {
   std::set<std::pair<uint32_t, uint32_t>> e;
   for (size_t f = 0; f < tri.size() / 3; ++f)
@@ -107,12 +127,9 @@ TEST(CapiCutMesh, GuidesAreEdgeChainsOfTheCutMesh) {
   EXPECT_GE(info.guide_count, 2u);
   EXPECT_GT(info.min_angle_created, 1.0);
 
-  std::vector<double> xyz(3 * info.vertex_count);
-  std::vector<uint32_t> tri(3 * info.triangle_count), host_tri(info.vertex_count);
-  std::vector<double> host_bary(3 * info.vertex_count);
-  ASSERT_EQ(mcon_cut_mesh_get_positions(cut.get(), xyz.data(), xyz.size()), MCON_OK);
-  ASSERT_EQ(mcon_cut_mesh_get_triangles(cut.get(), tri.data(), tri.size()), MCON_OK);
-  ASSERT_EQ(mcon_cut_mesh_get_host_points(cut.get(), host_tri.data(), host_bary.data(), info.vertex_count), MCON_OK);
+  CutArrays arrays;
+  ASSERT_NO_FATAL_FAILURE(fetch(cut.get(), info, arrays));
+  const auto& [xyz, host_bary, tri, host_tri, sizes, chain] = arrays;
   // Each vertex is at its host point on the patch (host units).
   for (size_t v = 0; v < info.vertex_count; ++v)
     for (int k = 0; k < 3; ++k) {
@@ -122,8 +139,7 @@ TEST(CapiCutMesh, GuidesAreEdgeChainsOfTheCutMesh) {
       ASSERT_NEAR(x.t.info.center[k] + x.t.info.radius * p, xyz[3 * v + k], 1e-9) << v;
     }
   // Chains of mesh edges; the guide edges are exactly the chains' steps.
-  std::vector<uint32_t> sizes(info.guide_count), chain(info.guide_vertex_count), edges(2 * info.guide_edge_count);
-  ASSERT_EQ(mcon_cut_mesh_get_guides(cut.get(), sizes.data(), sizes.size(), chain.data(), chain.size()), MCON_OK);
+  std::vector<uint32_t> edges(2 * info.guide_edge_count);
   ASSERT_EQ(mcon_cut_mesh_get_guide_edges(cut.get(), edges.data(), edges.size()), MCON_OK);
   const auto mesh_edges = edges_of(tri);
   std::set<std::pair<uint32_t, uint32_t>> steps;
@@ -225,12 +241,9 @@ TEST(CapiCutMesh, WholeHostCombinesSeveralConstraints) {
               info.triangle_count, host_triangles, info.guide_count, info.guide_edge_count, info.min_angle_created);
   EXPECT_GT(info.triangle_count, host_triangles);
   EXPECT_EQ(info.unplaced_points, 0u);
-  std::vector<double> xyz(3 * info.vertex_count);
-  std::vector<uint32_t> tri(3 * info.triangle_count), host_tri(info.vertex_count);
-  std::vector<double> host_bary(3 * info.vertex_count);
-  ASSERT_EQ(mcon_cut_mesh_get_positions(cut.get(), xyz.data(), xyz.size()), MCON_OK);
-  ASSERT_EQ(mcon_cut_mesh_get_triangles(cut.get(), tri.data(), tri.size()), MCON_OK);
-  ASSERT_EQ(mcon_cut_mesh_get_host_points(cut.get(), host_tri.data(), host_bary.data(), info.vertex_count), MCON_OK);
+  CutArrays arrays;
+  ASSERT_NO_FATAL_FAILURE(fetch(cut.get(), info, arrays));
+  const auto& [xyz, host_bary, tri, host_tri, sizes, chain] = arrays;
   // Every vertex sits at its point on the host mesh, in the mesh's own units.
   for (size_t v = 0; v < info.vertex_count; ++v) {
     ASSERT_LT(host_tri[v], host_triangles);
@@ -254,8 +267,7 @@ TEST(CapiCutMesh, WholeHostCombinesSeveralConstraints) {
   };
   EXPECT_NEAR(area(xyz, tri) / area(host.positions, host.indices), 1.0, 1e-3);
   // Both sets give chains of mesh edges.
-  std::vector<uint32_t> sizes(info.guide_count), chain(info.guide_vertex_count), from_set(info.guide_count);
-  ASSERT_EQ(mcon_cut_mesh_get_guides(cut.get(), sizes.data(), sizes.size(), chain.data(), chain.size()), MCON_OK);
+  std::vector<uint32_t> from_set(info.guide_count);
   ASSERT_EQ(mcon_cut_mesh_get_guide_origins(cut.get(), from_set.data(), nullptr, info.guide_count), MCON_OK);
   const auto mesh_edges = edges_of(tri);
   size_t at = 0, edges_per_set[2] = {0, 0};
