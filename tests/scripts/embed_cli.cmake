@@ -135,6 +135,16 @@ run_checked(WHAT "a landmark outside the target patch" EXPECT_FAILURE "target ve
 run_checked(WHAT "a malformed --landmarks" EXPECT_FAILURE "expects S:T pairs"
   COMMAND ${CLI} embed --source ${MESH} --target ${MESH} --center-vertex 297 --radius 0.55
           --source-center-vertex 297 --landmarks 6974-5 --out ${OUT}/bad)
+run_checked(WHAT "a whole mesh as --source without --source-center-vertex"
+  EXPECT_FAILURE "is not a disk patch .*give --source-center-vertex M"
+  COMMAND ${CLI} embed --source ${MESH} --target ${MESH} --center-vertex 297 --radius 0.55 --out ${OUT}/bad)
+# Every command that takes a vertex or face number says that numbers count from 0.
+foreach(command embed patch query library)
+  run_checked(OUTPUT_VARIABLE help COMMAND ${CLI} ${command} --help)
+  if(NOT help MATCHES "numbers count from 0: vertex 0 is the file's first vertex")
+    message(FATAL_ERROR "macrocon ${command} --help does not say that numbers count from 0:\n${help}")
+  endif()
+endforeach()
 
 # Up hints: both meshes +y up (the file's axes); the summary says so and the map stays flip-free.
 # A zero vector, a malformed one and a lone --source-up are refused by name.

@@ -65,7 +65,8 @@ const char* kUsage =
     "doubles), target_cut.ply (with the transferred fields), target_cut.sharp (the guide edges as\n"
     "feature edges) and target_cut.rosy (a cross field that follows the guide edges exactly).\n"
     "Crossings closer than --snap F (default 0.25) edge lengths to a vertex snap to it and guides that\n"
-    "close merge, so no sliver is made; the summary's 'cut' reports the smallest angle created.\n";
+    "close merge, so no sliver is made; the summary's 'cut' reports the smallest angle created.\n"
+    MACROCON_HELP_NUMBERING;
 
 void parse_range(const std::string& key, const std::string& s, long& begin, long& end) {
   const auto colon = s.find(':');
@@ -314,9 +315,19 @@ EmbedPatches cut_embed_patches(const ArgParser& p) {
       load(p, "source", "source-face-range", cut_source ? OrientationRule::outward : OrientationRule::majority);
   require(cut_source || !p.has("source-radius"), MCON_ERROR_INVALID_ARGUMENT,
           "--source-radius needs --source-center-vertex");
-  e.source = cut_source ? cut(e.source_mesh, p.integer("source-center-vertex", -1),
-                              p.number("source-radius", p.number("radius", 0)), "--source-center-vertex")
-                        : as_entry(e.source_mesh.mesh);
+  if (cut_source) {
+    e.source = cut(e.source_mesh, p.integer("source-center-vertex", -1), p.number("source-radius", p.number("radius", 0)),
+                   "--source-center-vertex");
+    return e;
+  }
+  try {
+    e.source = as_entry(e.source_mesh.mesh);
+  } catch (const Error& err) {
+    // A whole mesh given as --source (a closed head, a body) is the usual slip: say what to add.
+    if (err.status() != MCON_ERROR_NOT_A_DISK) throw;
+    fail(MCON_ERROR_NOT_A_DISK, "--source '" + p.get("source", "") + "' is not a disk patch (" + err.what() +
+                                    "): give --source-center-vertex M (and --source-radius Q) to cut one out of it");
+  }
   return e;
 }
 

@@ -37,7 +37,8 @@ const char* kUsage =
     "  are computed; rings default to the measured best. The file is written atomically.\n"
     "add: the entry's histogram is computed with the library's vocabulary (no rebuild), and the\n"
     "  file is rewritten atomically.\n"
-    "info: counts, retrieval config and per-entry id/name/class/vertices/constraints/fields.\n";
+    "info: counts, retrieval config and per-entry id/name/class/vertices/constraints/fields.\n"
+    MACROCON_HELP_NUMBERING;
 
 // Options that describe one entry, and options that hold for the whole command.
 bool is_entry_option(const std::string& key) {

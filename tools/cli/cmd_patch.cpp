@@ -19,7 +19,8 @@ const char* kUsage =
     "Cuts the geodesic disk of radius R (mesh units) around the center, normalizes it to radius 1 and\n"
     "parametrizes it on the unit disk. Vertex and triangle numbers refer to the file (polygons before\n"
     "triangulation for --center-triangle and --face-range). --out writes the normalized patch as PLY\n"
-    "with uv, mean curvature (sigma 0.1), host vertex and a per-face 'filled' flag.\n";
+    "with uv, mean curvature (sigma 0.1), host vertex and a per-face 'filled' flag.\n"
+    MACROCON_HELP_NUMBERING;
 
 void parse_range(const std::string& s, long& begin, long& end) {
   const auto colon = s.find(':');

@@ -18,7 +18,8 @@ const char* kUsage =
     "                      [--face-range A:B] [--json]\n"
     "Cuts the geodesic disk of radius R (mesh units) around vertex N (file numbering; --face-range\n"
     "keeps file faces [A, B)) and prints the N (default 5) nearest library entries by L1 distance of\n"
-    "their bag-of-features histograms, nearest first.\n";
+    "their bag-of-features histograms, nearest first.\n"
+    MACROCON_HELP_NUMBERING;
 
 int run_query(const Args& args) {
   if (!args.empty() && (args[0] == "--help" || args[0] == "-h")) {

@@ -13,6 +13,12 @@
 #include "command/command.h"
 #include "base/error.h"
 
+// The sentence every help text that takes a vertex, face or triangle number carries (issue 17:
+// OBJ's own indices count from 1, ours from 0, and users mix them up).
+#define MACROCON_HELP_NUMBERING                                                                    \
+  "Vertex, face and triangle numbers count from 0: vertex 0 is the file's first vertex (its first\n" \
+  "OBJ 'v' line, although OBJ 'f' lines count vertices from 1), face 0 its first face.\n"
+
 namespace mcon::cli {
 
 // "a,b,,c" -> {"a", "b", "c"}: a comma-separated list of names (empty items dropped).
