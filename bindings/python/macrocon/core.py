@@ -14,7 +14,7 @@ import numpy as np
 
 from . import _native
 from ._arrays import strided_rows
-from .errors import CancelledError, Error, check, check_path
+from .errors import CancelledError, Error, InvalidArgumentError, check, check_path
 
 ProgressCallback = Callable[[float], bool]
 #: ``log(status, message)``: every error message of a context as it is raised (any thread).
@@ -439,8 +439,18 @@ class Patch(_Handle):
         if (center_vertex is None) == (center_triangle is None):
             raise ValueError("give exactly one of center_vertex and center_triangle")
         if center_vertex is not None:
+            if int(center_vertex) < 0:  # the C type would only say "outside the range of uint32"
+                nv = mesh.counts[0]
+                raise InvalidArgumentError(
+                    2, f"center_vertex is {int(center_vertex)}, outside the range 0..{nv - 1}: vertex numbers "
+                       f"count from 0 (the mesh has {nv} vertices)")
             options.center_vertex = int(center_vertex)
         else:
+            if int(center_triangle) < 0:
+                nt = mesh.counts[1]
+                raise InvalidArgumentError(
+                    2, f"center_triangle is {int(center_triangle)}, outside the range 0..{nt - 1}: triangle "
+                       f"numbers count from 0 (the mesh has {nt} triangles)")
             options.center_vertex = _native.INVALID_INDEX
             options.center_triangle = int(center_triangle)
             for i, b in enumerate(barycentric):

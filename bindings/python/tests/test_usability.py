@@ -131,6 +131,19 @@ def test_find_and_entry_by_id_name_and_index(named):
     assert lib.entry(id=ids[3]).index == 3
 
 
+def test_a_center_outside_the_mesh_says_numbers_count_from_0_and_names_the_range(region):
+    mesh, _ = region
+    nv, nt = mesh.counts
+    for kwargs, what, count in (({"center_vertex": -1}, "center_vertex is -1", nv),
+                                ({"center_triangle": -3}, "center_triangle is -3", nt)):
+        with pytest.raises(macrocon.InvalidArgumentError) as err:
+            macrocon.Patch.extract(mesh, 0.3, **kwargs)
+        text = str(err.value)
+        assert what in text and "count from 0" in text and f"0..{count - 1}" in text, text
+    with pytest.raises(macrocon.InvalidArgumentError, match=f"has {nv} vertices"):
+        macrocon.Patch.extract(mesh, 0.3, center_vertex=nv)  # too large: the C API names the count
+
+
 def test_an_index_outside_the_library_names_the_valid_range(context, named):
     lib, _ = named
     for bad in (4, -5, 100):
