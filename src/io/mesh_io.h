@@ -52,6 +52,16 @@ struct LoadedMesh {
 // orient_and_validate on bad geometry.
 LoadedMesh read_mesh(const std::string& path, const MeshFileOptions& options = {});
 
+// The mesh vertex of a vertex number as written in the file; throws MCON_ERROR_INVALID_ARGUMENT
+// naming `what` (e.g. "--center-vertex") and the valid range when the file has no such vertex or
+// no kept face uses it (naming mesh_name, the file, when given).
+int mesh_vertex_of_file_vertex(const LoadedMesh& loaded, long file_vertex, const std::string& what,
+                               const std::string& mesh_name = {});
+
+// The first mesh triangle of a face number as written in the file (a polygon is fanned into
+// several); throws MCON_ERROR_INVALID_ARGUMENT naming `what` and the kept range otherwise.
+int mesh_triangle_of_file_face(const LoadedMesh& loaded, long file_face, const std::string& what);
+
 // Reads a whole file, transparently gunzipping `.gz` (any case); a truncated archive is an error.
 // A file larger than max_input_bytes(max_bytes) (after decompression) is refused with
 // MCON_ERROR_IO before more than that is held in memory.

@@ -105,9 +105,20 @@ run_checked(WHAT "macrocon embed with a patch file"
 check_run(${OUT}/entry)
 
 # Bad input fails with a message, not a crash.
-run_checked(WHAT "a bad --center-vertex" EXPECT_FAILURE "not a vertex"
+# Every command checks a vertex or face number in one place, and the message gives the valid range.
+run_checked(WHAT "a bad --center-vertex" EXPECT_FAILURE "--center-vertex 99999999 is not a vertex of the surface: the file has vertices 0\\.\\.[0-9]+ \\(numbers count from 0\\)"
   COMMAND ${CLI} embed --source ${MESH} --target ${MESH} --center-vertex 99999999 --radius 0.5
           --out ${OUT}/bad)
+run_checked(WHAT "a bad --source-center-vertex" EXPECT_FAILURE "--source-center-vertex -3 is not a vertex of the surface: the file has vertices 0\\.\\."
+  COMMAND ${CLI} embed --source ${MESH} --target ${MESH} --center-vertex 297 --radius 0.5
+          --source-center-vertex -3 --out ${OUT}/bad)
+run_checked(WHAT "patch: a bad --center-vertex" EXPECT_FAILURE "--center-vertex 99999999 is not a vertex of the surface: the file has vertices 0\\.\\."
+  COMMAND ${CLI} patch --mesh ${MESH} --center-vertex 99999999 --radius 0.5 --out ${OUT}/bad.ply)
+file(WRITE ${OUT}/lonely.obj "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 5 5 5\nf 1 2 3\nf 2 4 3\n")
+run_checked(WHAT "patch: an unreferenced --center-vertex" EXPECT_FAILURE "--center-vertex 4 is not a vertex of the surface: no kept face uses it"
+  COMMAND ${CLI} patch --mesh ${OUT}/lonely.obj --center-vertex 4 --radius 0.5 --out ${OUT}/bad.ply)
+run_checked(WHAT "patch: a bad --center-triangle" EXPECT_FAILURE "--center-triangle 99999999 is not a face of the surface: the kept faces are numbered 0\\.\\.[0-9]+"
+  COMMAND ${CLI} patch --mesh ${MESH} --center-triangle 99999999 --radius 0.5 --out ${OUT}/bad.ply)
 
 # Landmarks: two clicked pairs on the nose (MakeHuman is exactly mirror-symmetric: 6974 <-> 198 and
 # 7120 <-> 359 are mirror images, at different angles around the tip 297). Pairing each with

@@ -89,12 +89,10 @@ io::LoadedMesh load(const ArgParser& p, const std::string& file_key, const std::
 }
 
 Patch cut(const io::LoadedMesh& mesh, long file_vertex, double radius, const std::string& what) {
-  require(file_vertex >= 0 && file_vertex < static_cast<long>(mesh.file_to_mesh.size()) &&
-              mesh.file_to_mesh[static_cast<std::size_t>(file_vertex)] >= 0,
-          MCON_ERROR_INVALID_ARGUMENT, what + " " + std::to_string(file_vertex) + " is not a vertex of the surface");
+  const int center = io::mesh_vertex_of_file_vertex(mesh, file_vertex, what);
   require(std::isfinite(radius) && radius > 0, MCON_ERROR_INVALID_ARGUMENT, "radii must be > 0");
   PatchOptions options;
-  options.center.vertex = mesh.file_to_mesh[static_cast<std::size_t>(file_vertex)];
+  options.center.vertex = center;
   options.radius = radius;
   return extract_geodesic_disk(mesh.mesh, options);
 }

@@ -75,17 +75,10 @@ int run_patch(const Args& args) {
   options.fill_holes = !p.flag("no-fill");
   options.snap_fraction = p.number("snap", options.snap_fraction);
   if (p.has("center-vertex")) {
-    const long v = p.integer("center-vertex", -1);
-    require(v >= 0 && v < static_cast<long>(loaded.file_to_mesh.size()) && loaded.file_to_mesh[v] >= 0,
-            MCON_ERROR_INVALID_ARGUMENT, "--center-vertex " + std::to_string(v) + " is not a vertex of the surface");
-    options.center.vertex = loaded.file_to_mesh[v];
+    options.center.vertex = io::mesh_vertex_of_file_vertex(loaded, p.integer("center-vertex", -1), "--center-vertex");
   } else {
-    const long f = p.integer("center-triangle", -1);
     require(p.has("center-triangle"), MCON_ERROR_INVALID_ARGUMENT, "give --center-vertex or --center-triangle");
-    int triangle = -1;
-    for (std::size_t t = 0; t < loaded.triangle_to_face.size() && triangle < 0; ++t)
-      if (loaded.triangle_to_face[t] == f) triangle = static_cast<int>(t);
-    require(triangle >= 0, MCON_ERROR_INVALID_ARGUMENT, "--center-triangle " + std::to_string(f) + " is not a face of the surface");
+    const int triangle = io::mesh_triangle_of_file_face(loaded, p.integer("center-triangle", -1), "--center-triangle");
     options.center.triangle = triangle;
     if (p.has("barycentric")) {
       const std::string s = p.get("barycentric");

@@ -59,13 +59,10 @@ class MeshCache {
 inline Patch cut_patch(MeshCache& cache, const EntrySpec& spec) {
   require(!spec.mesh.empty(), MCON_ERROR_INVALID_ARGUMENT, "no --mesh given for the entry");
   const io::LoadedMesh& loaded = cache.get(spec.mesh, spec.face_range);
-  const long v = spec.center_vertex;
-  require(v >= 0 && v < static_cast<long>(loaded.file_to_mesh.size()) && loaded.file_to_mesh[static_cast<std::size_t>(v)] >= 0,
-          MCON_ERROR_INVALID_ARGUMENT,
-          "--center-vertex " + std::to_string(v) + " is not a vertex of the surface of '" + spec.mesh + "'");
+  const int center = io::mesh_vertex_of_file_vertex(loaded, spec.center_vertex, "--center-vertex", spec.mesh);
   require(spec.radius > 0, MCON_ERROR_INVALID_ARGUMENT, "--radius must be > 0 (got " + std::to_string(spec.radius) + ")");
   PatchOptions options;
-  options.center.vertex = loaded.file_to_mesh[static_cast<std::size_t>(v)];
+  options.center.vertex = center;
   options.radius = spec.radius;
   return extract_geodesic_disk(loaded.mesh, options);
 }
