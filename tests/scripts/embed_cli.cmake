@@ -41,9 +41,14 @@ function(check_run dir)
   endforeach()
 endfunction()
 
-run_checked(WHAT "macrocon embed" OUTPUT_VARIABLE out
+run_checked(WHAT "macrocon embed" OUTPUT_VARIABLE out ERROR_VARIABLE err
   COMMAND ${CLI} embed --source ${MESH} --target ${MESH} --center-vertex 297 --radius 0.55
           --source-center-vertex 297 --source-radius 0.45 --samples 500 --seed 1 --out ${OUT}/cut --json)
+# stderr is a pipe here: no progress bar (no carriage return) unless --progress asks for one.
+string(FIND "${err}" "\r" cr)
+if(NOT cr EQUAL -1)
+  message(FATAL_ERROR "macrocon embed drew a progress bar into a pipe:\n${err}")
+endif()
 string(JSON stdout_flips GET "${out}" flips)
 if(NOT stdout_flips EQUAL 0)
   message(FATAL_ERROR "--json printed flips ${stdout_flips}")
@@ -76,10 +81,18 @@ if(auto_reflected)
 else()
   set(flip reverse)
 endif()
-run_checked(WHAT "macrocon embed --orientation ${flip}" OUTPUT_VARIABLE out
+run_checked(WHAT "macrocon embed --orientation ${flip}" OUTPUT_VARIABLE out ERROR_VARIABLE err
   COMMAND ${CLI} embed --source ${MESH} --target ${MESH} --center-vertex 297 --radius 0.55
           --source-center-vertex 297 --source-radius 0.45 --samples 500 --seed 1 --orientation ${flip}
-          --out ${OUT}/flip --json)
+          --out ${OUT}/flip --json --progress)
+# --progress draws the map's bar on stderr even into a pipe, redrawn in place up to 100 %, and
+# leaves stdout (the JSON) alone.
+if(NOT err MATCHES "\rmap \\[#+\\] 100% [0-9.]+ s\n")
+  message(FATAL_ERROR "macrocon embed --progress drew no finished bar on stderr:\n${err}")
+endif()
+if(out MATCHES "\r")
+  message(FATAL_ERROR "macrocon embed --progress wrote the bar to stdout")
+endif()
 string(JSON flip_reflected GET "${out}" reflected)
 string(JSON flip_compared GET "${out}" orientation_compared)
 string(JSON flip_flips GET "${out}" flips)
@@ -99,9 +112,13 @@ run_checked(WHAT "a bad --orientation" EXPECT_FAILURE "--orientation must be aut
 
 run_checked(WHAT "macrocon patch"
   COMMAND ${CLI} patch --mesh ${MESH} --center-vertex 297 --radius 0.45 --out ${OUT}/nose.ply)
-run_checked(WHAT "macrocon embed with a patch file"
+run_checked(WHAT "macrocon embed with a patch file" ERROR_VARIABLE err
   COMMAND ${CLI} embed --source ${OUT}/nose.ply --target ${MESH} --center-vertex 297 --radius 0.55 --samples 500
-          --out ${OUT}/entry)
+          --out ${OUT}/entry --progress --quiet)
+string(FIND "${err}" "\r" cr)
+if(NOT cr EQUAL -1)
+  message(FATAL_ERROR "macrocon embed --progress --quiet drew a progress bar (--quiet must win):\n${err}")
+endif()
 check_run(${OUT}/entry)
 
 # Bad input fails with a message, not a crash.

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "command/args.h"
+#include "command/progress_bar.h"
 #include "io/mesh_io.h"
 #include "macrocon/macrocon.hpp"
 
@@ -186,7 +187,8 @@ void write_whole_host(const macrocon::Mesh& body, const std::vector<PolylinesRef
 // Runs one region; returns false if the result fails a sanity check (printed). With `cut`, the
 // guides are cut into the region with those options; with `keep`, they are appended to it.
 bool run_region(const macrocon::Context& ctx, const macrocon::Mesh& body, mcon_library lib, const Region& r,
-                const std::string& out_dir, const mcon_guide_cut_options* cut, std::vector<PolylinesRef>* keep) {
+                const std::string& out_dir, const mcon_guide_cut_options* cut, std::vector<PolylinesRef>* keep,
+                bool progress_bar) {
   const auto t0 = std::chrono::steady_clock::now();
   const macrocon::Patch region = macrocon::Patch::extract(body, macrocon::PatchOptions::at_vertex(r.center_vertex, r.radius));
   const mcon_patch_info rinfo = region.info();
@@ -209,8 +211,13 @@ bool run_region(const macrocon::Context& ctx, const macrocon::Mesh& body, mcon_l
   const macrocon::Patch source = entry_patch(ctx, lib, best, einfo);
   mcon_map_options mo;
   check(mcon_map_options_init(&mo));
+  // The C API's progress callback drives the CLI's bar (a plugin would drive its host's).
+  ProgressBar bar(std::string("  map ") + r.name, progress_bar);
+  mo.progress = [](void* user, double f) -> std::int32_t { return static_cast<ProgressBar*>(user)->update(f) ? 1 : 0; };
+  mo.progress_user_data = &bar;
   mcon_map raw_map = nullptr;
   check(mcon_map_compute(source.get(), region.get(), &mo, &raw_map));
+  bar.finish();
   const MapRef map(raw_map);
   mcon_map_info minfo;
   check(mcon_map_info_init(&minfo));
@@ -283,16 +290,19 @@ bool run_region(const macrocon::Context& ctx, const macrocon::Mesh& body, mcon_l
 int run_demo(const Args& args) {
   if (!args.empty() && (args[0] == "--help" || args[0] == "-h")) {
     std::puts("usage: macrocon demo [--data DIR] [--library FILE.mclb] [--out DIR] [--cut-guides] [--whole-host] [--snap F]\n"
+              "                     [--quiet | --progress]\n"
               "Queries the bundled MakeHuman body at a few regions against the starter constraint library,\n"
               "re-embeds the best match and writes PLY/OBJ/.rosy results to --out (default demo-out).\n"
               "--cut-guides also cuts the transferred guides into each region and writes QuadWild's inputs\n"
               "<region>_cut.obj, .rosy and .sharp (guides on mesh edges, as feature edges); crossings closer than\n"
               "--snap F (default 0.25) edge lengths to a vertex snap to it.\n"
               "--whole-host also queries the other eye and cuts every region's guides into the whole body:\n"
-              "body_whole.obj, .rosy (one field over every face), .sharp and .quadwild.json.");
+              "body_whole.obj, .rosy (one field over every face), .sharp and .quadwild.json.\n"
+              "Each map draws a progress bar on stderr when it is a terminal; --quiet hides it, --progress draws\n"
+              "it anyway.");
     return 0;
   }
-  const ArgParser p(args, {"data", "out", "library", "snap"}, {"cut-guides", "whole-host"});
+  const ArgParser p(args, {"data", "out", "library", "snap"}, {"cut-guides", "whole-host", "quiet", "progress"});
   mcon_guide_cut_options cut_options;
   check(mcon_guide_cut_options_init(&cut_options));
   require(p.flag("cut-guides") || p.flag("whole-host") || !p.has("snap"), MCON_ERROR_INVALID_ARGUMENT,
@@ -331,7 +341,7 @@ int run_demo(const Args& args) {
     for (const Region& r : regions) {
       // Region vertices are file numbers; the bundled body has no unreferenced vertices.
       try {
-        if (!run_region(ctx, body, lib.get(), r, out_dir, cut, whole ? &sets : nullptr)) ++failures;
+        if (!run_region(ctx, body, lib.get(), r, out_dir, cut, whole ? &sets : nullptr, progress_wanted(p))) ++failures;
       } catch (const macrocon::Error& e) {
         std::printf("  %s failed: %s: %s\n", r.name, macrocon::status_name(e.status()).c_str(), e.what());
         ++failures;

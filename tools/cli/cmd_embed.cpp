@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "command/args.h"
+#include "command/progress_bar.h"
 #include "json/json_file.h"
 #include "transfer/cross_field.h"
 #include "descriptors/curvature_descriptors.h"
@@ -36,7 +37,7 @@ const char* kUsage =
     "                      [--source-face-range A:B] [--seed S] [--samples K] [--iterations I]\n"
     "                      [--orientation auto|preserve|reverse] [--landmarks S:T,S:T,...]\n"
     "                      [--up X,Y,Z | --source-up X,Y,Z --target-up X,Y,Z] [--cut-guides]\n"
-    "                      [--snap F] [--out DIR] [--json]\n"
+    "                      [--snap F] [--out DIR] [--json] [--quiet | --progress]\n"
     "Maps a source patch onto the geodesic disk of radius R around vertex N of the target mesh and\n"
     "transfers the source's constraints. With --source-center-vertex the source patch is cut the same\n"
     "way from the source mesh (radius Q, default R); without it the source file must already be one\n"
@@ -66,6 +67,8 @@ const char* kUsage =
     "feature edges) and target_cut.rosy (a cross field that follows the guide edges exactly).\n"
     "Crossings closer than --snap F (default 0.25) edge lengths to a vertex snap to it and guides that\n"
     "close merge, so no sliver is made; the summary's 'cut' reports the smallest angle created.\n"
+    "A progress bar for the map is drawn on stderr when it is a terminal; --quiet hides it, --progress\n"
+    "draws it anyway (e.g. into a log).\n"
     MACROCON_HELP_NUMBERING;
 
 void parse_range(const std::string& key, const std::string& s, long& begin, long& end) {
@@ -367,8 +370,11 @@ EmbedMap map_embed_patches(const ArgParser& p, const EmbedOptions& o, const Embe
   }
   EmbedMap m;
   m.landmarks = landmarks.size();
+  ProgressBar bar("map", progress_wanted(p));
+  options.map.progress = bar.callback();
   const auto t_map = std::chrono::steady_clock::now();
   m.map = map_patches(source, target, options);
+  bar.finish();
   m.map_seconds = seconds_since(t_map);
   m.flips = count_phi_flips(source.mesh, m.map.phi, m.map.reflected);
   return m;
@@ -707,7 +713,7 @@ int run_embed(const Args& args) {
                     {"source", "target", "center-vertex", "radius", "source-center-vertex", "source-radius",
                      "face-range", "source-face-range", "seed", "samples", "iterations", "orientation", "landmarks",
                      "up", "source-up", "target-up", "out", "snap"},
-                    {"json", "cut-guides"});
+                    {"json", "cut-guides", "quiet", "progress"});
   const auto t_start = std::chrono::steady_clock::now();
   const EmbedOptions o = embed_options(p);
   const EmbedPatches e = cut_embed_patches(p);

@@ -1,5 +1,6 @@
 // `macrocon library build | add | info`: make a constraint library file from patches of mesh
 // files, add one entry to a library file, and describe a library file.
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -8,6 +9,7 @@
 #include <string>
 
 #include "base/parallel_blocks.h"
+#include "command/progress_bar.h"
 #include "base/text.h"
 #include "library_cli.h"
 #include "library/library_file.h"
@@ -22,7 +24,7 @@ const char* kUsage =
     "                              (--center-vertex N --radius R --class C [--name S] [--author A]\n"
     "                               [--licence L] [--tag T]...)...  [--spec FILE.json]\n"
     "                              [--descriptor curv9|hks|wks] [--rings K] [--vocabulary K] [--seed S]\n"
-    "                              [--sigma X] [--json]\n"
+    "                              [--sigma X] [--json] [--quiet | --progress]\n"
     "       macrocon library add --library LIB.mclb [--mesh FILE] [--face-range A:B] --center-vertex N\n"
     "                            --radius R --class C [--name S] [--author A] [--licence L] [--tag T]...\n"
     "                            [--id ID] [--json]\n"
@@ -38,6 +40,8 @@ const char* kUsage =
     "add: the entry's histogram is computed with the library's vocabulary (no rebuild), and the\n"
     "  file is rewritten atomically.\n"
     "info: counts, retrieval config and per-entry id/name/class/vertices/constraints/fields.\n"
+    "build draws progress bars (patches, then retrieval) on stderr when it is a terminal; --quiet\n"
+    "hides them, --progress draws them anyway.\n"
     MACROCON_HELP_NUMBERING;
 
 // Options that describe one entry, and options that hold for the whole command.
@@ -49,6 +53,7 @@ struct Parsed {
   std::vector<EntrySpec> entries;
   std::map<std::string, std::string> global;  // --out, --library, --descriptor, ...
   bool json = false;
+  bool quiet = false, progress = false;  // the progress bar: off, forced on
 };
 
 // Reads the arguments in order: --mesh / --face-range set the source of the entries that
@@ -60,8 +65,8 @@ Parsed parse(const Args& args, const std::set<std::string>& globals) {
     const std::string& a = args[i];
     require(a.rfind("--", 0) == 0, MCON_ERROR_INVALID_ARGUMENT, "unexpected argument '" + a + "'");
     const std::string key = a.substr(2);
-    if (key == "json") {
-      p.json = true;
+    if (key == "json" || key == "quiet" || key == "progress") {
+      (key == "json" ? p.json : key == "quiet" ? p.quiet : p.progress) = true;
       continue;
     }
     require(key == "mesh" || key == "face-range" || key == "center-vertex" || is_entry_option(key) ||
@@ -156,7 +161,7 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 // Cuts the entries' patches in parallel, a chunk at a time (each entry on its own; meshes are
 // loaded first, then only read), and adds them in the given order, so the file does not depend
 // on the thread count and at most one chunk of patches is held at once. A failing entry is named.
-void add_entries(ConstraintLibrary& lib, MeshCache& meshes, const std::vector<EntrySpec>& entries) {
+void add_entries(ConstraintLibrary& lib, MeshCache& meshes, const std::vector<EntrySpec>& entries, ProgressBar& bar) {
   auto entry_error = [&](std::size_t i, const Error& e) {
     const EntrySpec& s = entries[i];
     fail(e.status(), "entry " + std::to_string(i) + (s.name.empty() ? "" : " '" + printable_text(s.name) + "'") +
@@ -171,6 +176,7 @@ void add_entries(ConstraintLibrary& lib, MeshCache& meshes, const std::vector<En
     }
   }
   constexpr std::size_t kChunk = 64;
+  std::atomic<std::size_t> done{0};
   for (std::size_t first = 0; first < entries.size(); first += kChunk) {
     const std::size_t count = std::min(kChunk, entries.size() - first);
     std::vector<std::optional<Patch>> patches(count);
@@ -184,6 +190,7 @@ void add_entries(ConstraintLibrary& lib, MeshCache& meshes, const std::vector<En
         } catch (const std::bad_alloc&) {
           errors[k] = Error(MCON_ERROR_OUT_OF_MEMORY, "out of memory cutting the patch");
         }
+        bar.update(static_cast<double>(++done) / static_cast<double>(entries.size()));
       }
     });
     for (std::size_t k = 0; k < count; ++k) {
@@ -228,10 +235,17 @@ int run_build(const Args& args) {
   RetrievalConfig start;
   start.descriptor = options.descriptor;
   ConstraintLibrary lib{start};
-  add_entries(lib, meshes, p.entries);
+  const bool bars = progress_wanted(p.quiet, p.progress);
+  {
+    ProgressBar bar("patches", bars);
+    add_entries(lib, meshes, p.entries, bar);
+  }
   const double patch_seconds = seconds_since(t0);
   const auto t1 = std::chrono::steady_clock::now();
+  ProgressBar bar("retrieval", bars);
+  options.progress = bar.callback();
   lib = build_library_retrieval(lib, options);
+  bar.finish();
   const double build_seconds = seconds_since(t1);
   save_library_atomic(lib, out);
 
