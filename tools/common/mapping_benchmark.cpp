@@ -337,12 +337,46 @@ std::map<std::string, double> map_signals(const SurfaceMap& m) {
   s["matching_score"] = m.matching_score;
   s["overlap"] = m.overlap_ratio;
   s["rigid_margin"] = std::abs(m.alignment.score_unreflected - m.alignment.score_reflected);
+  // How much better the kept orientation's level-0 energy was than the other's, relative to it.
+  if (m.orientation_compared) {
+    const double lo = std::min(m.level0_energy_unreflected, m.level0_energy_reflected);
+    const double hi = std::max(m.level0_energy_unreflected, m.level0_energy_reflected);
+    s["orientation_margin"] = hi > 0 ? (hi - lo) / hi : 0.0;
+  }
   if (m.frame_decided) {
     s["anchor_rms"] = -std::sqrt(std::max(0.0, m.energy.value("anchor")));
     const RigidTransform2D& d = m.alignment.transform.reflected ? m.alignment.best_reflected : m.alignment.best_unreflected;
     s["start_agreement"] = -std::abs(std::remainder(m.alignment.transform.angle - d.angle, 2 * M_PI));
   }
   return s;
+}
+
+// Forward/backward consistency (a confidence candidate, MappingEvalOptions::cycle_signal): map
+// the target onto the source with the same options, follow each source vertex forward and back,
+// and take the median distance from where it started, in the source disk (radius 1). A map whose
+// optimum is ambiguous tends to land elsewhere from the other side; a consistently wrong pair
+// (both ways rotated by opposite angles) goes unnoticed, which is what the measurement tells.
+void add_cycle_signal(const PairPatches& pp, const SurfaceMap& forward, const PatchMapOptions& options,
+                      std::map<std::string, double>& signals) {
+  const SurfaceMap back = map_patches(pp.dst.patch, pp.src.patch, options);
+  const TriangleLocator2D target(pp.dst.patch.uv, pp.dst.patch.mesh.triangles);
+  std::vector<double> d;
+  d.reserve(forward.phi.size());
+  int hint = -1;
+  for (std::size_t v = 0; v < forward.phi.size(); ++v) {
+    const PointLocation at = target.locate_nearest(forward.phi[v], 4.0, hint);
+    if (at.triangle < 0) continue;
+    hint = at.triangle;
+    const Tri& t = pp.dst.patch.mesh.triangles[static_cast<std::size_t>(at.triangle)];
+    const Vec2 q = at.barycentric[0] * back.phi[static_cast<std::size_t>(t[0])] +
+                   at.barycentric[1] * back.phi[static_cast<std::size_t>(t[1])] +
+                   at.barycentric[2] * back.phi[static_cast<std::size_t>(t[2])];
+    d.push_back((q - pp.src.patch.uv[v]).norm());
+  }
+  if (d.empty()) return;
+  std::nth_element(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2), d.end());
+  signals["cycle"] = -d[d.size() / 2];
+  signals["backward_matching_score"] = back.matching_score;
 }
 
 // The maps: macrocon, rigid and thesis, all from one map_patches call's rigid start.
@@ -373,6 +407,7 @@ PairMaps unguided_maps(const PairPatches& pp, const MappingEvalOptions& options,
     maps.phi["macrocon"] = map.phi;
     maps.reflected["macrocon"] = map.reflected;
     maps.signals["macrocon"] = map_signals(map);
+    if (options.cycle_signal) add_cycle_signal(pp, map, mo, maps.signals["macrocon"]);
     res.methods["macrocon"].seconds = map_seconds;
     res.methods["macrocon"].iterations = map.iterations;
   }
@@ -435,6 +470,7 @@ void run_frame(const MappingEvalOptions& options, const PairPatches& pp, bool mi
   maps.phi["macrocon-frame"] = fm.phi;
   maps.reflected["macrocon-frame"] = fm.reflected;
   maps.signals["macrocon-frame"] = map_signals(fm);
+  if (options.cycle_signal) add_cycle_signal(pp, fm, fo, maps.signals["macrocon-frame"]);
   res["macrocon-frame"].seconds = seconds_since(t0);
   res["macrocon-frame"].iterations = fm.iterations;
   // frame-rigid: that start alone (what `rigid` is to macrocon).
@@ -473,6 +509,7 @@ void run_up(const MappingEvalOptions& options, const PairPatches& pp, bool mirro
   maps.phi["macrocon-up"] = um.phi;
   maps.reflected["macrocon-up"] = um.reflected;
   maps.signals["macrocon-up"] = map_signals(um);
+  if (options.cycle_signal) add_cycle_signal(pp, um, uo, maps.signals["macrocon-up"]);
   res["macrocon-up"].seconds = seconds_since(t0);
   res["macrocon-up"].iterations = um.iterations;
 }

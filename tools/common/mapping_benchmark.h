@@ -56,6 +56,9 @@ struct MappingEvalOptions {
   // macrocon-frame's anchor weight (PatchMapOptions::world_frame_anchor); < 0: the SDK default.
   double frame_anchor = -1;
   double frame_anchor_decay = -1;  // its decay per stage (SurfaceMapOptions::anchor_decay); < 0: default
+  // Also map every macrocon / -frame / -up pair backwards (target onto source, same options) and
+  // report the forward/backward consistency as a confidence signal (doubles those methods' time).
+  bool cycle_signal = false;
   bool plain_newton = false;  // macrocon, -frame, -up: one factorization per Newton iteration (no reuse)
   double up_anchor = -1;  // macrocon-up's start anchor (PatchMapOptions::up_start_anchor); < 0: default
   std::function<void(const std::string&)> log;  // one line per pair (stderr in the CLI)

@@ -13,7 +13,7 @@ namespace {
 const char* kUsage =
     "usage: macrocon-eval eval-mapping --shared DIR [--seed S] [--pairs N] [--classes a,b,...] [--method NAME]\n"
     "                             [--samples K] [--thesis-iterations I] [--eval-vertices V] [--threads T]\n"
-    "                             [--cross-family] [--noise F] [--density S] [--flip-winding] [--plain-newton] [--json] [--quiet]\n"
+    "                             [--cross-family] [--noise F] [--density S] [--flip-winding] [--plain-newton] [--cycle-signal] [--json] [--quiet]\n"
     "Maps patches of the same class between two random people (MakeHuman) or faces (ICT), the target\n"
     "re-tessellated by seeded random decimation, mirrored pairs included (a right eye onto a left\n"
     "eye), and measures eps = geodesic distance on the target between the mapped and the true point /\n"
@@ -45,6 +45,9 @@ const char* kUsage =
     "--threads: TBB threads (default 2). Per-pair lines go to stderr unless --quiet.\n"
     "--plain-newton: macrocon, macrocon-frame and macrocon-up factorize the Hessian at every Newton\n"
     "iteration instead of reusing factorizations (NewtonOptions::reuse_factorization), for side-by-side runs.\n"
+    "--cycle-signal: also maps macrocon, macrocon-frame and macrocon-up pairs backwards (same options) and\n"
+    "adds the forward/backward consistency (\"cycle\": minus the median return distance, disk radius 1) and\n"
+    "\"backward_matching_score\" to the cross-family confidence signals (doubles those methods' time).\n"
     "--json prints {\"pairs\": N, \"methods\": {\"macrocon\": {\"overall\": M, \"per_class\": {\"eye\": M, ...}}, ...}}\n"
     "with M = {mean_eps100, within_0_05, flipped_triangles, overlap, seconds_median, iterations_median},\n"
     "and \"target_edge_eps100\": {\"overall\": e, \"per_class\": {...}}, the target's mean edge length in the\n"
@@ -89,7 +92,7 @@ int run_eval_mapping(const Args& args) {
   const ArgParser p(args,
                     {"shared", "seed", "pairs", "classes", "method", "samples", "thesis-iterations", "eval-vertices",
                      "threads", "landmarks", "noise", "density", "frame-anchor", "frame-anchor-decay", "up-anchor"},
-                    {"json", "quiet", "cross-family", "flip-winding", "plain-newton"});
+                    {"json", "quiet", "cross-family", "flip-winding", "plain-newton", "cycle-signal"});
   tools::MappingEvalOptions o;
   o.shared_dir = p.required("shared");
   const long seed = p.integer("seed", 1);
@@ -126,6 +129,7 @@ int run_eval_mapping(const Args& args) {
             "--up-anchor must be a finite number >= 0");
   }
   o.plain_newton = p.flag("plain-newton");
+  o.cycle_signal = p.flag("cycle-signal");
   o.perturbation.noise = p.number("noise", 0.0);
   o.perturbation.density = p.number("density", 1.0);
   o.perturbation.flip_winding = p.flag("flip-winding");
