@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <functional>
+#include <limits>
 #include <numeric>
 #include <string>
 #include <type_traits>
@@ -22,6 +24,38 @@ int find_root(std::vector<int>& parent, int i) {
   }
   return i;
 }
+
+// One validation rule's offenders: the error names the first in full, then how many break the
+// rule and the first few, so a vendor fixes them all in one pass rather than one per run (issue 17).
+class Offenders {
+ public:
+  Offenders(mcon_status status, std::string plural) : status_(status), plural_(std::move(plural)) {}
+  void add(int index, const std::function<std::string()>& detail) {
+    if (count_ == 0) first_detail_ = detail();
+    if (count_ < kShown) first_.push_back(index);
+    ++count_;
+  }
+  int first() const { return first_.empty() ? std::numeric_limits<int>::max() : first_[0]; }
+  void fail_if_any() const {
+    if (count_ == 0) return;
+    std::string message = first_detail_;
+    if (count_ > 1) {
+      message += " (" + std::to_string(count_) + " " + plural_ + " in all" + (count_ > kShown ? ", the first " : ": ");
+      if (count_ > kShown) message += std::to_string(kShown) + ": ";
+      for (std::size_t i = 0; i < first_.size(); ++i) message += (i ? ", " : "") + std::to_string(first_[i]);
+      message += ")";
+    }
+    fail(status_, message);
+  }
+
+ private:
+  static constexpr long kShown = 8;
+  mcon_status status_;
+  std::string plural_;
+  std::string first_detail_;
+  std::vector<int> first_;
+  long count_ = 0;
+};
 
 // Coordinates within the supported range (mesh.h), checked after finiteness.
 void check_coordinate_range(const TriMesh& mesh) {
@@ -47,12 +81,15 @@ void check_coordinate_range(const TriMesh& mesh) {
 void check_positions_and_indices(const TriMesh& mesh) {
   const int nv = mesh.num_vertices();
   const int nt = mesh.num_triangles();
+  Offenders non_finite(MCON_ERROR_NON_FINITE, "vertices have a non-finite coordinate");
   for (int v = 0; v < nv; ++v) {
     const Vec3& p = mesh.positions[v];
     if (!(std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z())))
-      fail(MCON_ERROR_NON_FINITE, "vertex " + std::to_string(v) + " has a non-finite coordinate");
+      non_finite.add(v, [&] { return "vertex " + std::to_string(v) + " has a non-finite coordinate"; });
   }
+  non_finite.fail_if_any();
   check_coordinate_range(mesh);
+  Offenders repeated(MCON_ERROR_REPEATED_INDEX, "triangles repeat a vertex");
   for (int t = 0; t < nt; ++t) {
     const Tri& tri = mesh.triangles[t];
     for (int i = 0; i < 3; ++i) {
@@ -62,13 +99,16 @@ void check_positions_and_indices(const TriMesh& mesh) {
                                                 std::to_string(nv) + " vertices");
     }
     if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2])
-      fail(MCON_ERROR_REPEATED_INDEX, "triangle " + std::to_string(t) + " repeats a vertex (" +
-                                          std::to_string(tri[0]) + ", " + std::to_string(tri[1]) + ", " +
-                                          std::to_string(tri[2]) + ")");
+      repeated.add(t, [&] {
+        return "triangle " + std::to_string(t) + " repeats a vertex (" + std::to_string(tri[0]) + ", " +
+               std::to_string(tri[1]) + ", " + std::to_string(tri[2]) + ")";
+      });
   }
+  repeated.fail_if_any();
 }
 
 void check_triangle_areas(const TriMesh& mesh) {
+  Offenders zero_area(MCON_ERROR_DEGENERATE_TRIANGLE, "triangles have zero area");
   for (int t = 0; t < mesh.num_triangles(); ++t) {
     const Tri& tri = mesh.triangles[t];
     const Vec3 &a = mesh.positions[tri[0]], &b = mesh.positions[tri[1]], &c = mesh.positions[tri[2]];
@@ -76,8 +116,9 @@ void check_triangle_areas(const TriMesh& mesh) {
     const double twice_area = (b - a).cross(c - a).norm();
     // Relative test: exact collinearity gives round-off of order 1e-16 * longest^2.
     if (!(twice_area > 1e-12 * longest))
-      fail(MCON_ERROR_DEGENERATE_TRIANGLE, "triangle " + std::to_string(t) + " has zero area");
+      zero_area.add(t, [&] { return "triangle " + std::to_string(t) + " has zero area"; });
   }
+  zero_area.fail_if_any();
 }
 
 // Directed edges: each may appear once; its reverse at most once.
@@ -85,20 +126,24 @@ void check_directed_edges(const TriMesh& mesh) {
   const int nt = mesh.num_triangles();
   std::unordered_map<std::uint64_t, int> directed;
   directed.reserve(static_cast<std::size_t>(nt) * 3);
+  Offenders shared(MCON_ERROR_NON_MANIFOLD_EDGE, "triangles reuse a directed edge");
   for (int t = 0; t < nt; ++t) {
     const Tri& tri = mesh.triangles[t];
     for (int i = 0; i < 3; ++i) {
       const int a = tri[i], b = tri[(i + 1) % 3];
       auto [it, inserted] = directed.emplace(directed_edge_key(a, b), t);
       if (!inserted) {
-        fail(MCON_ERROR_NON_MANIFOLD_EDGE, "edge (" + std::to_string(a) + ", " + std::to_string(b) +
-                                               ") is used by triangles " + std::to_string(it->second) + " and " +
-                                               std::to_string(t) +
-                                               " in the same direction (more than two triangles, or inconsistent "
-                                               "orientation: orient_mesh repairs that)");
+        const int other = it->second;
+        shared.add(t, [&] {
+          return "edge (" + std::to_string(a) + ", " + std::to_string(b) + ") is used by triangles " +
+                 std::to_string(other) + " and " + std::to_string(t) +
+                 " in the same direction (more than two triangles, or inconsistent orientation: orient_mesh repairs "
+                 "that)";
+        });
       }
     }
   }
+  shared.fail_if_any();
 }
 
 // Vertex fans: the triangles around a vertex must form one fan, i.e. be connected through the
@@ -111,10 +156,12 @@ void check_vertex_fans(const TriMesh& mesh, bool allow_isolated) {
     for (int v : mesh.triangles[t]) vertex_triangles[v].push_back(t);
   std::vector<int> parent;
   std::vector<std::pair<int, int>> first_triangle_with_link_vertex;  // (link vertex, slot); valences are small
+  Offenders isolated(MCON_ERROR_ISOLATED_VERTEX, "vertices are used by no triangle");
+  Offenders pinched(MCON_ERROR_NON_MANIFOLD_VERTEX, "vertices join separate fans");
   for (int v = 0; v < nv; ++v) {
     const auto& ts = vertex_triangles[v];
     if (ts.empty()) {
-      if (!allow_isolated) fail(MCON_ERROR_ISOLATED_VERTEX, "vertex " + std::to_string(v) + " is not used by any triangle");
+      if (!allow_isolated) isolated.add(v, [&] { return "vertex " + std::to_string(v) + " is not used by any triangle"; });
       continue;
     }
     parent.resize(ts.size());
@@ -134,9 +181,15 @@ void check_vertex_fans(const TriMesh& mesh, bool allow_isolated) {
     int fans = 0;
     for (int k = 0; k < static_cast<int>(ts.size()); ++k) fans += (find_root(parent, k) == k);
     if (fans != 1)
-      fail(MCON_ERROR_NON_MANIFOLD_VERTEX, "vertex " + std::to_string(v) + " joins " + std::to_string(fans) +
-                                               " separate fans of triangles (non-manifold vertex)");
+      pinched.add(v, [&] {
+        return "vertex " + std::to_string(v) + " joins " + std::to_string(fans) +
+               " separate fans of triangles (non-manifold vertex)";
+      });
   }
+  // The rule broken first in vertex order is reported, as when the scan stopped at the first.
+  if (isolated.first() < pinched.first()) isolated.fail_if_any();
+  pinched.fail_if_any();
+  isolated.fail_if_any();
 }
 
 void check_elements(const TriMesh& mesh) {

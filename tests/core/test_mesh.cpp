@@ -117,6 +117,44 @@ TEST(Mesh, EachDefectHasItsOwnStatus) {
   EXPECT_EQ(status_of(m), MCON_ERROR_EMPTY_MESH);
 }
 
+// One error names every offender's count and the first few, so all can be fixed in one pass.
+std::string validation_message(const TriMesh& m) {
+  try {
+    validate_mesh(m);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Mesh, AnErrorCountsEveryOffenderAndNamesTheFirstFew) {
+  TriMesh m = test_meshes::make_grid(4);
+  for (int k = 0; k < 3; ++k) m.positions.emplace_back(5, 5, 5 + k);
+  EXPECT_EQ(validation_message(m),
+            "vertex 16 is not used by any triangle (3 vertices are used by no triangle in all: 16, 17, 18)");
+
+  for (int k = 0; k < 7; ++k) m.positions.emplace_back(6, 5, 5 + k);
+  EXPECT_EQ(validation_message(m),
+            "vertex 16 is not used by any triangle (10 vertices are used by no triangle in all, the first 8: 16, "
+            "17, 18, 19, 20, 21, 22, 23)");
+
+  // Two zero-area triangles (a corner moved onto the opposite edge's line) and one alone.
+  m = test_meshes::make_grid(4);
+  for (int t : {3, 11}) {
+    const Tri tri = m.triangles[t];
+    m.positions.push_back(m.positions[tri[0]]);
+    m.positions.push_back(m.positions[tri[1]]);
+    m.positions.push_back(0.5 * (m.positions[tri[0]] + m.positions[tri[1]]));
+    const int n = m.num_vertices();
+    m.triangles.push_back({n - 3, n - 2, n - 1});
+  }
+  const std::string two = validation_message(m);
+  EXPECT_EQ(two, "triangle 18 has zero area (2 triangles have zero area in all: 18, 19)") << two;
+  m.triangles.pop_back();
+  m.positions.resize(m.positions.size() - 3);
+  EXPECT_EQ(validation_message(m), "triangle 18 has zero area");
+}
+
 TEST(Mesh, FromStridedFloatArrays) {
   // Interleaved float positions with a padding float, and padded index records.
   const float data[4][4] = {{0, 0, 0, 9}, {1, 0, 0, 9}, {1, 1, 0, 9}, {0, 1, 0, 9}};
