@@ -221,6 +221,7 @@ namespace Macrocon
             public uint struct_size; public IntPtr positions; public uint position_type; public UIntPtr position_stride;
             public UIntPtr vertex_count; public IntPtr indices; public UIntPtr index_stride; public UIntPtr triangle_count;
             public uint index_format;  // appended: mcon_index_format (0 uint32, 1 int32, 2 int64)
+            public uint flags;         // appended: mcon_mesh_flags
         }
 
         [StructLayout(LayoutKind.Sequential)]
@@ -830,31 +831,37 @@ namespace Macrocon
         }
     }
 
+    /// <summary>mcon_mesh_flags. ValidateLocally accepts defects no operation reads (a zero-area
+    /// triangle, an edge of three triangles, a pinched or isolated vertex elsewhere): Patch.Extract
+    /// checks the part of the host it reads, CutGuides the whole mesh.</summary>
+    [Flags]
+    public enum MeshFlags : uint { None = 0, ValidateLocally = 1 }
+
     public sealed class Mesh : IDisposable
     {
         internal readonly MeshHandle Handle;
 
         /// <summary>positions: 3 per vertex; triangles: 3 indices per triangle (copied by the library).</summary>
-        public Mesh(Context context, ReadOnlySpan<double> positions, ReadOnlySpan<uint> triangles)
-            : this(context, MemoryMarshal.AsBytes(positions), 2, new Indices(triangles)) { }
+        public Mesh(Context context, ReadOnlySpan<double> positions, ReadOnlySpan<uint> triangles, MeshFlags flags = MeshFlags.None)
+            : this(context, MemoryMarshal.AsBytes(positions), 2, new Indices(triangles), flags) { }
 
-        public Mesh(Context context, ReadOnlySpan<float> positions, ReadOnlySpan<uint> triangles)
-            : this(context, MemoryMarshal.AsBytes(positions), 1, new Indices(triangles)) { }
+        public Mesh(Context context, ReadOnlySpan<float> positions, ReadOnlySpan<uint> triangles, MeshFlags flags = MeshFlags.None)
+            : this(context, MemoryMarshal.AsBytes(positions), 1, new Indices(triangles), flags) { }
 
         /// <summary>int indices (Unity's Mesh.triangles), passed as they are (MCON_INDEX_FORMAT_INT32, no
         /// copy to uint); a negative index is a MacroconException with Status.IndexOutOfRange.</summary>
-        public Mesh(Context context, ReadOnlySpan<double> positions, ReadOnlySpan<int> triangles)
-            : this(context, MemoryMarshal.AsBytes(positions), 2, new Indices(triangles)) { }
+        public Mesh(Context context, ReadOnlySpan<double> positions, ReadOnlySpan<int> triangles, MeshFlags flags = MeshFlags.None)
+            : this(context, MemoryMarshal.AsBytes(positions), 2, new Indices(triangles), flags) { }
 
-        public Mesh(Context context, ReadOnlySpan<float> positions, ReadOnlySpan<int> triangles)
-            : this(context, MemoryMarshal.AsBytes(positions), 1, new Indices(triangles)) { }
+        public Mesh(Context context, ReadOnlySpan<float> positions, ReadOnlySpan<int> triangles, MeshFlags flags = MeshFlags.None)
+            : this(context, MemoryMarshal.AsBytes(positions), 1, new Indices(triangles), flags) { }
 
         /// <summary>long indices (MCON_INDEX_FORMAT_INT64), passed as they are.</summary>
-        public Mesh(Context context, ReadOnlySpan<double> positions, ReadOnlySpan<long> triangles)
-            : this(context, MemoryMarshal.AsBytes(positions), 2, new Indices(triangles)) { }
+        public Mesh(Context context, ReadOnlySpan<double> positions, ReadOnlySpan<long> triangles, MeshFlags flags = MeshFlags.None)
+            : this(context, MemoryMarshal.AsBytes(positions), 2, new Indices(triangles), flags) { }
 
-        public Mesh(Context context, ReadOnlySpan<float> positions, ReadOnlySpan<long> triangles)
-            : this(context, MemoryMarshal.AsBytes(positions), 1, new Indices(triangles)) { }
+        public Mesh(Context context, ReadOnlySpan<float> positions, ReadOnlySpan<long> triangles, MeshFlags flags = MeshFlags.None)
+            : this(context, MemoryMarshal.AsBytes(positions), 1, new Indices(triangles), flags) { }
 
         /// <summary>A mesh from an interleaved vertex buffer, read in place (no copy in the binding):
         /// vertex i's 3 coordinates (doubles if doublePrecision, else floats) start at byte
@@ -893,7 +900,7 @@ namespace Macrocon
             }
         }
 
-        private unsafe Mesh(Context context, ReadOnlySpan<byte> positionBytes, uint type, Indices triangles)
+        private unsafe Mesh(Context context, ReadOnlySpan<byte> positionBytes, uint type, Indices triangles, MeshFlags flags)
         {
             int scalar = type == 1 ? 4 : 8;
             if (positionBytes.Length % (3 * scalar) != 0) throw new ArgumentException("positions must hold 3 values per vertex");
@@ -905,6 +912,7 @@ namespace Macrocon
                 desc.positions = (IntPtr)p;
                 desc.position_type = type;
                 desc.vertex_count = (UIntPtr)(positionBytes.Length / (3 * scalar));
+                desc.flags = (uint)flags;
                 triangles.Fill(ref desc, (IntPtr)t);
                 Native.Check(Native.mcon_mesh_create(context.Handle, ref desc, out Handle));
             }

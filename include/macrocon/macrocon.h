@@ -149,6 +149,13 @@ typedef enum mcon_index_format {
   MCON_INDEX_FORMAT_INT64 = 2   /* int64_t (numpy's default integer); negative values are out of range */
 } mcon_index_format;
 
+typedef enum mcon_mesh_flags {
+  /* Accept defects no operation reads (zero-area triangles, edges of more than two triangles,
+   * pinched and isolated vertices): each operation validates the part it reads (docs/api.md
+   * "Local validation"). */
+  MCON_MESH_VALIDATE_LOCALLY = 1u << 0
+} mcon_mesh_flags;
+
 typedef struct mcon_mesh_desc {
   uint32_t struct_size;
   /* vertex_count positions, 3 scalars each, `position_stride` bytes apart (0 = 3 * scalar size) */
@@ -163,6 +170,8 @@ typedef struct mcon_mesh_desc {
   size_t triangle_count;
   /* (appended) mcon_index_format of `indices`; default UINT32 (also for an older struct_size). */
   uint32_t index_format;
+  /* (appended) mcon_mesh_flags; default 0: the whole mesh is validated by mcon_mesh_create. */
+  uint32_t flags;
 } mcon_mesh_desc;
 
 MCON_API mcon_status mcon_mesh_desc_init(mcon_mesh_desc* desc);
@@ -171,8 +180,9 @@ MCON_API mcon_status mcon_mesh_desc_init(mcon_mesh_desc* desc);
  * (docs/api.md "Input orientation"; mcon_mesh_get_orientation reports what changed). Errors:
  * NON_FINITE, INDEX_OUT_OF_RANGE (also a negative INT32/INT64 index), REPEATED_INDEX,
  * DEGENERATE_TRIANGLE, NON_MANIFOLD_EDGE, NON_ORIENTABLE, NON_MANIFOLD_VERTEX, ISOLATED_VERTEX,
- * EMPTY_MESH, each with a message naming the first offending vertex or triangle; an unknown
- * index_format is INVALID_ARGUMENT. */
+ * EMPTY_MESH, each with a message naming the first offending vertex or triangle and counting the
+ * others (with MCON_MESH_VALIDATE_LOCALLY the operations report the defects they read); an unknown
+ * index_format or flag is INVALID_ARGUMENT. */
 MCON_API mcon_status mcon_mesh_create(mcon_context context, const mcon_mesh_desc* desc, mcon_mesh* out_mesh);
 MCON_API mcon_status mcon_mesh_retain(mcon_mesh mesh);
 MCON_API mcon_status mcon_mesh_release(mcon_mesh mesh);

@@ -176,27 +176,23 @@ class Context {
 // A validated, manifold triangle mesh (the library keeps its own copy of the arrays).
 class Mesh {
  public:
-  // Flat arrays: positions = x0 y0 z0 x1 ..., indices = a0 b0 c0 a1 ...
-  static Mesh from_arrays(const Context& context, const std::vector<float>& positions,
-                          const std::vector<std::uint32_t>& indices) {
-    check_flat(positions.size(), indices.size());
-    return from_arrays(context, positions.data(), 0, positions.size() / 3, indices.data(), 0, indices.size() / 3);
-  }
-  static Mesh from_arrays(const Context& context, const std::vector<double>& positions,
-                          const std::vector<std::uint32_t>& indices) {
-    check_flat(positions.size(), indices.size());
-    return from_arrays(context, positions.data(), 0, positions.size() / 3, indices.data(), 0, indices.size() / 3);
+  // Flat arrays: positions = x0 y0 z0 x1 ..., indices = a0 b0 c0 a1 ...; flags: mcon_mesh_flags
+  // (MCON_MESH_VALIDATE_LOCALLY).
+  template <typename Scalar>
+  static Mesh from_arrays(const Context& context, const std::vector<Scalar>& positions,
+                          const std::vector<std::uint32_t>& indices, std::uint32_t flags = 0) {
+    return from_indices(context, positions, indices.data(), indices.size(), MCON_INDEX_FORMAT_UINT32, flags);
   }
   // int32 (MCON_INDEX_FORMAT_INT32) or int64 (INT64) indices, read as they are.
   template <typename Scalar>
   static Mesh from_arrays(const Context& context, const std::vector<Scalar>& positions,
-                          const std::vector<std::int32_t>& indices) {
-    return from_signed(context, positions, indices.data(), indices.size(), MCON_INDEX_FORMAT_INT32);
+                          const std::vector<std::int32_t>& indices, std::uint32_t flags = 0) {
+    return from_indices(context, positions, indices.data(), indices.size(), MCON_INDEX_FORMAT_INT32, flags);
   }
   template <typename Scalar>
   static Mesh from_arrays(const Context& context, const std::vector<Scalar>& positions,
-                          const std::vector<std::int64_t>& indices) {
-    return from_signed(context, positions, indices.data(), indices.size(), MCON_INDEX_FORMAT_INT64);
+                          const std::vector<std::int64_t>& indices, std::uint32_t flags = 0) {
+    return from_indices(context, positions, indices.data(), indices.size(), MCON_INDEX_FORMAT_INT64, flags);
   }
   // Strided arrays: strides in bytes, 0 = tightly packed.
   static Mesh from_arrays(const Context& context, const float* positions, std::size_t position_stride,
@@ -275,8 +271,8 @@ class Mesh {
     return d;
   }
   template <typename Scalar>
-  static Mesh from_signed(const Context& context, const std::vector<Scalar>& positions, const void* indices,
-                          std::size_t index_count, mcon_index_format format) {
+  static Mesh from_indices(const Context& context, const std::vector<Scalar>& positions, const void* indices,
+                           std::size_t index_count, mcon_index_format format, std::uint32_t flags) {
     static_assert(std::is_same<Scalar, float>::value || std::is_same<Scalar, double>::value,
                   "positions are float or double");
     check_flat(positions.size(), index_count);
@@ -284,6 +280,7 @@ class Mesh {
                             std::is_same<Scalar, float>::value ? MCON_SCALAR_FLOAT32 : MCON_SCALAR_FLOAT64, 0,
                             positions.size() / 3, static_cast<const std::uint32_t*>(indices), 0, index_count / 3);
     d.index_format = format;
+    d.flags = flags;
     return from_desc(context, d);
   }
   std::pair<std::size_t, std::size_t> counts() const {

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <memory>
 #include <mutex>
+#include <numeric>
 #include <string>
 
 #include "capi/capi_map_handles.h"
@@ -156,6 +157,21 @@ void write_manifest(const std::string& prefix, const TriMesh& mesh, std::size_t 
 
 }  // namespace
 
+namespace {
+
+// A mesh created with MCON_MESH_VALIDATE_LOCALLY: the whole-host cut reads every triangle.
+void validate_whole_host(const TriMesh& mesh) {
+  std::vector<int> all_triangles(mesh.triangles.size()), all_vertices(mesh.positions.size());
+  std::iota(all_triangles.begin(), all_triangles.end(), 0);
+  std::iota(all_vertices.begin(), all_vertices.end(), 0);
+  validate_mesh_part(mesh, all_triangles, all_vertices,
+                     "(mcon_mesh_cut_guides reads the whole mesh: fix it, or cut the guides into a patch with "
+                     "mcon_patch_cut_guides)");
+  validate_mesh(mesh);  // isolated vertices
+}
+
+}  // namespace
+
 extern "C" {
 
 mcon_status mcon_guide_cut_options_init(mcon_guide_cut_options* options) {
@@ -195,6 +211,7 @@ mcon_status mcon_mesh_cut_guides(mcon_mesh mesh, const mcon_polyline_set* guide_
     require(set_count == 0 || guide_sets != nullptr, MCON_ERROR_INVALID_ARGUMENT,
             "guide_sets is NULL with set_count " + std::to_string(set_count));
     const GuideCutOptions co = cut_options(options);
+    if (mesh->validated_locally) validate_whole_host(mesh->mesh);
     auto cut = std::make_unique<mcon_cut_mesh_t>();
     const HostPolylines lines = sets_on_host(*mesh, guide_sets, set_count, cut->origins);
     cut->cut = run_in_arena(mesh->context, [&] { return cut_guides_into_mesh(mesh->mesh, lines.lines, lines.closed, co); });

@@ -28,6 +28,7 @@ struct mcon_mesh_t {
   mcon_context context = nullptr;  // retained
   mcon::TriMesh mesh;
   mcon::OrientationReport orientation;  // what the input needed to be consistent and outward
+  bool validated_locally = false;       // MCON_MESH_VALIDATE_LOCALLY: operations validate what they read
   ~mcon_mesh_t();
 };
 

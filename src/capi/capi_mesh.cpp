@@ -42,6 +42,10 @@ std::unique_ptr<mcon_mesh_t> mcon::capi::make_mesh(mcon_context context, const m
           "position_type " + std::to_string(d.position_type) +
               " is not an mcon_scalar_type (set MCON_SCALAR_FLOAT32 = 1 or MCON_SCALAR_FLOAT64 = 2)");
 
+  require((d.flags & ~static_cast<std::uint32_t>(MCON_MESH_VALIDATE_LOCALLY)) == 0, MCON_ERROR_INVALID_ARGUMENT,
+          "flags " + std::to_string(d.flags) + " has bits that are not mcon_mesh_flags (MCON_MESH_VALIDATE_LOCALLY = 1)");
+  const bool locally = (d.flags & MCON_MESH_VALIDATE_LOCALLY) != 0;
+
   MeshArrays arrays;
   arrays.positions = d.positions;
   arrays.positions_are_double = d.position_type == MCON_SCALAR_FLOAT64;
@@ -61,8 +65,9 @@ std::unique_ptr<mcon_mesh_t> mcon::capi::make_mesh(mcon_context context, const m
   auto mesh = std::make_unique<mcon_mesh_t>();
   run_in_arena(context, [&] {
     mesh->mesh = copy_mesh_arrays(arrays);
-    mesh->orientation = orient_and_validate(mesh->mesh, rule);
+    mesh->orientation = orient_and_validate(mesh->mesh, rule, locally ? DefectPolicy::defer : DefectPolicy::reject);
   });
+  mesh->validated_locally = locally;
   return mesh;
 }
 

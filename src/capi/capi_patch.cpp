@@ -100,6 +100,7 @@ mcon_status mcon_patch_extract(mcon_mesh host, const mcon_patch_options* options
     require_pointer(options, "options");
     const auto o = read_options(options, sizeof(mcon_patch_options), "mcon_patch_options", default_patch_options());
     PatchOptions po = to_core_options(o, host->mesh, host->orientation);
+    po.validate_region = host->validated_locally;
     std::shared_ptr<const std::atomic<bool>> cancelled;
     po.progress = make_progress(o.progress, o.progress_user_data, &cancelled);
 

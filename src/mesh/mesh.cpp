@@ -1,6 +1,7 @@
 #include "mesh/mesh.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <functional>
@@ -29,7 +30,8 @@ int find_root(std::vector<int>& parent, int i) {
 // rule and the first few, so a vendor fixes them all in one pass rather than one per run (issue 17).
 class Offenders {
  public:
-  Offenders(mcon_status status, std::string plural) : status_(status), plural_(std::move(plural)) {}
+  Offenders(mcon_status status, std::string plural, std::string where = "")
+      : status_(status), plural_(std::move(plural)), where_(std::move(where)) {}
   void add(int index, const std::function<std::string()>& detail) {
     if (count_ == 0) first_detail_ = detail();
     if (count_ < kShown) first_.push_back(index);
@@ -45,6 +47,7 @@ class Offenders {
       for (std::size_t i = 0; i < first_.size(); ++i) message += (i ? ", " : "") + std::to_string(first_[i]);
       message += ")";
     }
+    if (!where_.empty()) message += " " + where_;
     fail(status_, message);
   }
 
@@ -52,6 +55,7 @@ class Offenders {
   static constexpr long kShown = 8;
   mcon_status status_;
   std::string plural_;
+  std::string where_;
   std::string first_detail_;
   std::vector<int> first_;
   long count_ = 0;
@@ -107,15 +111,18 @@ void check_positions_and_indices(const TriMesh& mesh) {
   repeated.fail_if_any();
 }
 
+bool has_zero_area(const TriMesh& mesh, int t) {
+  const Tri& tri = mesh.triangles[t];
+  const Vec3 &a = mesh.positions[tri[0]], &b = mesh.positions[tri[1]], &c = mesh.positions[tri[2]];
+  const double longest = std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
+  // Relative test: exact collinearity gives round-off of order 1e-16 * longest^2.
+  return !((b - a).cross(c - a).norm() > 1e-12 * longest);
+}
+
 void check_triangle_areas(const TriMesh& mesh) {
   Offenders zero_area(MCON_ERROR_DEGENERATE_TRIANGLE, "triangles have zero area");
   for (int t = 0; t < mesh.num_triangles(); ++t) {
-    const Tri& tri = mesh.triangles[t];
-    const Vec3 &a = mesh.positions[tri[0]], &b = mesh.positions[tri[1]], &c = mesh.positions[tri[2]];
-    const double longest = std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
-    const double twice_area = (b - a).cross(c - a).norm();
-    // Relative test: exact collinearity gives round-off of order 1e-16 * longest^2.
-    if (!(twice_area > 1e-12 * longest))
+    if (has_zero_area(mesh, t))
       zero_area.add(t, [&] { return "triangle " + std::to_string(t) + " has zero area"; });
   }
   zero_area.fail_if_any();
@@ -146,6 +153,33 @@ void check_directed_edges(const TriMesh& mesh) {
   shared.fail_if_any();
 }
 
+// The number of fans the triangles `ts` around vertex v form: connected through the edges
+// incident to v (one for a manifold vertex). `link` is scratch: (link vertex, slot).
+int fan_count(const TriMesh& mesh, int v, const std::vector<int>& ts, std::vector<int>& parent,
+              std::vector<std::pair<int, int>>& link) {
+  parent.resize(ts.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  link.clear();
+  for (int k = 0; k < static_cast<int>(ts.size()); ++k) {
+    for (int w : mesh.triangles[ts[k]]) {
+      if (w == v) continue;
+      auto it = std::find_if(link.begin(), link.end(), [w](const auto& e) { return e.first == w; });
+      if (it == link.end())
+        link.emplace_back(w, k);
+      else
+        parent[find_root(parent, k)] = find_root(parent, it->second);
+    }
+  }
+  int fans = 0;
+  for (int k = 0; k < static_cast<int>(ts.size()); ++k) fans += (find_root(parent, k) == k);
+  return fans;
+}
+
+std::string pinched_text(int v, int fans) {
+  return "vertex " + std::to_string(v) + " joins " + std::to_string(fans) +
+         " separate fans of triangles (non-manifold vertex)";
+}
+
 // Vertex fans: the triangles around a vertex must form one fan, i.e. be connected through the
 // edges incident to that vertex.
 void check_vertex_fans(const TriMesh& mesh, bool allow_isolated) {
@@ -155,7 +189,7 @@ void check_vertex_fans(const TriMesh& mesh, bool allow_isolated) {
   for (int t = 0; t < nt; ++t)
     for (int v : mesh.triangles[t]) vertex_triangles[v].push_back(t);
   std::vector<int> parent;
-  std::vector<std::pair<int, int>> first_triangle_with_link_vertex;  // (link vertex, slot); valences are small
+  std::vector<std::pair<int, int>> link;  // valences are small
   Offenders isolated(MCON_ERROR_ISOLATED_VERTEX, "vertices are used by no triangle");
   Offenders pinched(MCON_ERROR_NON_MANIFOLD_VERTEX, "vertices join separate fans");
   for (int v = 0; v < nv; ++v) {
@@ -164,27 +198,8 @@ void check_vertex_fans(const TriMesh& mesh, bool allow_isolated) {
       if (!allow_isolated) isolated.add(v, [&] { return "vertex " + std::to_string(v) + " is not used by any triangle"; });
       continue;
     }
-    parent.resize(ts.size());
-    std::iota(parent.begin(), parent.end(), 0);
-    first_triangle_with_link_vertex.clear();
-    for (int k = 0; k < static_cast<int>(ts.size()); ++k) {
-      for (int w : mesh.triangles[ts[k]]) {
-        if (w == v) continue;
-        auto it = std::find_if(first_triangle_with_link_vertex.begin(), first_triangle_with_link_vertex.end(),
-                               [w](const auto& e) { return e.first == w; });
-        if (it == first_triangle_with_link_vertex.end())
-          first_triangle_with_link_vertex.emplace_back(w, k);
-        else
-          parent[find_root(parent, k)] = find_root(parent, it->second);
-      }
-    }
-    int fans = 0;
-    for (int k = 0; k < static_cast<int>(ts.size()); ++k) fans += (find_root(parent, k) == k);
-    if (fans != 1)
-      pinched.add(v, [&] {
-        return "vertex " + std::to_string(v) + " joins " + std::to_string(fans) +
-               " separate fans of triangles (non-manifold vertex)";
-      });
+    const int fans = fan_count(mesh, v, ts, parent, link);
+    if (fans != 1) pinched.add(v, [&] { return pinched_text(v, fans); });
   }
   // The rule broken first in vertex order is reported, as when the scan stopped at the first.
   if (isolated.first() < pinched.first()) isolated.fail_if_any();
@@ -240,6 +255,66 @@ void read_triangles(const unsigned char* base, std::size_t stride, std::size_t v
 void validate_mesh(const TriMesh& mesh) { validate_impl(mesh, false); }
 void validate_mesh_allow_isolated(const TriMesh& mesh) { validate_impl(mesh, true); }
 void validate_mesh_elements(const TriMesh& mesh) { check_elements(mesh); }
+
+void validate_mesh_indices(const TriMesh& mesh) {
+  require(mesh.num_vertices() > 0 && mesh.num_triangles() > 0, MCON_ERROR_EMPTY_MESH,
+          "mesh is empty (" + std::to_string(mesh.num_vertices()) + " vertices, " +
+              std::to_string(mesh.num_triangles()) + " triangles)");
+  check_positions_and_indices(mesh);
+}
+
+void validate_mesh_part(const TriMesh& mesh, const std::vector<int>& part, const std::vector<int>& whole_vertices,
+                        const std::string& where) {
+  Offenders zero_area(MCON_ERROR_DEGENERATE_TRIANGLE, "triangles have zero area", where);
+  for (int t : part)
+    if (has_zero_area(mesh, t))
+      zero_area.add(t, [&] { return "triangle " + std::to_string(t) + " has zero area"; });
+  zero_area.fail_if_any();
+
+  // Edges: the undirected edge's triangles in the part, and each direction's count.
+  std::unordered_map<std::uint64_t, std::array<int, 3>> edges;  // key -> {triangles, forward, first triangle}
+  edges.reserve(3 * part.size());
+  for (int t : part)
+    for (int i = 0; i < 3; ++i) {
+      const int a = mesh.triangles[t][i], b = mesh.triangles[t][(i + 1) % 3];
+      auto [it, inserted] = edges.emplace(edge_key(a, b), std::array<int, 3>{0, 0, t});
+      ++it->second[0];
+      it->second[1] += a < b;
+    }
+  // Listed by the first triangle of each bad edge (a surface edge has at most two, run opposite ways).
+  Offenders shared(MCON_ERROR_NON_MANIFOLD_EDGE, "triangles start an edge used by more than two or twice in one direction",
+                   where);
+  for (int t : part)
+    for (int i = 0; i < 3; ++i) {
+      const int a = mesh.triangles[t][i], b = mesh.triangles[t][(i + 1) % 3];
+      const std::array<int, 3>& e = edges.at(edge_key(a, b));
+      if (e[2] != t || !(e[0] > 2 || (e[0] == 2 && e[1] != 1))) continue;
+      shared.add(t, [&] {
+        return "edge (" + std::to_string(std::min(a, b)) + ", " + std::to_string(std::max(a, b)) + ") of triangle " +
+               std::to_string(t) + " is used by " + std::to_string(e[0]) + " triangles" +
+               (e[0] == 2 ? " in the same direction" : "") + ": remove the extra or duplicate triangles";
+      });
+      break;
+    }
+  shared.fail_if_any();
+
+  std::unordered_map<int, std::vector<int>> fans_of;
+  std::vector<char> wanted(mesh.positions.size(), 0);
+  for (int v : whole_vertices) wanted[static_cast<std::size_t>(v)] = 1;
+  for (int t : part)
+    for (int v : mesh.triangles[t])
+      if (wanted[static_cast<std::size_t>(v)]) fans_of[v].push_back(t);
+  std::vector<int> parent;
+  std::vector<std::pair<int, int>> link;
+  Offenders pinched(MCON_ERROR_NON_MANIFOLD_VERTEX, "vertices join separate fans", where);
+  for (int v : whole_vertices) {
+    const auto it = fans_of.find(v);
+    if (it == fans_of.end()) continue;
+    const int fans = fan_count(mesh, v, it->second, parent, link);
+    if (fans != 1) pinched.add(v, [&] { return pinched_text(v, fans); });
+  }
+  pinched.fail_if_any();
+}
 
 TriMesh mesh_from_arrays(const MeshArrays& in) {
   TriMesh mesh = copy_mesh_arrays(in);

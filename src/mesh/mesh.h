@@ -6,6 +6,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -81,6 +82,17 @@ void validate_mesh_allow_isolated(const TriMesh& mesh);
 // The per-element part of validate_mesh (EMPTY_MESH, NON_FINITE, INDEX_OUT_OF_RANGE,
 // REPEATED_INDEX, DEGENERATE_TRIANGLE): what orient_mesh needs before it can look at edges.
 void validate_mesh_elements(const TriMesh& mesh);
+
+// EMPTY_MESH, NON_FINITE, INDEX_OUT_OF_RANGE, REPEATED_INDEX: what every mesh must pass before
+// anything reads it, also one whose other defects are deferred (DefectPolicy::defer).
+void validate_mesh_indices(const TriMesh& mesh);
+
+// Local validation of a mesh whose defects were deferred: the triangles `part` (zero area; an edge
+// used by more than two of them or twice in one direction) and the fans of `whole_vertices`
+// (vertices all of whose triangles are in `part`). Messages name mesh indices, count the
+// offenders as validate_mesh does and end with `where` (e.g. "within 3 radii of the center").
+void validate_mesh_part(const TriMesh& mesh, const std::vector<int>& part, const std::vector<int>& whole_vertices,
+                        const std::string& where);
 
 double triangle_area(const TriMesh& mesh, int t);
 Vec3 triangle_normal(const TriMesh& mesh, int t);  // unit normal (zero for a degenerate triangle)

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <deque>
 #include <numeric>
 #include <string>
@@ -27,7 +28,7 @@ struct EdgeLinks {
   std::vector<int> boundary;  // boundary half-edges
 };
 
-EdgeLinks link_triangles(const TriMesh& m) {
+EdgeLinks link_triangles(const TriMesh& m, DefectPolicy defects) {
   const int nt = m.num_triangles();
   std::vector<std::pair<std::uint64_t, int>> half(static_cast<std::size_t>(nt) * 3);
   for (int h = 0; h < 3 * nt; ++h) half[h] = {edge_key(from_vertex(m, h), to_vertex(m, h)), h};
@@ -39,6 +40,10 @@ EdgeLinks link_triangles(const TriMesh& m) {
     std::size_t j = i;
     while (j < half.size() && half[j].first == half[i].first) ++j;
     const int h0 = half[i].second;
+    if (j - i > 2 && defects == DefectPolicy::defer) {
+      i = j;  // a non-manifold edge: left unlinked, the operations that read it report it
+      continue;
+    }
     if (j - i > 2) {
       const int a = std::min(from_vertex(m, h0), to_vertex(m, h0)), b = std::max(from_vertex(m, h0), to_vertex(m, h0));
       fail(MCON_ERROR_NON_MANIFOLD_EDGE, "edge (" + std::to_string(a) + ", " + std::to_string(b) + ") is used by " +
@@ -109,14 +114,19 @@ Propagation propagate_orientation(const TriMesh& m, const EdgeLinks& links) {
 
 double triple(const Vec3& a, const Vec3& b, const Vec3& c) { return a.dot(b.cross(c)); }
 
-// Centroid of each boundary loop's vertices (summed in vertex order), per boundary vertex.
-std::vector<Vec3> loop_centroids(const TriMesh& m, const EdgeLinks& links, std::vector<int>& vertices) {
+// Centroid of each boundary loop's vertices (summed in vertex order), per boundary vertex of a
+// component: keys are component * vertex_count + vertex, so that two components meeting at a
+// vertex (a pinched vertex, accepted with DefectPolicy::defer) keep their loops apart.
+std::vector<Vec3> loop_centroids(const TriMesh& m, const EdgeLinks& links, const Propagation& p,
+                                 std::vector<std::int64_t>& vertices) {
+  const std::int64_t nv = m.num_vertices();
+  const auto key = [&](int h, int v) { return p.component_of[h / 3] * nv + v; };
   vertices.clear();
-  for (int h : links.boundary) vertices.insert(vertices.end(), {from_vertex(m, h), to_vertex(m, h)});
+  for (int h : links.boundary) vertices.insert(vertices.end(), {key(h, from_vertex(m, h)), key(h, to_vertex(m, h))});
   std::sort(vertices.begin(), vertices.end());
   vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
-  const auto slot = [&](int v) {
-    return static_cast<int>(std::lower_bound(vertices.begin(), vertices.end(), v) - vertices.begin());
+  const auto slot = [&](std::int64_t k) {
+    return static_cast<int>(std::lower_bound(vertices.begin(), vertices.end(), k) - vertices.begin());
   };
   std::vector<int> parent(vertices.size());
   std::iota(parent.begin(), parent.end(), 0);
@@ -124,11 +134,11 @@ std::vector<Vec3> loop_centroids(const TriMesh& m, const EdgeLinks& links, std::
     while (parent[i] != i) i = parent[i] = parent[parent[i]];
     return i;
   };
-  for (int h : links.boundary) parent[root(slot(from_vertex(m, h)))] = root(slot(to_vertex(m, h)));
+  for (int h : links.boundary) parent[root(slot(key(h, from_vertex(m, h))))] = root(slot(key(h, to_vertex(m, h))));
   std::vector<Vec3> sum(vertices.size(), Vec3::Zero());
   std::vector<int> count(vertices.size(), 0);
   for (std::size_t i = 0; i < vertices.size(); ++i) {
-    sum[root(static_cast<int>(i))] += m.positions[vertices[i]];
+    sum[root(static_cast<int>(i))] += m.positions[static_cast<std::size_t>(vertices[i] % nv)];
     ++count[root(static_cast<int>(i))];
   }
   std::vector<Vec3> centroid(vertices.size());
@@ -161,15 +171,16 @@ void component_volumes(const TriMesh& m, const EdgeLinks& links, const Propagati
     volume[c] += p.reversed[t] ? triple(a, cc, b) : triple(a, b, cc);
     area[c] += triangle_area(m, t);
   }
-  std::vector<int> loop_vertices;
-  const std::vector<Vec3> centroid = loop_centroids(m, links, loop_vertices);
+  std::vector<std::int64_t> loop_vertices;
+  const std::vector<Vec3> centroid = loop_centroids(m, links, p, loop_vertices);
   for (int h : links.boundary) {
     const int t = h / 3, c = p.component_of[t];
     const Vec3 o = 0.5 * (lo[c] + hi[c]);
     int from = from_vertex(m, h), to = to_vertex(m, h);
     if (p.reversed[t]) std::swap(from, to);
     const int u = std::min(from, to), v = std::max(from, to);
-    const auto slot = std::lower_bound(loop_vertices.begin(), loop_vertices.end(), u) - loop_vertices.begin();
+    const std::int64_t k = c * static_cast<std::int64_t>(m.num_vertices()) + u;
+    const auto slot = std::lower_bound(loop_vertices.begin(), loop_vertices.end(), k) - loop_vertices.begin();
     // The fan triangle (to, from, centroid) closes the edge from -> to with the mesh's winding.
     const double d = triple(m.positions[u] - o, m.positions[v] - o, centroid[slot] - o);
     volume[c] += from > to ? d : -d;
@@ -178,8 +189,8 @@ void component_volumes(const TriMesh& m, const EdgeLinks& links, const Propagati
 
 }  // namespace
 
-OrientationReport orient_mesh(TriMesh& mesh, OrientationRule rule) {
-  const EdgeLinks links = link_triangles(mesh);
+OrientationReport orient_mesh(TriMesh& mesh, OrientationRule rule, DefectPolicy defects) {
+  const EdgeLinks links = link_triangles(mesh, defects);
   const Propagation p = propagate_orientation(mesh, links);
   std::vector<double> volume, area;
   component_volumes(mesh, links, p, volume, area);
@@ -216,7 +227,11 @@ OrientationReport orient_mesh(TriMesh& mesh, OrientationRule rule) {
   return report;
 }
 
-OrientationReport orient_and_validate(TriMesh& mesh, OrientationRule rule) {
+OrientationReport orient_and_validate(TriMesh& mesh, OrientationRule rule, DefectPolicy defects) {
+  if (defects == DefectPolicy::defer) {
+    validate_mesh_indices(mesh);
+    return orient_mesh(mesh, rule, defects);
+  }
   validate_mesh_elements(mesh);
   OrientationReport report = orient_mesh(mesh, rule);
   validate_mesh(mesh);

@@ -33,13 +33,24 @@ struct OrientationReport {
   std::vector<unsigned char> reoriented;
 };
 
+// What the input path does with the defects a production mesh carries away from where the user
+// works (zero-area triangles, edges of more than two triangles, pinched and isolated vertices):
+// reject them (the default), or defer them to the operations, each of which validates what it
+// reads (validate_mesh_part, mesh/mesh.h; docs/api.md "Local validation").
+enum class DefectPolicy { reject, defer };
+
 // Orients `mesh` in place: swaps corners 1 and 2 of the triangles that need it. Needs finite
 // positions and in-range, distinct indices (validate_mesh_elements). Throws NON_MANIFOLD_EDGE for
 // an edge with more than two triangles and NON_ORIENTABLE (naming a triangle of the component and
 // the fix) for a component that has no consistent orientation (a Moebius strip).
-OrientationReport orient_mesh(TriMesh& mesh, OrientationRule rule = OrientationRule::outward);
+// With DefectPolicy::defer an edge of more than two triangles links none of them (orientation
+// does not propagate across it) instead of throwing.
+OrientationReport orient_mesh(TriMesh& mesh, OrientationRule rule = OrientationRule::outward,
+                              DefectPolicy defects = DefectPolicy::reject);
 
-// validate_mesh_elements, orient_mesh, validate_mesh: the input path of every user mesh.
-OrientationReport orient_and_validate(TriMesh& mesh, OrientationRule rule = OrientationRule::outward);
+// validate_mesh_elements, orient_mesh, validate_mesh: the input path of every user mesh. With
+// DefectPolicy::defer only validate_mesh_indices runs before orienting, and nothing after.
+OrientationReport orient_and_validate(TriMesh& mesh, OrientationRule rule = OrientationRule::outward,
+                                      DefectPolicy defects = DefectPolicy::reject);
 
 }  // namespace mcon

@@ -106,6 +106,18 @@ MeshRegion region_around_center(const TriMesh& host, const PatchCenter& c, const
   return mesh_region_around(host, host_vertex_triangles, c.vertex, c.triangle, center_point, kRegionFactor * r);
 }
 
+// Local validation (PatchOptions::validate_region): the region's triangles, and the fans of the
+// vertices whose every triangle is in it; defects farther out are never read.
+void validate_region(const TriMesh& host, const MeshRegion& region) {
+  std::vector<int> whole;
+  for (std::size_t v = 0; v < region.vertex_to_host.size(); ++v)
+    if (!region.vertex_on_cut[v]) whole.push_back(region.vertex_to_host[v]);
+  validate_mesh_part(host, region.triangle_to_host, whole,
+                     "within " + number_text(kRegionFactor) +
+                         " radii of the center, the part of the host this patch reads (defects farther out are "
+                         "accepted): fix the mesh there or pick another center or radius");
+}
+
 Eigen::VectorXd distance_from_center(const MeshRegion& region, const PatchCenter& c) {
   HeatGeodesics heat(region.mesh);
   if (c.vertex >= 0) return heat.from_vertices({region.host_to_vertex[c.vertex]});
@@ -543,6 +555,7 @@ Patch extract_geodesic_disk(const TriMesh& host, const PatchOptions& options) {
   const Vec3 center_point = center_point_on_host(host, c);
 
   const MeshRegion region = region_around_center(host, c, center_point, r);  // 1.
+  if (options.validate_region) validate_region(host, region);
   report(0.1);
   Eigen::VectorXd d = distance_from_center(region, c);
   report(0.4);

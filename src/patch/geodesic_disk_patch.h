@@ -23,6 +23,9 @@ struct PatchOptions {
   double radius = 0;           // geodesic radius in host units
   bool fill_holes = true;      // fill pockets with host faces and holes with new triangles
   double snap_fraction = 0.2;  // crossings this close (relative to the edge) snap onto the vertex
+  // The host's defects were deferred (DefectPolicy::defer, mesh/orientation.h): validate the part
+  // of the host this extraction reads, and only that (validate_mesh_part).
+  bool validate_region = false;
   // Progress in [0, 1]; returning false cancels (MCON_ERROR_CANCELLED).
   std::function<bool(double)> progress;
 };

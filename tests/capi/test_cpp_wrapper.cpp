@@ -105,6 +105,17 @@ TEST(CppWrapper, MeshFromInt32AndInt64Vectors) {
   EXPECT_EQ(error_of([&] { macrocon::Mesh::from_arrays(ctx, g.xyz, t32); }).status(), MCON_ERROR_INVALID_ARGUMENT);
 }
 
+TEST(CppWrapper, MeshFlagsValidateLocally) {
+  macrocon::Context ctx;
+  Flat g = flat(mcon::test_meshes::make_grid(6));
+  g.xyz.insert(g.xyz.end(), {9.0, 9.0, 9.0});  // an isolated vertex
+  EXPECT_EQ(error_of([&] { macrocon::Mesh::from_arrays(ctx, g.xyz, g.tris); }).status(), MCON_ERROR_ISOLATED_VERTEX);
+  const macrocon::Mesh m = macrocon::Mesh::from_arrays(ctx, g.xyz, g.tris, MCON_MESH_VALIDATE_LOCALLY);
+  EXPECT_EQ(m.vertex_count(), 37u);
+  const std::vector<std::int32_t> t32(g.tris.begin(), g.tris.end());
+  EXPECT_EQ(macrocon::Mesh::from_arrays(ctx, g.xyz, t32, MCON_MESH_VALIDATE_LOCALLY).vertex_count(), 37u);
+}
+
 TEST(CppWrapper, ErrorsCarryStatusAndLibraryMessage) {
   macrocon::Context ctx;
   Flat g = flat(mcon::test_meshes::make_grid(4));

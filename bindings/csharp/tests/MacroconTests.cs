@@ -897,6 +897,33 @@ static class Tests
         }
     }
 
+    // MeshFlags.ValidateLocally: a duplicated triangle far from the patch is accepted and changes
+    // nothing; a patch that reads it, and the whole-host cut, report it.
+    static void TestValidateLocally()
+    {
+        var g = Grid(31); var p = g.P;
+        int dup = 6 * (28 * 30 + 28);
+        var t = new List<uint>(g.T);
+        t.AddRange(new[] { g.T[dup], g.T[dup + 1], g.T[dup + 2] });
+        var bad = t.ToArray();
+        using (var ctx = new Context())
+        {
+            var e = Expect<InvalidMeshException>(() => new Mesh(ctx, p, bad));
+            Check(e.Status == Status.NonManifoldEdge, "whole-mesh validation by default: " + e.Status);
+            using (var mesh = new Mesh(ctx, p, bad, MeshFlags.ValidateLocally))
+            using (var clean = new Mesh(ctx, p, g.T))
+            using (var a = Patch.Extract(mesh, 10 * 31 + 10, 0.1))
+            using (var b = Patch.Extract(clean, 10 * 31 + 10, 0.1))
+            {
+                Check(System.Linq.Enumerable.SequenceEqual(a.Positions(), b.Positions()), "same patch as on the clean host");
+                var near = Expect<InvalidMeshException>(() => Patch.Extract(mesh, 27 * 31 + 27, 0.05));
+                Check(near.Status == Status.NonManifoldEdge && near.Message.Contains("within 3 radii"), near.Message);
+                var whole = Expect<InvalidMeshException>(() => mesh.CutGuides(new PolylineSet[0]));
+                Check(whole.Message.Contains("reads the whole mesh"), whole.Message);
+            }
+        }
+    }
+
     // Every struct handed to the C ABI against macrocon.h: its size and the offset of each field whose
     // snake_case name exists in C, measured by a C probe compiled with `cc` (MACROCON_INCLUDE_DIR).
     static void TestLayout()
@@ -965,7 +992,7 @@ static class Tests
     // No tuple deconstruction (`var (a, b) = ...`) anywhere here: mcs 6.8 silently drops a lambda that
     // contains one (which hid most of this runner's tests before) or crashes when a lambda captures
     // a deconstructed variable. The runner also checks how many tests ran.
-    const int ExpectedTests = 22;
+    const int ExpectedTests = 23;
 
     // The log callback receives the status and the message of the exception (mesh and patch
     // errors of the context); other contexts do not log; a disposed context drops late messages.
@@ -1294,6 +1321,7 @@ static class Tests
         Run("version and ABI", Test0);
         Run("mesh from doubles and floats", Test1);
         Run("invalid mesh throws with status and message", Test2);
+        Run("MeshFlags.ValidateLocally: defects away from the patch", TestValidateLocally);
         Run("patch extraction", Test3);
         Run("patch extraction at a triangle + barycentric, Python's arguments", TestExtractAtTriangle);
         Run("progress cancels and callback exceptions propagate", Test4);

@@ -79,8 +79,12 @@ class MeshDesc(Struct):
         ("index_stride", c_size),
         ("triangle_count", c_size),
         ("index_format", ctypes.c_uint32),  # appended: mcon_index_format
+        ("flags", ctypes.c_uint32),  # appended: mcon_mesh_flags
     ]
 
+
+#: mcon_mesh_flags (mcon_mesh_desc.flags).
+MESH_VALIDATE_LOCALLY = 1 << 0
 
 #: mcon_index_format values (mcon_mesh_desc.index_format).
 INDEX_FORMAT_UINT32, INDEX_FORMAT_INT32, INDEX_FORMAT_INT64 = 0, 1, 2

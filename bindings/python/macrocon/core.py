@@ -304,13 +304,20 @@ class Mesh(_Handle):
 
     Both may be row-strided views (interleaved vertex records, column slices, structured array
     fields) as long as each row's 3 values are contiguous and aligned; they are read in place.
+
+    ``validate_locally=True`` (MCON_MESH_VALIDATE_LOCALLY) accepts defects no operation reads (a
+    zero-area triangle, an edge of three triangles, a pinched or isolated vertex elsewhere on the
+    body): ``Patch.extract`` then checks only the part of the host it reads, ``cut_guides`` the
+    whole mesh, each raising InvalidMeshError that counts the offenders.
     """
 
     _release = _native.lib.mcon_mesh_release
 
-    def __init__(self, context: Context, positions, triangles):
+    def __init__(self, context: Context, positions, triangles, validate_locally: bool = False):
         require_type(context, Context, "context")
+        require_type(validate_locally, bool, "validate_locally")
         desc, keep = _mesh_desc(positions, triangles)
+        desc.flags = _native.MESH_VALIDATE_LOCALLY if validate_locally else 0
         handle = ctypes.c_void_p()
         check(_native.lib.mcon_mesh_create(context.handle, ctypes.byref(desc), ctypes.byref(handle)))
         del keep  # the borrowed arrays lived through the call (the library copied them)

@@ -57,11 +57,12 @@ def test_the_appended_map_fields_are_mirrored_last():
     assert _native.MapOptions in STRUCTS and _native.MapInfo in STRUCTS
 
 
-def test_the_appended_mesh_desc_field_is_mirrored_last():
-    """mcon_mesh_desc.index_format was appended: it must be the mirror's last field (older
-    struct_size values stop before it) and the mirror must be measured by the layout test."""
-    assert [f for f, _ in _native.MeshDesc._fields_][-2:] == ["triangle_count", "index_format"]
+def test_the_appended_mesh_desc_fields_are_mirrored_last():
+    """mcon_mesh_desc.index_format and flags were appended: they must be the mirror's last fields
+    (older struct_size values stop before them) and the mirror must be measured by the layout test."""
+    assert [f for f, _ in _native.MeshDesc._fields_][-3:] == ["triangle_count", "index_format", "flags"]
     assert _native.MeshDesc in STRUCTS
     d = _native.MeshDesc()
     assert _native.lib.mcon_mesh_desc_init(ctypes.byref(d)) == 0
     assert d.struct_size == ctypes.sizeof(_native.MeshDesc) and d.index_format == _native.INDEX_FORMAT_UINT32
+    assert d.flags == 0

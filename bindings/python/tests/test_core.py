@@ -212,3 +212,30 @@ def test_int64_triangles_are_read_in_place_strided_and_range_checked(context):
             macrocon.Mesh(context, p, t.astype(bad_dtype))
         with pytest.raises(TypeError, match="uint32 or int32 or int64"):
             macrocon.Patch.from_arrays(context, p, t.astype(bad_dtype), 0)
+
+
+def test_validate_locally_accepts_defects_away_from_the_patch(context):
+    # A 21 x 21 grid on [0, 4]^2 with a duplicated triangle and an isolated vertex near (4, 4).
+    p, t = grid(21, size=4.0)
+    far = int(np.argmax(p[t].mean(axis=1).sum(axis=1)))  # the triangle nearest (4, 4)
+    t = np.vstack([t, t[far]])
+    p = np.vstack([p, [[9.0, 9.0, 9.0]]])
+    with pytest.raises(macrocon.InvalidMeshError) as err:
+        macrocon.Mesh(context, p, t)  # whole-mesh validation, the default
+    assert "is used by 3 triangles" in err.value.message
+    with pytest.raises(TypeError):
+        macrocon.Mesh(context, p, t, validate_locally=1)
+
+    clean_p, clean_t = grid(21, size=4.0)
+    with macrocon.Mesh(context, p, t, validate_locally=True) as mesh, \
+            macrocon.Mesh(context, clean_p, clean_t) as clean:
+        near = 4 * 21 + 4  # vertex (0.8, 0.8)
+        with macrocon.Patch.extract(mesh, 0.5, center_vertex=near) as a, \
+                macrocon.Patch.extract(clean, 0.5, center_vertex=near) as b:
+            assert np.array_equal(a.positions, b.positions)
+        with pytest.raises(macrocon.InvalidMeshError) as err:
+            macrocon.Patch.extract(mesh, 0.3, center_vertex=19 * 21 + 19)
+        assert "within 3 radii of the center" in err.value.message
+        with pytest.raises(macrocon.InvalidMeshError) as err:
+            mesh.cut_guides([])
+        assert "reads the whole mesh" in err.value.message

@@ -1,0 +1,124 @@
+// MCON_MESH_VALIDATE_LOCALLY (issue 17): a production host with defects away from the region is
+// accepted, a patch there is the same as on a clean host, and each operation reports the defects
+// it reads, with their count.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "capi/capi_test_util.h"
+
+using namespace capi_test;
+
+namespace {
+
+constexpr int kN = 21;  // 21 x 21 vertices on [0, 4]^2, spacing 0.2
+
+int grid_vertex(int i, int j) { return j * kN + i; }
+int grid_triangle(int i, int j) { return 2 * (j * (kN - 1) + i); }  // the first of quad (i, j)
+
+// The grid with, near the corner (20, 20) far from (3, 3): an isolated vertex, a zero-area
+// triangle on a boundary edge, a duplicated triangle (three edges of three triangles each) and a
+// second sheet glued at the corner vertex (a pinched vertex).
+Arrays defective_host() {
+  Arrays a = arrays_of(mcon::test_meshes::make_grid(kN, 4.0));
+  auto add_vertex = [&](double x, double y, double z) {
+    a.positions.insert(a.positions.end(), {x, y, z});
+    return static_cast<uint32_t>(a.vertex_count() - 1);
+  };
+  add_vertex(9, 9, 9);  // isolated
+  const uint32_t p = static_cast<uint32_t>(grid_vertex(15, 20)), q = static_cast<uint32_t>(grid_vertex(16, 20));
+  const uint32_t mid = add_vertex(3.1, 4.0, 0.0);  // on edge (p, q): the triangle (q, p, mid) has zero area
+  a.indices.insert(a.indices.end(), {q, p, mid});
+  const int t = grid_triangle(17, 17);
+  a.indices.insert(a.indices.end(), {a.indices[3 * t], a.indices[3 * t + 1], a.indices[3 * t + 2]});
+  const uint32_t corner = static_cast<uint32_t>(grid_vertex(20, 20));
+  const uint32_t s = add_vertex(4.5, 4.0, 0.5), u = add_vertex(4.0, 4.5, 0.5);
+  a.indices.insert(a.indices.end(), {corner, s, u});
+  return a;
+}
+
+MeshPtr create(mcon_context ctx, const Arrays& a, uint32_t flags, mcon_status expected = MCON_OK) {
+  mcon_mesh_desc d = desc_of(a);
+  d.flags = flags;
+  mcon_mesh m = nullptr;
+  EXPECT_EQ(mcon_mesh_create(ctx, &d, &m), expected) << last_message();
+  return MeshPtr(m);
+}
+
+mcon_status extract(mcon_mesh mesh, int vertex, double radius, PatchPtr& out) {
+  mcon_patch_options o;
+  EXPECT_EQ(mcon_patch_options_init(&o), MCON_OK);
+  o.center_vertex = static_cast<uint32_t>(vertex);
+  o.radius = radius;
+  mcon_patch p = nullptr;
+  const mcon_status s = mcon_patch_extract(mesh, &o, &p);
+  out.reset(p);
+  return s;
+}
+
+std::vector<double> positions_of(mcon_patch p) {
+  mcon_patch_info info;
+  EXPECT_EQ(mcon_patch_info_init(&info), MCON_OK);
+  EXPECT_EQ(mcon_patch_get_info(p, &info), MCON_OK) << last_message();
+  std::vector<double> xyz(3 * info.vertex_count);
+  EXPECT_EQ(mcon_patch_get_positions(p, xyz.data(), xyz.size()), MCON_OK) << last_message();
+  return xyz;
+}
+
+}  // namespace
+
+TEST(CapiLocalValidation, DefectsAwayFromThePatchAreAcceptedAndChangeNothing) {
+  ContextPtr ctx = make_context();
+  const Arrays bad = defective_host();
+  // Whole-mesh validation (the default) rejects the host.
+  create(ctx.get(), bad, 0, MCON_ERROR_DEGENERATE_TRIANGLE);
+  EXPECT_NE(last_message().find("has zero area"), std::string::npos) << last_message();
+
+  const MeshPtr host = create(ctx.get(), bad, MCON_MESH_VALIDATE_LOCALLY);
+  ASSERT_TRUE(host);
+  const MeshPtr clean = create(ctx.get(), arrays_of(mcon::test_meshes::make_grid(kN, 4.0)), 0);
+  ASSERT_TRUE(clean);
+  PatchPtr on_bad, on_clean;
+  ASSERT_EQ(extract(host.get(), grid_vertex(4, 4), 0.5, on_bad), MCON_OK) << last_message();
+  ASSERT_EQ(extract(clean.get(), grid_vertex(4, 4), 0.5, on_clean), MCON_OK) << last_message();
+  EXPECT_EQ(positions_of(on_bad.get()), positions_of(on_clean.get()));
+  // Orientation does not cross the defects: the sheet glued at the corner keeps the grid's winding
+  // (only the zero-area triangle, which ran its edge the grid's way, is reversed).
+  mcon_mesh_orientation_info oi;
+  ASSERT_EQ(mcon_mesh_orientation_info_init(&oi), MCON_OK);
+  ASSERT_EQ(mcon_mesh_get_orientation(host.get(), &oi), MCON_OK);
+  EXPECT_EQ(oi.reoriented_triangles, 1u);
+  EXPECT_EQ(oi.outward_turned_component_count, 0u);
+}
+
+TEST(CapiLocalValidation, EachOperationReportsTheDefectsItReads) {
+  ContextPtr ctx = make_context();
+  const MeshPtr host = create(ctx.get(), defective_host(), MCON_MESH_VALIDATE_LOCALLY);
+  ASSERT_TRUE(host);
+  PatchPtr patch;
+  // Near the duplicated triangle: its three edges, counted, and where the check looked.
+  EXPECT_EQ(extract(host.get(), grid_vertex(18, 15), 0.3, patch), MCON_ERROR_NON_MANIFOLD_EDGE);
+  EXPECT_NE(last_message().find("is used by 3 triangles"), std::string::npos) << last_message();
+  EXPECT_NE(last_message().find("within 3 radii of the center"), std::string::npos) << last_message();
+  EXPECT_NE(last_message().find("mcon_patch_extract"), std::string::npos) << last_message();
+  // Near the zero-area triangle on the top boundary.
+  EXPECT_EQ(extract(host.get(), grid_vertex(15, 19), 0.2, patch), MCON_ERROR_DEGENERATE_TRIANGLE);
+  EXPECT_NE(last_message().find("has zero area"), std::string::npos) << last_message();
+  // At the pinched corner, with the other defects out of reach.
+  EXPECT_EQ(extract(host.get(), grid_vertex(20, 20), 0.15, patch), MCON_ERROR_NON_MANIFOLD_VERTEX);
+  EXPECT_NE(last_message().find("vertex " + std::to_string(grid_vertex(20, 20))), std::string::npos)
+      << last_message();
+
+  // The whole-host cut reads every triangle: it reports them all.
+  mcon_cut_mesh cut = nullptr;
+  EXPECT_EQ(mcon_mesh_cut_guides(host.get(), nullptr, 0, nullptr, &cut), MCON_ERROR_DEGENERATE_TRIANGLE);
+  EXPECT_EQ(cut, nullptr);
+  EXPECT_NE(last_message().find("reads the whole mesh"), std::string::npos) << last_message();
+}
+
+TEST(CapiLocalValidation, UnknownFlagsAreRefused) {
+  ContextPtr ctx = make_context();
+  create(ctx.get(), arrays_of(mcon::test_meshes::make_grid(4)), 1u << 7, MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(last_message().find("MCON_MESH_VALIDATE_LOCALLY"), std::string::npos) << last_message();
+}
