@@ -3,6 +3,7 @@
 // it reads, with their count.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -17,23 +18,34 @@ constexpr int kN = 21;  // 21 x 21 vertices on [0, 4]^2, spacing 0.2
 int grid_vertex(int i, int j) { return j * kN + i; }
 int grid_triangle(int i, int j) { return 2 * (j * (kN - 1) + i); }  // the first of quad (i, j)
 
+// The grid lifted to a smooth asymmetric height field, so that patches have curvature to map.
+mcon::TriMesh bumpy_grid() {
+  mcon::TriMesh m = mcon::test_meshes::make_grid(kN, 4.0);
+  for (auto& p : m.positions) p.z() = 0.15 * std::sin(1.5 * p.x() + 1.0) * std::cos(1.1 * p.y()) + 0.05 * p.x() * p.y();
+  return m;
+}
+
 // The grid with, near the corner (20, 20) far from (3, 3): an isolated vertex, a zero-area
 // triangle on a boundary edge, a duplicated triangle (three edges of three triangles each) and a
 // second sheet glued at the corner vertex (a pinched vertex).
 Arrays defective_host() {
-  Arrays a = arrays_of(mcon::test_meshes::make_grid(kN, 4.0));
+  Arrays a = arrays_of(bumpy_grid());
   auto add_vertex = [&](double x, double y, double z) {
     a.positions.insert(a.positions.end(), {x, y, z});
     return static_cast<uint32_t>(a.vertex_count() - 1);
   };
   add_vertex(9, 9, 9);  // isolated
   const uint32_t p = static_cast<uint32_t>(grid_vertex(15, 20)), q = static_cast<uint32_t>(grid_vertex(16, 20));
-  const uint32_t mid = add_vertex(3.1, 4.0, 0.0);  // on edge (p, q): the triangle (q, p, mid) has zero area
+  // The midpoint of edge (p, q): the triangle (q, p, mid) has zero area.
+  const uint32_t mid = add_vertex(0.5 * (a.positions[3 * p] + a.positions[3 * q]),
+                                  0.5 * (a.positions[3 * p + 1] + a.positions[3 * q + 1]),
+                                  0.5 * (a.positions[3 * p + 2] + a.positions[3 * q + 2]));
   a.indices.insert(a.indices.end(), {q, p, mid});
   const int t = grid_triangle(17, 17);
   a.indices.insert(a.indices.end(), {a.indices[3 * t], a.indices[3 * t + 1], a.indices[3 * t + 2]});
   const uint32_t corner = static_cast<uint32_t>(grid_vertex(20, 20));
-  const uint32_t s = add_vertex(4.5, 4.0, 0.5), u = add_vertex(4.0, 4.5, 0.5);
+  const double zc = a.positions[3 * corner + 2];
+  const uint32_t s = add_vertex(4.5, 4.0, zc + 0.5), u = add_vertex(4.0, 4.5, zc + 0.5);
   a.indices.insert(a.indices.end(), {corner, s, u});
   return a;
 }
@@ -77,12 +89,30 @@ TEST(CapiLocalValidation, DefectsAwayFromThePatchAreAcceptedAndChangeNothing) {
 
   const MeshPtr host = create(ctx.get(), bad, MCON_MESH_VALIDATE_LOCALLY);
   ASSERT_TRUE(host);
-  const MeshPtr clean = create(ctx.get(), arrays_of(mcon::test_meshes::make_grid(kN, 4.0)), 0);
+  const MeshPtr clean = create(ctx.get(), arrays_of(bumpy_grid()), 0);
   ASSERT_TRUE(clean);
   PatchPtr on_bad, on_clean;
   ASSERT_EQ(extract(host.get(), grid_vertex(4, 4), 0.5, on_bad), MCON_OK) << last_message();
   ASSERT_EQ(extract(clean.get(), grid_vertex(4, 4), 0.5, on_clean), MCON_OK) << last_message();
   EXPECT_EQ(positions_of(on_bad.get()), positions_of(on_clean.get()));
+
+  // And the same map: each patch mapped onto a patch of another part of the clean host.
+  PatchPtr target;
+  ASSERT_EQ(extract(clean.get(), grid_vertex(6, 5), 0.55, target), MCON_OK) << last_message();
+  std::vector<std::vector<double>> phi;
+  for (mcon_patch source : {on_bad.get(), on_clean.get()}) {
+    mcon_map map = nullptr;
+    ASSERT_EQ(mcon_map_compute(source, target.get(), nullptr, &map), MCON_OK) << last_message();
+    mcon_map_info info;
+    ASSERT_EQ(mcon_map_info_init(&info), MCON_OK);
+    ASSERT_EQ(mcon_map_get_info(map, &info), MCON_OK);
+    EXPECT_EQ(info.flipped_triangles, 0u);
+    std::vector<double> xy(2 * positions_of(source).size() / 3);
+    EXPECT_EQ(mcon_map_get_phi(map, xy.data(), xy.size()), MCON_OK) << last_message();
+    mcon_map_release(map);
+    phi.push_back(xy);
+  }
+  EXPECT_EQ(phi[0], phi[1]);
   // Orientation does not cross the defects: the sheet glued at the corner keeps the grid's winding
   // (only the zero-area triangle, which ran its edge the grid's way, is reversed).
   mcon_mesh_orientation_info oi;
