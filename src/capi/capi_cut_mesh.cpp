@@ -155,10 +155,6 @@ void write_manifest(const std::string& prefix, const TriMesh& mesh, std::size_t 
   io::write_file_maybe_gz(prefix + ".quadwild.json", j);
 }
 
-}  // namespace
-
-namespace {
-
 // A mesh created with MCON_MESH_VALIDATE_LOCALLY: the whole-host cut reads every triangle.
 void validate_whole_host(const TriMesh& mesh) {
   std::vector<int> all_triangles(mesh.triangles.size()), all_vertices(mesh.positions.size());
@@ -167,7 +163,6 @@ void validate_whole_host(const TriMesh& mesh) {
   validate_mesh_part(mesh, all_triangles, all_vertices,
                      "(mcon_mesh_cut_guides reads the whole mesh: fix it, or cut the guides into a patch with "
                      "mcon_patch_cut_guides)");
-  validate_mesh(mesh);  // isolated vertices
 }
 
 }  // namespace

@@ -207,12 +207,16 @@ void check_vertex_fans(const TriMesh& mesh, bool allow_isolated) {
   isolated.fail_if_any();
 }
 
-void check_elements(const TriMesh& mesh) {
-  const int nv = mesh.num_vertices();
-  const int nt = mesh.num_triangles();
-  require(nv > 0 && nt > 0, MCON_ERROR_EMPTY_MESH,
-          "mesh is empty (" + std::to_string(nv) + " vertices, " + std::to_string(nt) + " triangles)");
+// EMPTY_MESH, then check_positions_and_indices: validate_mesh_indices.
+void check_indices(const TriMesh& mesh) {
+  require(mesh.num_vertices() > 0 && mesh.num_triangles() > 0, MCON_ERROR_EMPTY_MESH,
+          "mesh is empty (" + std::to_string(mesh.num_vertices()) + " vertices, " +
+              std::to_string(mesh.num_triangles()) + " triangles)");
   check_positions_and_indices(mesh);
+}
+
+void check_elements(const TriMesh& mesh) {
+  check_indices(mesh);
   check_triangle_areas(mesh);
 }
 
@@ -256,12 +260,7 @@ void validate_mesh(const TriMesh& mesh) { validate_impl(mesh, false); }
 void validate_mesh_allow_isolated(const TriMesh& mesh) { validate_impl(mesh, true); }
 void validate_mesh_elements(const TriMesh& mesh) { check_elements(mesh); }
 
-void validate_mesh_indices(const TriMesh& mesh) {
-  require(mesh.num_vertices() > 0 && mesh.num_triangles() > 0, MCON_ERROR_EMPTY_MESH,
-          "mesh is empty (" + std::to_string(mesh.num_vertices()) + " vertices, " +
-              std::to_string(mesh.num_triangles()) + " triangles)");
-  check_positions_and_indices(mesh);
-}
+void validate_mesh_indices(const TriMesh& mesh) { check_indices(mesh); }
 
 void validate_mesh_part(const TriMesh& mesh, const std::vector<int>& part, const std::vector<int>& whole_vertices,
                         const std::string& where) {
@@ -307,13 +306,19 @@ void validate_mesh_part(const TriMesh& mesh, const std::vector<int>& part, const
   std::vector<int> parent;
   std::vector<std::pair<int, int>> link;
   Offenders pinched(MCON_ERROR_NON_MANIFOLD_VERTEX, "vertices join separate fans", where);
+  Offenders isolated(MCON_ERROR_ISOLATED_VERTEX, "vertices are used by no triangle", where);
   for (int v : whole_vertices) {
     const auto it = fans_of.find(v);
-    if (it == fans_of.end()) continue;
+    if (it == fans_of.end()) {  // all of its triangles are in the part, and it has none
+      isolated.add(v, [&] { return "vertex " + std::to_string(v) + " is not used by any triangle"; });
+      continue;
+    }
     const int fans = fan_count(mesh, v, it->second, parent, link);
     if (fans != 1) pinched.add(v, [&] { return pinched_text(v, fans); });
   }
+  if (isolated.first() < pinched.first()) isolated.fail_if_any();  // in vertex order, as validate_mesh
   pinched.fail_if_any();
+  isolated.fail_if_any();
 }
 
 TriMesh mesh_from_arrays(const MeshArrays& in) {

@@ -89,8 +89,10 @@ void validate_mesh_indices(const TriMesh& mesh);
 
 // Local validation of a mesh whose defects were deferred: the triangles `part` (zero area; an edge
 // used by more than two of them or twice in one direction) and the fans of `whole_vertices`
-// (vertices all of whose triangles are in `part`). Messages name mesh indices, count the
-// offenders as validate_mesh does and end with `where` (e.g. "within 3 radii of the center").
+// (vertices all of whose triangles are in `part`; one with none is isolated). Given every triangle
+// and vertex, it applies validate_mesh's rules beyond validate_mesh_indices, with their statuses.
+// Messages name mesh indices, count the offenders as validate_mesh does and end with `where`
+// (e.g. "within 3 radii of the center").
 void validate_mesh_part(const TriMesh& mesh, const std::vector<int>& part, const std::vector<int>& whole_vertices,
                         const std::string& where);
 

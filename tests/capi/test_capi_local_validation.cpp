@@ -145,6 +145,17 @@ TEST(CapiLocalValidation, EachOperationReportsTheDefectsItReads) {
   EXPECT_EQ(mcon_mesh_cut_guides(host.get(), nullptr, 0, nullptr, &cut), MCON_ERROR_DEGENERATE_TRIANGLE);
   EXPECT_EQ(cut, nullptr);
   EXPECT_NE(last_message().find("reads the whole mesh"), std::string::npos) << last_message();
+
+  // An isolated vertex alone: harmless to a patch, refused by the whole-host cut.
+  Arrays stray = arrays_of(bumpy_grid());
+  stray.positions.insert(stray.positions.end(), {9.0, 9.0, 9.0});
+  const MeshPtr lone = create(ctx.get(), stray, MCON_MESH_VALIDATE_LOCALLY);
+  ASSERT_TRUE(lone);
+  ASSERT_EQ(extract(lone.get(), grid_vertex(10, 10), 0.5, patch), MCON_OK) << last_message();
+  EXPECT_EQ(mcon_mesh_cut_guides(lone.get(), nullptr, 0, nullptr, &cut), MCON_ERROR_ISOLATED_VERTEX);
+  EXPECT_EQ(cut, nullptr);
+  EXPECT_NE(last_message().find("vertex " + std::to_string(kN * kN) + " is not used by any triangle"), std::string::npos)
+      << last_message();
 }
 
 TEST(CapiLocalValidation, UnknownFlagsAreRefused) {
