@@ -69,6 +69,32 @@ std::string read_file_maybe_gz(const std::string& path, std::size_t max_bytes = 
 // Writes a whole file, gzip-compressing when the path ends in `.gz` (any case).
 void write_file_maybe_gz(const std::string& path, std::string_view bytes);
 
+// Polylines drawn in a DCC and exported as OBJ `l` statements (guides, feature lines), in file
+// coordinates and file order; a line whose last vertex repeats its first is closed (the repeat
+// dropped). Faces and everything else in the file are ignored. MCON_ERROR_IO when malformed or
+// when the file has no `l` statement (the message says what to export).
+struct FilePolyline {
+  std::vector<Vec3> points;  // >= 2 (>= 3 when closed)
+  bool closed = false;
+  int line = 0;              // the `l` statement's line in the file
+};
+std::vector<FilePolyline> read_obj_polylines(const std::string& path, std::size_t max_bytes = 0);
+
+// Named columns of numbers with one row per item: per-vertex fields exported by a DCC, or a list
+// of points. `.ply`: x, y, z and the vertex element's other scalar properties, one row per file
+// vertex. `.csv` / `.txt`: a header line of column names, then one row per item, values separated
+// by commas and/or blanks; `#` starts a comment. MCON_ERROR_IO when malformed (a row of the wrong
+// length, a value that is not a finite number, repeated or missing column names).
+struct ValueTable {
+  std::vector<std::string> columns;
+  std::vector<double> values;  // row-major, columns.size() per row
+  std::size_t rows() const { return columns.empty() ? 0 : values.size() / columns.size(); }
+  // The column's index, or -1.
+  int column(const std::string& name) const;
+  double at(std::size_t row, int column) const { return values[row * columns.size() + static_cast<std::size_t>(column)]; }
+};
+ValueTable read_value_table(const std::string& path, std::size_t max_bytes = 0);
+
 struct VertexAttribute {
   std::string name;                   // e.g. "distance" or "uv" (components get _x/_y/... suffixes)
   int components = 1;                 // 1 (scalar), 2, 3

@@ -1,5 +1,5 @@
 // Wavefront OBJ: `v` positions, `f` polygons (v, v/vt, v//vn, v/vt/vn; negative indices count back
-// from the last vertex read), `g`/`o` group names. Texture coordinates, normals, materials and
+// from the last vertex read), `l` polylines (same index forms), `g`/`o` group names. Texture coordinates, normals, materials and
 // everything else are skipped, since only the surface itself is needed.
 #include <climits>
 #include <utility>
@@ -64,6 +64,17 @@ PolygonSoup parse_obj(std::string_view text, const std::string& file_name) {
       if (soup.corners.size() > static_cast<std::size_t>(INT_MAX)) in.error("too many face corners");
       soup.face_start.push_back(static_cast<int>(soup.corners.size()));
       soup.face_group.push_back(current_group);
+    } else if (keyword == "l") {
+      const int nv = static_cast<int>(soup.positions.size());
+      std::vector<int> line;
+      while (!in.at_line_end()) {
+        const int v = read_corner(in, nv);
+        if (v >= nv) forward_references.emplace_back(v, in.line());
+        line.push_back(v);
+      }
+      if (line.size() < 2) in.error("line has " + std::to_string(line.size()) + " vertices (at least 2 needed)");
+      soup.lines.push_back(std::move(line));
+      soup.line_numbers.push_back(in.line());
     } else if (keyword == "g" || keyword == "o") {
       std::vector<std::string> names;
       while (!in.at_line_end()) names.emplace_back(in.word());

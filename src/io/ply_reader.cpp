@@ -1,5 +1,6 @@
-// PLY body: vertex x, y, z of any scalar type and the face `vertex_indices` (or `vertex_index`)
-// list of any integer type, in ASCII or either binary byte order. Every other element and
+// PLY body: vertex x, y, z of any scalar type (and, when asked, the vertex element's other scalar
+// properties) and the face `vertex_indices` (or `vertex_index`) list of any integer type, in
+// ASCII or either binary byte order. Every other element and
 // property is read past according to its declared type, so unknown data never shifts the rest.
 #include <algorithm>
 #include <climits>
@@ -113,7 +114,8 @@ void skip_property(Source& in, const PlyProperty& property) {
 }
 
 template <typename Source>
-void read_vertices(Source& in, const PlyElement& element, const std::string& file_name, PolygonSoup& soup) {
+void read_vertices(Source& in, const PlyElement& element, const std::string& file_name, bool keep_properties,
+                   PolygonSoup& soup) {
   int axis_property[3];
   const char* axis_names[3] = {"x", "y", "z"};
   for (int a = 0; a < 3; ++a) {
@@ -121,12 +123,17 @@ void read_vertices(Source& in, const PlyElement& element, const std::string& fil
     if (axis_property[a] < 0 || element.properties[axis_property[a]].is_list)
       fail(MCON_ERROR_IO, file_name + ": the PLY vertex element has no scalar property '" + axis_names[a] + "'");
   }
+  auto is_axis = [&](int p) { return p == axis_property[0] || p == axis_property[1] || p == axis_property[2]; };
+  if (keep_properties)
+    for (int p = 0; p < static_cast<int>(element.properties.size()); ++p)
+      if (!is_axis(p) && !element.properties[p].is_list) soup.vertex_property_names.push_back(element.properties[p].name);
   for (long long v = 0; v < element.count; ++v) {
     Vec3 position;
     for (int p = 0; p < static_cast<int>(element.properties.size()); ++p) {
       const PlyProperty& property = element.properties[p];
       const int axis = p == axis_property[0] ? 0 : p == axis_property[1] ? 1 : p == axis_property[2] ? 2 : -1;
       if (axis >= 0) position[axis] = in.read_real(property.type);
+      else if (keep_properties && !property.is_list) soup.vertex_property_values.push_back(in.read_real(property.type));
       else skip_property(in, property);
     }
     soup.positions.push_back(position);
@@ -162,7 +169,8 @@ void read_faces(Source& in, const PlyElement& element, long long vertex_count, c
 }
 
 template <typename Source>
-PolygonSoup read_body(Source& in, const PlyHeader& header, std::size_t data_size, const std::string& file_name) {
+PolygonSoup read_body(Source& in, const PlyHeader& header, std::size_t data_size, const std::string& file_name,
+                      bool keep_vertex_properties) {
   const PlyElement* vertices = nullptr;
   for (const PlyElement& element : header.elements) {
     if (element.name != "vertex") continue;
@@ -180,7 +188,7 @@ PolygonSoup read_body(Source& in, const PlyHeader& header, std::size_t data_size
   bool have_faces = false;
   for (const PlyElement& element : header.elements) {
     if (&element == vertices) {
-      read_vertices(in, element, file_name, soup);
+      read_vertices(in, element, file_name, keep_vertex_properties, soup);
     } else if (element.properties.empty()) {
       continue;  // no data at all, whatever the count
     } else if (element.name == "face" && !have_faces) {
@@ -196,11 +204,11 @@ PolygonSoup read_body(Source& in, const PlyHeader& header, std::size_t data_size
 
 }  // namespace
 
-PolygonSoup parse_ply(std::string_view data, const std::string& file_name) {
+PolygonSoup parse_ply(std::string_view data, const std::string& file_name, bool keep_vertex_properties) {
   const PlyHeader header = parse_ply_header(data, file_name);
   if (header.format == PlyFormat::Ascii) {
     AsciiSource in(data, header.data_offset, header.data_line, file_name);
-    return read_body(in, header, data.size(), file_name);
+    return read_body(in, header, data.size(), file_name, keep_vertex_properties);
   }
   const std::uint16_t probe = 1;
   unsigned char first_byte;
@@ -208,7 +216,7 @@ PolygonSoup parse_ply(std::string_view data, const std::string& file_name) {
   const bool host_little_endian = first_byte == 1;
   const bool file_little_endian = header.format == PlyFormat::BinaryLittleEndian;
   BinarySource in(data, header.data_offset, host_little_endian != file_little_endian, file_name);
-  return read_body(in, header, data.size(), file_name);
+  return read_body(in, header, data.size(), file_name, keep_vertex_properties);
 }
 
 }  // namespace mcon::io

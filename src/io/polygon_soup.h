@@ -18,6 +18,14 @@ struct PolygonSoup {
   // OBJ only: per polygon, the index of its `g`/`o` statement in `groups` (-1 before any).
   std::vector<int> face_group;
   std::vector<std::vector<std::string>> groups;  // the names of each `g`/`o` statement
+  // OBJ only: the `l` statements, each the 0-based vertex indices of one polyline (>= 2), and the
+  // line each was read from (for messages).
+  std::vector<std::vector<int>> lines;
+  std::vector<int> line_numbers;
+  // PLY only, when parse_ply is asked for them: the vertex element's scalar properties other
+  // than x, y, z, by name, vertex-major (vertex_property_names.size() values per vertex).
+  std::vector<std::string> vertex_property_names;
+  std::vector<double> vertex_property_values;
 
   PolygonSoup() : face_start{0} {}
   int num_faces() const { return static_cast<int>(face_start.size()) - 1; }
@@ -26,6 +34,6 @@ struct PolygonSoup {
 // Each throws mcon::Error(MCON_ERROR_IO, "<file_name>:<line>: ...") on malformed content.
 PolygonSoup parse_obj(std::string_view text, const std::string& file_name);
 PolygonSoup parse_off(std::string_view text, const std::string& file_name);
-PolygonSoup parse_ply(std::string_view data, const std::string& file_name);
+PolygonSoup parse_ply(std::string_view data, const std::string& file_name, bool keep_vertex_properties = false);
 
 }  // namespace mcon::io

@@ -743,3 +743,75 @@ TEST_F(MeshIo, PatchFilesKeepTheirConsistentOrientation) {
   EXPECT_EQ(patch.orientation.reoriented_triangles, 0);
   EXPECT_EQ(patch.mesh.triangles[1], (Tri{0, 3, 1}));
 }
+
+// Authoring inputs: OBJ polylines and value tables (tools/cli/entry_authoring.h reads them).
+TEST_F(MeshIo, ObjPolylinesReadOpenAndClosedLines) {
+  const std::string p = write_text("lines.obj",
+                                   "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\n"
+                                   "l 1 2 3 4 1\n"   // closed: the first vertex repeated
+                                   "l -2 -1\n"       // relative indices
+                                   "l 1/1 3/1\n");   // with texture indices
+  const std::vector<FilePolyline> lines = read_obj_polylines(p);
+  ASSERT_EQ(lines.size(), 3u);
+  EXPECT_TRUE(lines[0].closed);
+  EXPECT_EQ(lines[0].points.size(), 4u);
+  EXPECT_EQ(lines[0].line, 6);
+  EXPECT_FALSE(lines[1].closed);
+  EXPECT_EQ(lines[1].points[0], mcon::Vec3(1, 1, 0));
+  EXPECT_EQ(lines[1].points[1], mcon::Vec3(0, 1, 0));
+  EXPECT_EQ(lines[2].points[1], mcon::Vec3(1, 1, 0));
+  // The faces still read as before: `l` adds no triangle.
+  EXPECT_EQ(read_mesh(write_text("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nl 1 2\n")).mesh.num_triangles(), 1);
+}
+
+TEST_F(MeshIo, ObjPolylinesRefuseBadLines) {
+  std::string message;
+  EXPECT_EQ(status_of([&] { read_obj_polylines(write_text("none.obj", "v 0 0 0\nv 1 0 0\n")); }, &message), MCON_ERROR_IO);
+  EXPECT_NE(message.find("no polyline"), std::string::npos) << message;
+  EXPECT_EQ(status_of([&] { read_obj_polylines(write_text("one.obj", "v 0 0 0\nl 1\n")); }, &message), MCON_ERROR_IO);
+  EXPECT_NE(message.find(":2: line has 1 vertices"), std::string::npos) << message;
+  EXPECT_EQ(status_of([&] { read_obj_polylines(write_text("far.obj", "v 0 0 0\nl 1 7\n")); }, &message), MCON_ERROR_IO);
+  EXPECT_NE(message.find("vertex index 7"), std::string::npos) << message;
+}
+
+TEST_F(MeshIo, CsvTableReadsHeaderRowsAndComments) {
+  const ValueTable t = read_value_table(
+      write_text("t.csv", "# singularities\nx, y,z\tindex\n\n1,2,3,1\n+4 5 6e0 -1  # valence 5\n"));
+  ASSERT_EQ(t.columns, (std::vector<std::string>{"x", "y", "z", "index"}));
+  ASSERT_EQ(t.rows(), 2u);
+  EXPECT_EQ(t.at(1, 0), 4.0);
+  EXPECT_EQ(t.at(1, t.column("index")), -1.0);
+  EXPECT_EQ(t.column("w"), -1);
+}
+
+TEST_F(MeshIo, CsvTableRefusesMalformedRows) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"1,2\n3,4\n", "must name the columns"},
+      {"a,b\n1,,2\n", "3 values, but the header names 2"},
+      {"a,b\n1,\n", "column 'b': missing value"},  // a trailing comma leaves a missing value
+      {"a,b\n,1\n", "missing value"},
+      {"a,b\n1,x\n", "'x' is not a finite number"},
+      {"a,b\n1,nan\n", "is not a finite number"},
+      {"a,a\n1,2\n", "column 'a' appears twice"},
+      {"# only a comment\n", "is empty"},
+  };
+  for (const auto& [text, expected] : cases) {
+    std::string message;
+    EXPECT_EQ(status_of([&] { read_value_table(write_text("bad.csv", text)); }, &message), MCON_ERROR_IO) << text;
+    EXPECT_NE(message.find(expected), std::string::npos) << text << " -> " << message;
+  }
+  EXPECT_EQ(status_of([&] { read_value_table(write_text("t.json", "{}")); }), MCON_ERROR_IO);
+}
+
+TEST_F(MeshIo, PlyTableHasCoordinatesThenVertexProperties) {
+  const ValueTable t = read_value_table(write_text(
+      "t.ply",
+      "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\n"
+      "property double height\nproperty list uchar int skipped\nproperty int side\nelement face 1\n"
+      "property list uchar int vertex_indices\nend_header\n0 1 2 0.5 2 7 7 1\n3 4 5 1.5 0 2\n3 0 1 1\n"));
+  ASSERT_EQ(t.columns, (std::vector<std::string>{"x", "y", "z", "height", "side"}));
+  ASSERT_EQ(t.rows(), 2u);
+  EXPECT_EQ(t.at(0, 3), 0.5);
+  EXPECT_EQ(t.at(1, 4), 2.0);
+  EXPECT_EQ(t.at(1, 1), 4.0);
+}
