@@ -15,9 +15,11 @@
 
 #include "command/args.h"
 #include "command/progress_bar.h"
+#include "base/text.h"
+#include "embed_constraints.h"
+#include "library/library_file.h"
 #include "json/json_file.h"
 #include "transfer/cross_field.h"
-#include "descriptors/curvature_descriptors.h"
 #include "transfer/field_transfer.h"
 #include "transfer/guide_cutting.h"
 #include "patch/geodesic_disk_patch.h"
@@ -33,7 +35,7 @@ namespace {
 
 const char* kUsage =
     "usage: macrocon embed --source FILE --target FILE --center-vertex N --radius R\n"
-    "                      [--source-center-vertex M --source-radius Q] [--face-range A:B]\n"
+    "                      [--source-center-vertex M --source-radius Q | --entry ID|NAME] [--face-range A:B]\n"
     "                      [--source-face-range A:B] [--seed S] [--samples K] [--iterations I]\n"
     "                      [--orientation auto|preserve|reverse] [--landmarks S:T,S:T,...]\n"
     "                      [--up X,Y,Z | --source-up X,Y,Z --target-up X,Y,Z] [--cut-guides]\n"
@@ -42,8 +44,13 @@ const char* kUsage =
     "transfers the source's constraints. With --source-center-vertex the source patch is cut the same\n"
     "way from the source mesh (radius Q, default R); without it the source file must already be one\n"
     "normalized disk patch (a library entry), centered at its vertex nearest to its area centroid.\n"
-    "Source constraints: its uv, mean curvature, geodesic distance from the center and a ring label\n"
-    "(distance in steps of 0.25) per vertex, and guide loops at geodesic distance 0.3 and 0.6.\n"
+    "With --entry, --source is a library file (.mclb) and the entry (an id, or a unique name; see\n"
+    "macrocon library info) is the source patch: its own guides, features, singularities and fields\n"
+    "are transferred (features to features.obj, singularities to singularities.csv, fields into\n"
+    "target.ply under their names; --landmarks then numbers the entry's vertices from 0).\n"
+    "A mesh source gets synthetic constraints that show the map: its uv, mean curvature, geodesic\n"
+    "distance from the center and a ring label (distance in steps of 0.25) per vertex, and guide\n"
+    "loops at geodesic distance 0.3 and 0.6.\n"
     "--out DIR (default embed-out) receives target.ply (target patch in target mesh units with the\n"
     "transferred fields and 'outside' = 1 where no source point maps), target.obj (the same triangles\n"
     "with exact doubles, for QuadWild), guides.obj (re-traced guides),\n"
@@ -164,70 +171,6 @@ Patch as_entry(const TriMesh& mesh) {
   return patch_from_mesh(mesh, frame);
 }
 
-// Iso-lines {d = value} of a per-vertex field as polylines of surface points (marching
-// triangles: a vertex counts as above when d >= value, so every crossed triangle has exactly two
-// crossed edges and the pieces chain into closed loops, or open chains ending on the boundary).
-std::vector<PolylineInput> iso_lines(const TriMesh& mesh, const Eigen::VectorXd& d, double value) {
-  using Edge = std::pair<int, int>;
-  auto key = [](int a, int b) { return a < b ? Edge{a, b} : Edge{b, a}; };
-  std::map<Edge, std::vector<int>> edge_triangles;  // crossed edge -> triangles that cross it
-  for (int t = 0; t < mesh.num_triangles(); ++t) {
-    const Tri& tri = mesh.triangles[t];
-    for (int k = 0; k < 3; ++k) {
-      const int a = tri[k], b = tri[(k + 1) % 3];
-      if ((d[a] >= value) != (d[b] >= value)) edge_triangles[key(a, b)].push_back(t);
-    }
-  }
-  auto point_on = [&](const Edge& e, int t) {
-    const double s = (value - d[e.first]) / (d[e.second] - d[e.first]);
-    SurfacePoint p;
-    p.triangle = t;
-    p.barycentric = Vec3::Zero();
-    for (int k = 0; k < 3; ++k) {
-      if (mesh.triangles[t][k] == e.first) p.barycentric[k] = 1 - s;
-      if (mesh.triangles[t][k] == e.second) p.barycentric[k] = s;
-    }
-    return p;
-  };
-  auto other_edge = [&](int t, const Edge& e) {
-    const Tri& tri = mesh.triangles[t];
-    for (int k = 0; k < 3; ++k) {
-      const Edge f = key(tri[k], tri[(k + 1) % 3]);
-      if (f != e && edge_triangles.count(f)) return f;
-    }
-    return e;
-  };
-  std::map<Edge, bool> used;
-  std::vector<PolylineInput> out;
-  // Open chains start at boundary edges (one triangle), then closed loops anywhere.
-  for (int pass = 0; pass < 2; ++pass)
-    for (const auto& [edge, tris] : edge_triangles) {
-      if (used[edge] || (pass == 0 && tris.size() != 1)) continue;
-      PolylineInput line;
-      Edge e = edge;
-      int t = tris[0];
-      used[e] = true;
-      line.points.push_back(point_on(e, t));
-      while (true) {
-        const Edge f = other_edge(t, e);
-        if (f == e) break;
-        line.points.push_back(point_on(f, t));
-        if (used[f]) {  // back at the start: a closed loop
-          line.points.pop_back();
-          line.closed = true;
-          break;
-        }
-        used[f] = true;
-        const auto& ft = edge_triangles[f];
-        if (ft.size() < 2) break;  // reached the boundary
-        t = ft[0] == t ? ft[1] : ft[0];
-        e = f;
-      }
-      if (line.points.size() >= (line.closed ? 3u : 2u)) out.push_back(std::move(line));
-    }
-  return out;
-}
-
 void write_polylines_obj(const std::string& path, const std::vector<std::vector<Vec3>>& lines,
                          const std::vector<bool>& closed) {
   std::ostringstream s;
@@ -304,12 +247,56 @@ EmbedOptions embed_options(const ArgParser& p) {
 struct EmbedPatches {
   io::LoadedMesh target_mesh, source_mesh;
   Patch target, source;
+  std::optional<MacroConstraint> entry;  // --entry: the library entry that is the source
 };
+
+// The entry --entry names: a number is an id, anything else a name (which must be unique).
+MacroConstraint find_library_entry(const std::string& path, const std::string& which) {
+  const ConstraintLibrary lib = load_library_from_file(path);
+  const bool numeric = !which.empty() && which.find_first_not_of("0123456789") == std::string::npos;
+  const MacroConstraint* found = nullptr;
+  std::size_t named = 0;
+  for (const MacroConstraint& e : lib.entries())
+    if (numeric ? std::to_string(e.id) == which : e.name == which) {
+      found = &e;
+      ++named;
+    }
+  require(named <= 1, MCON_ERROR_INVALID_ARGUMENT,
+          "--entry '" + printable_text(which) + "': " + std::to_string(named) + " entries of '" + path +
+              "' have that name; give the id (macrocon library info lists them)");
+  require(found != nullptr, MCON_ERROR_NOT_FOUND,
+          "--entry '" + printable_text(which) + "': '" + path + "' has no entry with that " +
+              (numeric ? "id" : "name") + " (macrocon library info lists them)");
+  return *found;
+}
+
+// The entry as the source patch, in the units of the mesh it was cut from; its vertices are the
+// source's "file" vertices (for --landmarks).
+void entry_source(const ArgParser& p, EmbedPatches& e) {
+  for (const char* key : {"source-center-vertex", "source-radius", "source-face-range"})
+    require(!p.has(key), MCON_ERROR_INVALID_ARGUMENT,
+            std::string("--") + key + " does not apply with --entry: the entry is already a patch");
+  e.entry = find_library_entry(p.required("source"), p.get("entry"));
+  PatchFrame frame;
+  frame.center = e.entry->center;
+  frame.origin = Vec3(e.entry->source_origin[0], e.entry->source_origin[1], e.entry->source_origin[2]);
+  frame.scale = e.entry->source_scale;
+  e.source_mesh.mesh = entry_mesh(*e.entry);
+  e.source = patch_from_mesh(e.source_mesh.mesh, frame);
+  for (int v = 0; v < e.source_mesh.mesh.num_vertices(); ++v) {
+    e.source_mesh.file_to_mesh.push_back(v);
+    e.source_mesh.mesh_to_file.push_back(v);
+  }
+}
 
 EmbedPatches cut_embed_patches(const ArgParser& p) {
   EmbedPatches e;
   e.target_mesh = load(p, "target", "face-range");
   e.target = cut(e.target_mesh, p.integer("center-vertex", -1), p.number("radius", 0), "--center-vertex");
+  if (p.has("entry")) {
+    entry_source(p, e);
+    return e;
+  }
   const bool cut_source = p.has("source-center-vertex");
   // A source that is already a patch is oriented like mcon_patch_create_from_arrays (majority).
   e.source_mesh =
@@ -382,47 +369,38 @@ EmbedMap map_embed_patches(const ArgParser& p, const EmbedOptions& o, const Embe
 
 // 3. and 4.: the source constraints, transferred, and the target's cross field.
 struct EmbedTransfer {
-  std::vector<PolylineInput> guides;
-  Eigen::MatrixXd fields;
-  std::vector<std::int32_t> ring_labels;
+  SourceConstraints source;
+  std::vector<NamedField> fields;  // on the target's vertices
   std::vector<std::uint8_t> outside;
   std::vector<TracedPolyline> traced;
+  std::vector<SurfacePoint> singularities;  // on the target (triangle -1: outside the map)
   SurfacePoint center_on_target;
   CrossField field;
   double source_field_seconds = 0, field_seconds = 0, polyline_seconds = 0, cross_field_seconds = 0,
          transfer_seconds = 0;
 };
 
-EmbedTransfer transfer_constraints(const MapView& view, const Patch& source, const Patch& target) {
+EmbedTransfer transfer_constraints(const MapView& view, const EmbedPatches& e) {
+  const Patch& source = e.source;
+  const Patch& target = e.target;
   EmbedTransfer x;
-  // 3. Source constraints: fields and guide loops around the center.
+  // 3. Source constraints: the entry's own, or synthetic ones that show the map.
   const auto t_transfer = std::chrono::steady_clock::now();
-  const Eigen::VectorXd distance =
-      HeatGeodesics(source.mesh).from_point(source.center.triangle, source.center.barycentric);
-  const Eigen::VectorXd mean = mean_curvature_descriptor(source.mesh);
-  Eigen::MatrixXd interpolated(source.mesh.num_vertices(), 4);
-  std::vector<std::int32_t> rings(source.mesh.positions.size());
-  for (int v = 0; v < source.mesh.num_vertices(); ++v) {
-    interpolated.row(v) << source.uv[v].x(), source.uv[v].y(), mean[v], distance[v];
-    rings[v] = static_cast<std::int32_t>(std::floor(std::max(0.0, distance[v]) / 0.25));
-  }
-  for (double r : {0.3, 0.6})
-    for (PolylineInput& l : iso_lines(source.mesh, distance, r)) x.guides.push_back(std::move(l));
-
+  x.source = e.entry ? entry_constraints(*e.entry) : synthetic_constraints(source);
   x.source_field_seconds = seconds_since(t_transfer);
   const auto t_fields = std::chrono::steady_clock::now();
-  x.fields = transfer_interpolated(view, interpolated);
-  x.ring_labels = transfer_labels(view, 1, rings, -1);
+  x.fields = transfer_fields(view, x.source.fields);
   x.outside = outside_mask(view);
   x.field_seconds = seconds_since(t_fields);
   const auto t_polylines = std::chrono::steady_clock::now();
   const PolylineTransfer transfer(view);
-  x.traced = transfer.map_polylines(x.guides);
+  x.traced = transfer.map_polylines(x.source.polylines);
   x.center_on_target = transfer.map_point({source.center.triangle, source.center.barycentric});
+  for (const Singularity& s : x.source.singularities) x.singularities.push_back(transfer.map_point(s.location));
 
   x.polyline_seconds = seconds_since(t_polylines);
   const auto t_field = std::chrono::steady_clock::now();
-  // 4. Cross field of the target following the re-traced guides.
+  // 4. Cross field of the target following the re-traced guides and features.
   std::vector<std::vector<SurfacePoint>> guide_points;
   for (const TracedPolyline& t : x.traced) {
     std::vector<SurfacePoint> line;
@@ -438,7 +416,7 @@ EmbedTransfer transfer_constraints(const MapView& view, const Patch& source, con
 
 // 5. Files (target mesh units: host = center + radius * p).
 struct EmbedFiles {
-  std::string ply, obj, src_obj, rosy, summary_path;
+  std::string ply, obj, features_obj, src_obj, rosy, singularities_csv, summary_path;
   std::size_t traced_points = 0;
 };
 
@@ -449,20 +427,32 @@ void write_target_ply(const std::string& ply, const EmbedPatches& e, const Embed
   const Patch& target = e.target;
   TriMesh target_host = target.mesh;
   for (Vec3& v : target_host.positions) v = to_host(target, v);
-  io::VertexAttribute uv{"source_uv", 2, {}}, h{"source_mean_curvature", 1, {}}, g{"source_geodesic_distance", 1, {}},
-      ring{"source_ring", 1, {}}, out_attr{"outside", 1, {}}, host_vertex{"host_vertex", 1, {}};
+  std::vector<io::VertexAttribute> attributes = field_attributes(x.fields);
+  io::VertexAttribute out_attr{"outside", 1, {}}, host_vertex{"host_vertex", 1, {}};
   for (int w = 0; w < target.mesh.num_vertices(); ++w) {
-    uv.values.insert(uv.values.end(), {x.fields(w, 0), x.fields(w, 1)});
-    h.values.push_back(x.fields(w, 2));
-    g.values.push_back(x.fields(w, 3));
-    ring.values.push_back(x.ring_labels[w]);
     out_attr.values.push_back(x.outside[w]);
     const HostPoint& hp = target.host_vertex[w];
     host_vertex.values.push_back(hp.v0 < 0 ? -1.0 : static_cast<double>(e.target_mesh.mesh_to_file[hp.t < 0.5 ? hp.v0 : hp.v1]));
   }
-  io::write_ply(ply, target_host, {uv, h, g, ring, out_attr, host_vertex});
+  attributes.push_back(std::move(out_attr));
+  attributes.push_back(std::move(host_vertex));
+  io::write_ply(ply, target_host, attributes);
   // The same triangles as OBJ with exact doubles (QuadWild reads OBJ), next to the PLY.
   io::write_obj(ply.substr(0, ply.size() - 4) + ".obj", target_host);
+}
+
+// The mapped singularities as the table `library build --singularities` reads (x, y, z, index in
+// target mesh units); those the map sends outside the target are left out (the summary counts them).
+void write_singularities_csv(const std::string& path, const EmbedPatches& e, const EmbedTransfer& x) {
+  std::ostringstream s;
+  s.precision(17);
+  s << "x,y,z,index\n";
+  for (std::size_t i = 0; i < x.singularities.size(); ++i) {
+    if (!x.singularities[i].valid()) continue;
+    const Vec3 p = to_host(e.target, position_on(e.target.mesh, x.singularities[i]));
+    s << p.x() << ',' << p.y() << ',' << p.z() << ',' << x.source.singularities[i].index_quarters << '\n';
+  }
+  io::write_file_maybe_gz(path, s.str());
 }
 
 EmbedFiles write_embed_files(const std::string& out_dir, const EmbedPatches& e, const EmbedTransfer& x) {
@@ -476,23 +466,33 @@ EmbedFiles write_embed_files(const std::string& out_dir, const EmbedPatches& e, 
   f.rosy = out_dir + "/target.rosy";
   f.summary_path = out_dir + "/summary.json";
   write_target_ply(f.ply, e, x);
-  std::vector<std::vector<Vec3>> lines, source_lines;
-  std::vector<bool> closed, source_closed;
+  // Traced guides and traced features go to their own files; the source's all to one.
+  std::vector<std::vector<Vec3>> lines[2], source_lines;
+  std::vector<bool> closed[2], source_closed;
   for (const TracedPolyline& t : x.traced) {
+    const int feature = static_cast<std::size_t>(t.input) >= x.source.guide_count ? 1 : 0;
     std::vector<Vec3> line;
     for (const Vec3& v : t.positions) line.push_back(to_host(target, v));
-    lines.push_back(std::move(line));
-    closed.push_back(t.closed);
+    lines[feature].push_back(std::move(line));
+    closed[feature].push_back(t.closed);
     f.traced_points += t.points.size();
   }
-  for (const PolylineInput& in : x.guides) {
+  for (const PolylineInput& in : x.source.polylines) {
     std::vector<Vec3> line;
     for (const SurfacePoint& q : in.points) line.push_back(to_host(source, position_on(source.mesh, q)));
     source_lines.push_back(std::move(line));
     source_closed.push_back(in.closed);
   }
-  write_polylines_obj(f.obj, lines, closed);
+  write_polylines_obj(f.obj, lines[0], closed[0]);
+  if (x.source.polylines.size() > x.source.guide_count) {
+    f.features_obj = out_dir + "/features.obj";
+    write_polylines_obj(f.features_obj, lines[1], closed[1]);
+  }
   write_polylines_obj(f.src_obj, source_lines, source_closed);
+  if (!x.source.singularities.empty()) {
+    f.singularities_csv = out_dir + "/singularities.csv";
+    write_singularities_csv(f.singularities_csv, e, x);
+  }
   io::write_rosy(f.rosy, target.mesh, x.field.directions);
   return f;
 }
@@ -504,20 +504,6 @@ struct EmbedCut {
   std::string obj, ply, sharp, rosy, guides;
   double seconds = 0;
 };
-
-// A label at a cut-mesh vertex: the label of its host triangle's corner with the largest weight.
-template <typename T>
-std::vector<T> carry_labels(const CutMesh& cut, const TriMesh& input, const std::vector<T>& labels) {
-  std::vector<T> out;
-  out.reserve(cut.host.size());
-  for (const SurfacePoint& h : cut.host) {
-    int k = 0;
-    for (int j = 1; j < 3; ++j)
-      if (h.barycentric[j] > h.barycentric[k]) k = j;
-    out.push_back(labels[static_cast<std::size_t>(input.triangles[h.triangle][k])]);
-  }
-  return out;
-}
 
 EmbedCut cut_and_write(const EmbedOptions& o, const EmbedPatches& e, const EmbedTransfer& x) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -535,29 +521,25 @@ EmbedCut cut_and_write(const EmbedOptions& o, const EmbedPatches& e, const Embed
   align_field_to_edges(mesh, c.cut.guide_edges, c.field);
   c.seconds = seconds_since(t0);
 
-  const Eigen::MatrixXd fields = carry_vertex_values(c.cut, target.mesh, x.fields);
-  const std::vector<std::int32_t> rings = carry_labels(c.cut, target.mesh, x.ring_labels);
+  std::vector<io::VertexAttribute> attributes = field_attributes(carry_fields(c.cut, target.mesh, x.fields));
   const std::vector<std::uint8_t> outside = carry_labels(c.cut, target.mesh, x.outside);
   TriMesh host_units = mesh;
   for (Vec3& v : host_units.positions) v = to_host(target, v);
-  io::VertexAttribute uv{"source_uv", 2, {}}, h{"source_mean_curvature", 1, {}}, g{"source_geodesic_distance", 1, {}},
-      ring{"source_ring", 1, {}}, out_attr{"outside", 1, {}}, guide{"guide", 1, {}};
+  io::VertexAttribute out_attr{"outside", 1, {}}, guide{"guide", 1, {}};
   std::vector<double> on_guide(mesh.positions.size(), 0.0);
   for (const auto& edge : c.cut.guide_edges) on_guide[edge[0]] = on_guide[edge[1]] = 1.0;
   for (int w = 0; w < mesh.num_vertices(); ++w) {
-    uv.values.insert(uv.values.end(), {fields(w, 0), fields(w, 1)});
-    h.values.push_back(fields(w, 2));
-    g.values.push_back(fields(w, 3));
-    ring.values.push_back(rings[w]);
     out_attr.values.push_back(outside[w]);
     guide.values.push_back(on_guide[w]);
   }
+  attributes.push_back(std::move(out_attr));
+  attributes.push_back(std::move(guide));
   c.obj = o.out_dir + "/target_cut.obj";
   c.ply = o.out_dir + "/target_cut.ply";
   c.sharp = o.out_dir + "/target_cut.sharp";
   c.rosy = o.out_dir + "/target_cut.rosy";
   io::write_obj(c.obj, host_units);
-  io::write_ply(c.ply, host_units, {uv, h, g, ring, out_attr, guide});
+  io::write_ply(c.ply, host_units, attributes);
   io::write_sharp(c.sharp, host_units, c.cut.guide_edges);
   io::write_rosy(c.rosy, host_units, c.field.directions);
   // The cut guides as OBJ lines through the cut mesh's own vertices (same numbering as target_cut.obj).
@@ -592,7 +574,7 @@ double mean_turning(const std::vector<std::vector<Vec3>>& lines, const std::vect
 tools::Json turning_summary(const EmbedPatches& e, const EmbedTransfer& x, const EmbedCut* c) {
   std::vector<std::vector<Vec3>> source, traced, cut;
   std::vector<bool> source_closed, traced_closed, cut_closed;
-  for (const PolylineInput& in : x.guides) {
+  for (const PolylineInput& in : x.source.polylines) {
     std::vector<Vec3> line;
     for (const SurfacePoint& q : in.points) line.push_back(position_on(e.source.mesh, q));
     source.push_back(std::move(line));
@@ -643,6 +625,36 @@ tools::Json cut_summary(const EmbedCut& c) {
   return j;
 }
 
+// Where the constraints came from, the fields transferred and where each singularity landed.
+tools::Json source_summary(const EmbedPatches& e, const EmbedTransfer& x) {
+  using tools::Json;
+  Json j = Json::object();
+  j.set("kind", e.entry ? "library_entry" : "mesh (synthetic constraints)");
+  if (e.entry) {
+    j.set("entry_id", std::to_string(e.entry->id));
+    j.set("entry_name", e.entry->name);
+    j.set("entry_class", e.entry->class_label);
+  }
+  Json fields = Json::array();
+  for (const NamedField& f : x.fields) fields.push_back(f.name);
+  j.set("fields", fields);
+  Json singularities = Json::array();
+  for (std::size_t i = 0; i < x.singularities.size(); ++i) {
+    Json s = Json::object();
+    s.set("index_quarters", x.source.singularities[i].index_quarters);
+    s.set("on_target", x.singularities[i].valid());
+    if (x.singularities[i].valid()) {
+      const Vec3 p = to_host(e.target, position_on(e.target.mesh, x.singularities[i]));
+      Json xyz = Json::array();
+      for (int k = 0; k < 3; ++k) xyz.push_back(p[k]);
+      s.set("position", xyz);
+    }
+    singularities.push_back(s);
+  }
+  j.set("singularities", singularities);
+  return j;
+}
+
 // 6. Summary.
 tools::Json embed_summary(const EmbedOptions& o, const EmbedPatches& e, const EmbedMap& m, const EmbedTransfer& x,
                           const EmbedFiles& f, double patch_seconds, std::chrono::steady_clock::time_point t_start) {
@@ -671,6 +683,8 @@ tools::Json embed_summary(const EmbedOptions& o, const EmbedPatches& e, const Em
   files.set("target_obj", f.ply.substr(0, f.ply.size() - 4) + ".obj");
   files.set("guides_obj", f.obj);
   files.set("source_guides_obj", f.src_obj);
+  if (!f.features_obj.empty()) files.set("features_obj", f.features_obj);
+  if (!f.singularities_csv.empty()) files.set("singularities_csv", f.singularities_csv);
   files.set("rosy", f.rosy);
   Json summary = Json::object();
   summary.set("source_vertices", e.source.mesh.num_vertices());
@@ -695,8 +709,13 @@ tools::Json embed_summary(const EmbedOptions& o, const EmbedPatches& e, const Em
   summary.set("level0_energy_unreflected", map.level0_energy_unreflected);
   summary.set("level0_energy_reflected", map.level0_energy_reflected);
   summary.set("flips", m.flips);
-  summary.set("guides_in", x.guides.size());
-  summary.set("guides_out", x.traced.size());
+  std::size_t features_out = 0;
+  for (const TracedPolyline& t : x.traced) features_out += static_cast<std::size_t>(t.input) >= x.source.guide_count;
+  summary.set("guides_in", x.source.guide_count);
+  summary.set("guides_out", x.traced.size() - features_out);
+  summary.set("features_in", x.source.polylines.size() - x.source.guide_count);
+  summary.set("features_out", features_out);
+  summary.set("source_constraints", source_summary(e, x));
   summary.set("guide_points_out", f.traced_points);
   summary.set("center_on_target", x.center_on_target.triangle >= 0);
   summary.set("timings", timings);
@@ -712,7 +731,7 @@ int run_embed(const Args& args) {
   const ArgParser p(args,
                     {"source", "target", "center-vertex", "radius", "source-center-vertex", "source-radius",
                      "face-range", "source-face-range", "seed", "samples", "iterations", "orientation", "landmarks",
-                     "up", "source-up", "target-up", "out", "snap"},
+                     "up", "source-up", "target-up", "out", "snap", "entry"},
                     {"json", "cut-guides", "quiet", "progress"});
   const auto t_start = std::chrono::steady_clock::now();
   const EmbedOptions o = embed_options(p);
@@ -721,7 +740,7 @@ int run_embed(const Args& args) {
   const EmbedMap m = map_embed_patches(p, o, e);
   const SurfaceMap& map = m.map;
   const MapView view{e.source.mesh, e.source.uv, e.target.mesh, e.target.uv, map.phi, map.source_to_target, map.target_to_source};
-  const EmbedTransfer x = transfer_constraints(view, e.source, e.target);
+  const EmbedTransfer x = transfer_constraints(view, e);
   const EmbedFiles f = write_embed_files(o.out_dir, e, x);
   std::optional<EmbedCut> cut;
   if (o.cut_guides) cut = cut_and_write(o, e, x);
@@ -752,8 +771,9 @@ int run_embed(const Args& args) {
                 e.source.mesh.num_vertices(), e.target.mesh.num_vertices(), map.overlap_ratio, map.iterations,
                 stop_reason_name(map.stop_reason), map.reflected ? "reflected" : "not reflected", m.flips,
                 m.map_seconds);
-    std::printf("guides: %zu in, %zu out (%zu points); files in %s\n", x.guides.size(), x.traced.size(),
-                f.traced_points, o.out_dir.c_str());
+    std::printf("constraints: %zu guides and features in, %zu out (%zu points), %zu singularities, %zu fields; files in %s\n",
+                x.source.polylines.size(), x.traced.size(), f.traced_points, x.singularities.size(), x.fields.size(),
+                o.out_dir.c_str());
     if (cut)
       std::printf("cut: %d vertices, %d triangles, %zu guide edges, smallest angle made %.1f degrees\n",
                   cut->cut.mesh.num_vertices(), cut->cut.mesh.num_triangles(), cut->cut.guide_edges.size(),

@@ -27,7 +27,7 @@ const char* kUsage =
     "                              [--sigma X] [--json] [--quiet | --progress]\n"
     "       macrocon library add --library LIB.mclb [--mesh FILE] [--face-range A:B] --center-vertex N\n"
     "                            --radius R --class C [--name S] [--author A] [--licence L] [--tag T]...\n"
-    "                            [--id ID] [--json]\n"
+    "                            [CONSTRAINTS] [--id ID] [--json]\n"
     "       macrocon library info --library LIB.mclb [--json]\n"
     "build: every --center-vertex starts an entry: a geodesic disk of radius R (mesh units) around\n"
     "  that vertex (file numbering) of the latest --mesh (and --face-range: file faces [A, B)); the\n"
@@ -40,13 +40,48 @@ const char* kUsage =
     "add: the entry's histogram is computed with the library's vocabulary (no rebuild), and the\n"
     "  file is rewritten atomically.\n"
     "info: counts, retrieval config and per-entry id/name/class/vertices/constraints/fields.\n"
+    "CONSTRAINTS of an entry, from files a DCC exports, in the mesh file's coordinates:\n"
+    "  --guides FILE.obj / --features FILE.obj (each repeatable): polylines as OBJ 'l' statements on or\n"
+    "    near the surface; each point snaps to the closest point of the patch. Points outside the\n"
+    "    patch are left out (a line leaving the disk is cut into its pieces on it), so one file can\n"
+    "    serve many entries; a point farther than --max-snap-distance D (mesh units, default 0.1 x\n"
+    "    the radius) from the mesh is an error.\n"
+    "  --singularities FILE.csv|FILE.ply: a table with columns x, y, z, index (index in quarter turns: +1 for a\n"
+    "    valence-3 vertex, -1 for valence 5); points outside the patch are left out.\n"
+    "  --fields FILE.ply|FILE.csv: per-vertex values, one row per mesh file vertex in file order (PLY:\n"
+    "    vertex properties; CSV: a header line of column names). Every column but x, y, z becomes\n"
+    "    a scalar field of its name, unless --field NAME[=COL,COL...][:KIND] (repeatable)\n"
+    "    picks them: KIND scalar (default), vector3 or tangent (3 columns), uv (2), label (whole\n"
+    "    numbers, not blended). Patch vertices on a host edge blend its two ends.\n"
+    "  In --spec, an entry takes the same as \"guides\": [..], \"features\": [..], \"singularities\",\n"
+    "  \"fields\", \"field\": [..] and \"max_snap_distance\". --json reports what each entry got\n"
+    "  (\"authoring\": kept and left-out points, snap distances, fields).\n"
     "build draws progress bars (patches, then retrieval) on stderr when it is a terminal; --quiet\n"
     "hides them, --progress draws them anyway.\n"
     MACROCON_HELP_NUMBERING;
 
 // Options that describe one entry, and options that hold for the whole command.
 bool is_entry_option(const std::string& key) {
-  return key == "radius" || key == "class" || key == "name" || key == "author" || key == "licence" || key == "tag";
+  return key == "radius" || key == "class" || key == "name" || key == "author" || key == "licence" || key == "tag" ||
+         key == "guides" || key == "features" || key == "singularities" || key == "fields" || key == "field" ||
+         key == "max-snap-distance";
+}
+
+// An authoring option of one entry (entry_authoring.h); `once` options given twice are refused.
+void set_authoring_option(AuthoringSpec& a, const std::string& key, const std::string& value) {
+  auto once = [&](std::string& slot) {
+    require(slot.empty(), MCON_ERROR_INVALID_ARGUMENT, "--" + key + " given twice for one entry");
+    slot = value;
+  };
+  if (key == "guides") a.guide_files.push_back(value);
+  if (key == "features") a.feature_files.push_back(value);
+  if (key == "singularities") once(a.singularity_file);
+  if (key == "fields") once(a.field_file);
+  if (key == "field") a.field_specs.push_back(value);
+  if (key == "max-snap-distance") {
+    a.max_snap_distance = parse_real(key, value);
+    require(a.max_snap_distance >= 0, MCON_ERROR_INVALID_ARGUMENT, "--max-snap-distance must be >= 0");
+  }
 }
 
 struct Parsed {
@@ -95,6 +130,7 @@ Parsed parse(const Args& args, const std::set<std::string>& globals) {
       if (key == "author") s.author = value;
       if (key == "licence") s.licence = value;
       if (key == "tag") s.tags.push_back(value);
+      set_authoring_option(s.authoring, key, value);
     } else {
       require(p.global.count(key) == 0, MCON_ERROR_INVALID_ARGUMENT, "option '" + a + "' given twice");
       p.global[key] = value;
@@ -107,6 +143,31 @@ void check_entry(const EntrySpec& s, std::size_t i) {
   const std::string what = "entry " + std::to_string(i) + " (center vertex " + std::to_string(s.center_vertex) + ")";
   require(s.radius > 0, MCON_ERROR_INVALID_ARGUMENT, what + ": needs --radius R > 0");
   require(!s.class_label.empty(), MCON_ERROR_INVALID_ARGUMENT, what + ": needs --class");
+}
+
+// A spec entry's constraint files ("guides"/"features": a path or a list; "singularities",
+// "fields": a path; "field": a list of NAME[=COL,...][:KIND]; "max_snap_distance": mesh units).
+template <typename Resolve>
+void read_spec_authoring(const tools::Json& e, const Resolve& resolve, AuthoringSpec& a) {
+  auto paths = [&](const char* key, std::vector<std::string>& out) {
+    const tools::Json* v = e.find(key);
+    if (!v) return;
+    if (v->is_string()) {
+      out.push_back(resolve(v->as_string()));
+      return;
+    }
+    for (std::size_t i = 0; i < v->size(); ++i) out.push_back(resolve((*v)[i].as_string()));
+  };
+  paths("guides", a.guide_files);
+  paths("features", a.feature_files);
+  if (const tools::Json* v = e.find("singularities")) a.singularity_file = resolve(v->as_string());
+  if (const tools::Json* v = e.find("fields")) a.field_file = resolve(v->as_string());
+  if (const tools::Json* v = e.find("field"))
+    for (std::size_t i = 0; i < v->size(); ++i) a.field_specs.push_back((*v)[i].as_string());
+  if (const tools::Json* v = e.find("max_snap_distance")) {
+    a.max_snap_distance = v->as_number();
+    require(a.max_snap_distance >= 0, MCON_ERROR_INVALID_ARGUMENT, "max_snap_distance must be >= 0");
+  }
 }
 
 std::vector<EntrySpec> read_spec(const std::string& path) {
@@ -139,6 +200,7 @@ std::vector<EntrySpec> read_spec(const std::string& path) {
     s.licence = text(e, "licence", "");
     if (const tools::Json* tags = e.find("tags"))
       for (std::size_t t = 0; t < tags->size(); ++t) s.tags.push_back((*tags)[t].as_string());
+    read_spec_authoring(e, resolve, s.authoring);
     out.push_back(s);
   }
   return out;
@@ -161,7 +223,9 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 // Cuts the entries' patches in parallel, a chunk at a time (each entry on its own; meshes are
 // loaded first, then only read), and adds them in the given order, so the file does not depend
 // on the thread count and at most one chunk of patches is held at once. A failing entry is named.
-void add_entries(ConstraintLibrary& lib, MeshCache& meshes, const std::vector<EntrySpec>& entries, ProgressBar& bar) {
+// Returns what each entry's constraint files gave (entry_authoring.h).
+std::vector<AuthoringReport> add_entries(ConstraintLibrary& lib, MeshCache& meshes, const std::vector<EntrySpec>& entries,
+                                         ProgressBar& bar) {
   auto entry_error = [&](std::size_t i, const Error& e) {
     const EntrySpec& s = entries[i];
     fail(e.status(), "entry " + std::to_string(i) + (s.name.empty() ? "" : " '" + printable_text(s.name) + "'") +
@@ -177,14 +241,20 @@ void add_entries(ConstraintLibrary& lib, MeshCache& meshes, const std::vector<En
   }
   constexpr std::size_t kChunk = 64;
   std::atomic<std::size_t> done{0};
+  std::vector<AuthoringReport> reports(entries.size());
   for (std::size_t first = 0; first < entries.size(); first += kChunk) {
     const std::size_t count = std::min(kChunk, entries.size() - first);
     std::vector<std::optional<Patch>> patches(count);
+    std::vector<MacroConstraint> contents(count);
     std::vector<std::optional<Error>> errors(count);
     for_each_block(count, 1, [&](std::size_t begin, std::size_t end, std::size_t) {
       for (std::size_t k = begin; k < end; ++k) {
         try {
-          patches[k] = cut_patch(meshes, entries[first + k]);
+          const EntrySpec& spec = entries[first + k];
+          patches[k] = cut_patch(meshes, spec);
+          contents[k] = entry_content(spec);
+          reports[first + k] = author_constraints(meshes.get(spec.mesh, spec.face_range), *patches[k], spec.authoring,
+                                                  contents[k]);
         } catch (const Error& e) {
           errors[k] = e;
         } catch (const std::bad_alloc&) {
@@ -196,12 +266,13 @@ void add_entries(ConstraintLibrary& lib, MeshCache& meshes, const std::vector<En
     for (std::size_t k = 0; k < count; ++k) {
       if (errors[k]) entry_error(first + k, *errors[k]);
       try {
-        add_library_entry(lib, *patches[k], entry_content(entries[first + k]));
+        add_library_entry(lib, *patches[k], std::move(contents[k]));
       } catch (const Error& e) {
         entry_error(first + k, e);
       }
     }
   }
+  return reports;
 }
 
 int run_build(const Args& args) {
@@ -235,10 +306,11 @@ int run_build(const Args& args) {
   RetrievalConfig start;
   start.descriptor = options.descriptor;
   ConstraintLibrary lib{start};
+  std::vector<AuthoringReport> reports;
   const bool bars = progress_wanted(p.quiet, p.progress);
   {
     ProgressBar bar("patches", bars);
-    add_entries(lib, meshes, p.entries, bar);
+    reports = add_entries(lib, meshes, p.entries, bar);
   }
   const double patch_seconds = seconds_since(t0);
   const auto t1 = std::chrono::steady_clock::now();
@@ -254,6 +326,14 @@ int run_build(const Args& args) {
     j.set("library", out);
     j.set("entry_seconds", patch_seconds);
     j.set("build_seconds", build_seconds);
+    tools::Json authoring = tools::Json::array();
+    for (std::size_t i = 0; i < reports.size(); ++i)
+      if (!p.entries[i].authoring.empty()) {
+        tools::Json r = reports[i].json();
+        r.set("entry", static_cast<unsigned long>(i));
+        authoring.push_back(r);
+      }
+    j.set("authoring", authoring);
     std::printf("%s\n", tools::write_json(j, false).c_str());
   } else {
     const RetrievalConfig& c = lib.retrieval();
@@ -276,7 +356,10 @@ int run_add(const Args& args) {
   require(id >= 0, MCON_ERROR_INVALID_ARGUMENT, "--id must be >= 0 (0 = assign)");
   content.id = static_cast<std::uint64_t>(id);
   MeshCache meshes;
-  const std::uint64_t assigned = add_library_entry(lib, cut_patch(meshes, p.entries[0]), std::move(content));
+  const EntrySpec& spec = p.entries[0];
+  const Patch patch = cut_patch(meshes, spec);
+  const AuthoringReport report = author_constraints(meshes.get(spec.mesh, spec.face_range), patch, spec.authoring, content);
+  const std::uint64_t assigned = add_library_entry(lib, patch, std::move(content));
   save_library_atomic(lib, path);
   if (p.json) {
     tools::Json j = tools::Json::object();
@@ -285,6 +368,7 @@ int run_add(const Args& args) {
     j.set("index", static_cast<unsigned long>(lib.size() - 1));
     j.set("entries", static_cast<unsigned long>(lib.size()));
     j.set("has_histogram", !lib.entries().back().histogram.empty());
+    j.set("authoring", report.json());
     std::printf("%s\n", tools::write_json(j, false).c_str());
   } else {
     std::printf("%s: added entry id %llu (index %zu)%s\n", printable_text(path).c_str(), static_cast<unsigned long long>(assigned),

@@ -10,6 +10,7 @@
 
 #include "command/args.h"
 #include "command/command.h"
+#include "entry_authoring.h"
 #include "library/constraint_library.h"
 #include "base/error.h"
 #include "patch/geodesic_disk_patch.h"
@@ -26,6 +27,7 @@ struct EntrySpec {
   double radius = 0;       // geodesic radius in mesh units
   std::string class_label, name, author, licence;
   std::vector<std::string> tags;
+  AuthoringSpec authoring;  // constraints from DCC files (guides, features, singularities, fields)
 };
 
 inline void parse_face_range(const std::string& s, long& begin, long& end) {

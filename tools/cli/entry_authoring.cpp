@@ -1,0 +1,289 @@
+// Constraints of a library entry from DCC files (entry_authoring.h). A point belongs to the patch
+// when the patch is as close to it as the whole host is: a point on the host surface outside the
+// disk is nearer to the host than to the disk's border, one inside is equally near both.
+#include "entry_authoring.h"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <optional>
+
+#include "base/error.h"
+#include "base/text.h"
+#include "mesh/closest_point_3d.h"
+
+namespace mcon::cli {
+namespace {
+
+// The patch in host units (file coordinates) and closest-point trees over it and the host.
+class PatchSnapper {
+ public:
+  PatchSnapper(const io::LoadedMesh& host, const Patch& patch, double max_distance)
+      : patch_host_units_(in_host_units(patch)),
+        host_tree_(host.mesh),
+        patch_tree_(patch_host_units_),
+        max_distance_(max_distance),
+        tolerance_(1e-3 * patch.radius) {}
+
+  // The patch point nearest to p, or nothing when p lies beside the host outside the patch.
+  // Throws when p is farther than the limit from the host surface.
+  std::optional<ClosestSurfacePoint> snap(const Vec3& p, const std::function<std::string()>& what) const {
+    const double to_host = std::sqrt(host_tree_.closest(p).squared_distance);
+    require(to_host <= max_distance_, MCON_ERROR_INVALID_ARGUMENT,
+            what() + " is " + number_text(to_host) + " from the mesh surface, more than the limit " +
+                number_text(max_distance_) + " (--max-snap-distance, mesh units): is it drawn on this mesh?");
+    ClosestSurfacePoint q = patch_tree_.closest(p);
+    if (std::sqrt(q.squared_distance) > to_host + tolerance_) return std::nullopt;
+    return q;
+  }
+
+ private:
+  static TriMesh in_host_units(const Patch& patch) {
+    TriMesh m = patch.mesh;
+    for (Vec3& v : m.positions) v = patch.center_position + patch.radius * v;
+    return m;
+  }
+
+  TriMesh patch_host_units_;  // before the trees, which keep a reference to it
+  TriangleTree3D host_tree_, patch_tree_;
+  double max_distance_, tolerance_;
+};
+
+// The pieces of a file polyline that lie on the patch: runs of consecutive points on it (a closed
+// line cut open where it leaves the patch, so a piece never jumps across the outside).
+void add_polyline_pieces(const PatchSnapper& snapper, const io::FilePolyline& line, const std::string& file,
+                         std::vector<ConstraintPolyline>& out, AuthoringReport& report, std::vector<double>& distances) {
+  const std::size_t n = line.points.size();
+  std::vector<std::optional<ClosestSurfacePoint>> snapped(n);
+  std::size_t first_outside = n;
+  for (std::size_t i = 0; i < n; ++i) {
+    snapped[i] = snapper.snap(line.points[i], [&] {
+      return "'" + file + "' line " + std::to_string(line.line) + ", point " + std::to_string(i);
+    });
+    if (!snapped[i]) {
+      ++report.points_outside;
+      if (first_outside == n) first_outside = i;
+    }
+  }
+  const bool whole_loop = line.closed && first_outside == n;
+  // A closed line starts after an outside point, so a piece crossing its first point stays whole.
+  const std::size_t start = line.closed && first_outside < n ? first_outside + 1 : 0;
+  std::size_t pieces_before = out.size();
+  ConstraintPolyline piece;
+  piece.closed = whole_loop;
+  Vec3 position_of_last = Vec3::Zero();
+  auto flush = [&] {
+    if (piece.points.size() >= (piece.closed ? 3u : 2u)) out.push_back(piece);
+    piece.points.clear();
+  };
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t i = (start + k) % n;
+    if (!snapped[i]) {
+      flush();
+      continue;
+    }
+    const ClosestSurfacePoint& q = *snapped[i];
+    // Two points snapped onto the same spot (a line doubling back at the border) add nothing.
+    if (!piece.points.empty() && (position_of_last - q.position).norm() <= 1e-12) continue;
+    piece.points.push_back(q.point);
+    position_of_last = q.position;
+    distances.push_back(std::sqrt(q.squared_distance));
+  }
+  flush();
+  if (out.size() == pieces_before) ++report.lines_outside;
+  for (std::size_t i = pieces_before; i < out.size(); ++i) report.points += out[i].points.size();
+}
+
+void add_singularities(const PatchSnapper& snapper, const std::string& file, MacroConstraint& content,
+                       AuthoringReport& report) {
+  const io::ValueTable table = io::read_value_table(file);
+  int col[4];
+  const char* names[4] = {"x", "y", "z", "index"};
+  for (int k = 0; k < 4; ++k) {
+    col[k] = table.column(names[k]);
+    require(col[k] >= 0, MCON_ERROR_INVALID_ARGUMENT,
+            "'" + file + "' has no column '" + names[k] + "' (singularities need x, y, z, index: index in quarter turns, "
+            "+1 for a valence-3 vertex, -1 for valence 5)");
+  }
+  for (std::size_t r = 0; r < table.rows(); ++r) {
+    const double index = table.at(r, col[3]);
+    require(index == std::round(index) && index != 0 && std::abs(index) <= 12, MCON_ERROR_INVALID_ARGUMENT,
+            "'" + file + "' row " + std::to_string(r) + ": index " + number_text(index) +
+                " is not a non-zero whole number of quarter turns (+1: valence 3, -1: valence 5)");
+    const Vec3 p(table.at(r, col[0]), table.at(r, col[1]), table.at(r, col[2]));
+    const auto q = snapper.snap(p, [&] { return "'" + file + "' row " + std::to_string(r); });
+    if (!q) {
+      ++report.singularities_outside;
+      continue;
+    }
+    content.singularities.push_back({q->point, static_cast<std::int32_t>(index)});
+  }
+  report.singularities = content.singularities.size();
+}
+
+FieldKind kind_of(const std::string& text, const std::string& spec) {
+  if (text == "scalar") return FieldKind::scalar;
+  if (text == "vector3") return FieldKind::vector3;
+  if (text == "tangent") return FieldKind::tangent_vector;
+  if (text == "uv") return FieldKind::uv;
+  if (text == "label") return FieldKind::integer_label;
+  fail(MCON_ERROR_INVALID_ARGUMENT,
+       "--field '" + spec + "': unknown kind '" + text + "' (scalar, vector3, tangent, uv or label)");
+}
+
+// Per patch vertex, the file vertex whose row it reads and the weight of the second one: a
+// patch vertex on a host edge blends its two ends; one that fills a hole takes the row of the
+// nearest linked vertex (breadth-first over patch edges), as no host data is under it.
+struct RowBlend {
+  int row0 = -1, row1 = -1;
+  double t = 0;
+};
+
+std::vector<RowBlend> patch_rows(const io::LoadedMesh& host, const Patch& patch) {
+  const int n = patch.mesh.num_vertices();
+  std::vector<RowBlend> rows(static_cast<std::size_t>(n));
+  std::deque<int> queue;
+  for (int w = 0; w < n; ++w) {
+    const HostPoint& h = patch.host_vertex[w];
+    if (h.v0 < 0) continue;
+    rows[w] = {host.mesh_to_file[h.v0], host.mesh_to_file[h.v1], h.t};
+    queue.push_back(w);
+  }
+  std::vector<std::vector<int>> neighbours(static_cast<std::size_t>(n));
+  for (const Tri& t : patch.mesh.triangles)
+    for (int k = 0; k < 3; ++k) neighbours[t[k]].push_back(t[(k + 1) % 3]), neighbours[t[(k + 1) % 3]].push_back(t[k]);
+  while (!queue.empty()) {
+    const int w = queue.front();
+    queue.pop_front();
+    for (int u : neighbours[w])
+      if (rows[u].row0 < 0) {
+        rows[u] = rows[w];
+        queue.push_back(u);
+      }
+  }
+  return rows;
+}
+
+VertexField field_from_table(const io::ValueTable& table, const FieldSpec& f, const std::vector<RowBlend>& rows,
+                             const std::string& file) {
+  VertexField field;
+  field.name = f.name;
+  field.kind = f.kind;
+  field.dimension = static_cast<std::uint32_t>(f.columns.size());
+  std::vector<int> cols;
+  for (const std::string& c : f.columns) {
+    cols.push_back(table.column(c));
+    require(cols.back() >= 0, MCON_ERROR_INVALID_ARGUMENT,
+            "field '" + f.name + "': '" + file + "' has no column '" + c + "'");
+  }
+  for (const RowBlend& r : rows)
+    for (int c : cols) {
+      const double a = table.at(static_cast<std::size_t>(r.row0), c), b = table.at(static_cast<std::size_t>(r.row1), c);
+      if (f.kind != FieldKind::integer_label) {
+        field.values.push_back(static_cast<float>((1 - r.t) * a + r.t * b));
+        continue;
+      }
+      const double label = r.t < 0.5 ? a : b;  // labels do not blend: the nearer end's
+      require(label == std::round(label) && std::abs(label) <= 2147483647.0, MCON_ERROR_INVALID_ARGUMENT,
+              "field '" + f.name + "' (label): '" + file + "' column '" + table.columns[c] + "' holds " +
+                  number_text(label) + ", not a 32-bit whole number");
+      field.labels.push_back(static_cast<std::int32_t>(label));
+    }
+  return field;
+}
+
+void add_fields(const io::LoadedMesh& host, const Patch& patch, const AuthoringSpec& spec, MacroConstraint& content,
+                AuthoringReport& report) {
+  const io::ValueTable table = io::read_value_table(spec.field_file);
+  require(table.rows() == host.file_to_mesh.size(), MCON_ERROR_INVALID_ARGUMENT,
+          "'" + spec.field_file + "' has " + std::to_string(table.rows()) + " rows but the mesh file has " +
+              std::to_string(host.file_to_mesh.size()) + " vertices: export one row per vertex, in the mesh's order");
+  std::vector<FieldSpec> fields;
+  for (const std::string& s : spec.field_specs) fields.push_back(parse_field_spec(s));
+  if (fields.empty())  // every column but the coordinates of a PLY
+    for (const std::string& c : table.columns)
+      if (c != "x" && c != "y" && c != "z") fields.push_back({c, {c}, FieldKind::scalar});
+  require(!fields.empty(), MCON_ERROR_INVALID_ARGUMENT,
+          "'" + spec.field_file + "' has no column besides x, y, z: export the attributes as vertex properties");
+  const std::vector<RowBlend> rows = patch_rows(host, patch);
+  for (const FieldSpec& f : fields) {
+    content.fields.push_back(field_from_table(table, f, rows, spec.field_file));
+    report.fields.push_back(f.name);
+  }
+}
+
+}  // namespace
+
+FieldSpec parse_field_spec(const std::string& text) {
+  FieldSpec f;
+  std::string rest = text;
+  const std::size_t colon = rest.rfind(':');
+  if (colon != std::string::npos) {
+    f.kind = kind_of(rest.substr(colon + 1), text);
+    rest = rest.substr(0, colon);
+  }
+  const std::size_t equals = rest.find('=');
+  f.name = rest.substr(0, equals);
+  if (equals == std::string::npos) {
+    f.columns = {f.name};
+  } else {
+    std::string cols = rest.substr(equals + 1);
+    for (std::size_t at = 0; at <= cols.size();) {
+      const std::size_t comma = std::min(cols.find(',', at), cols.size());
+      f.columns.push_back(cols.substr(at, comma - at));
+      at = comma + 1;
+    }
+  }
+  require(!f.name.empty(), MCON_ERROR_INVALID_ARGUMENT, "--field '" + text + "' has no name (NAME[=COL,...][:KIND])");
+  for (const std::string& c : f.columns)
+    require(!c.empty(), MCON_ERROR_INVALID_ARGUMENT, "--field '" + text + "' has an empty column name");
+  const std::size_t needed = f.kind == FieldKind::uv ? 2 : (f.kind == FieldKind::vector3 || f.kind == FieldKind::tangent_vector) ? 3 : 0;
+  require(needed == 0 || f.columns.size() == needed, MCON_ERROR_INVALID_ARGUMENT,
+          "--field '" + text + "': this kind takes " + std::to_string(needed) + " columns (NAME=C1,C2" +
+              (needed == 3 ? ",C3" : "") + ":KIND), got " + std::to_string(f.columns.size()));
+  return f;
+}
+
+tools::Json AuthoringReport::json() const {
+  tools::Json j = tools::Json::object();
+  j.set("guides", static_cast<unsigned long>(guides));
+  j.set("features", static_cast<unsigned long>(features));
+  j.set("points", static_cast<unsigned long>(points));
+  j.set("points_outside", static_cast<unsigned long>(points_outside));
+  j.set("lines_outside", static_cast<unsigned long>(lines_outside));
+  j.set("singularities", static_cast<unsigned long>(singularities));
+  j.set("singularities_outside", static_cast<unsigned long>(singularities_outside));
+  j.set("max_snap_distance", max_snap_distance);
+  j.set("median_snap_distance", median_snap_distance);
+  tools::Json names = tools::Json::array();
+  for (const std::string& f : fields) names.push_back(f);
+  j.set("fields", names);
+  return j;
+}
+
+AuthoringReport author_constraints(const io::LoadedMesh& host, const Patch& patch, const AuthoringSpec& spec,
+                                   MacroConstraint& content) {
+  AuthoringReport report;
+  if (spec.empty()) return report;
+  const double limit = spec.max_snap_distance >= 0 ? spec.max_snap_distance : 0.1 * patch.radius;
+  const PatchSnapper snapper(host, patch, limit);
+  std::vector<double> distances;
+  for (const auto& [files, lines] : {std::pair{&spec.guide_files, &content.guides}, {&spec.feature_files, &content.features}})
+    for (const std::string& file : *files)
+      for (const io::FilePolyline& line : io::read_obj_polylines(file))
+        add_polyline_pieces(snapper, line, file, *lines, report, distances);
+  report.guides = content.guides.size();
+  report.features = content.features.size();
+  if (!distances.empty()) {
+    std::sort(distances.begin(), distances.end());
+    report.max_snap_distance = distances.back();
+    report.median_snap_distance = distances[distances.size() / 2];
+  }
+  if (!spec.singularity_file.empty()) add_singularities(snapper, spec.singularity_file, content, report);
+  if (!spec.field_file.empty()) add_fields(host, patch, spec, content, report);
+  require(spec.field_specs.empty() || !spec.field_file.empty(), MCON_ERROR_INVALID_ARGUMENT,
+          "--field needs --fields FILE (the table its columns come from)");
+  return report;
+}
+
+}  // namespace mcon::cli
