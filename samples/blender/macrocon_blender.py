@@ -237,6 +237,159 @@ def run(obj, vertex, radius, library_path, choice=0, binding_dir=None):
     return summary
 
 
+# ---- authoring: a library entry from the artist's work -----------------------------------------
+
+NO_HOST = 0xFFFFFFFF
+
+
+def selected_edge_chains(mesh):
+    """The selected edges as vertex chains: open chains end where the selection branches or stops,
+    a loop of selected edges is one closed chain. Returns [(vertices, closed)]."""
+    neighbours = {}
+    for e in mesh.edges:
+        if e.select:
+            a, b = e.vertices
+            neighbours.setdefault(a, []).append(b)
+            neighbours.setdefault(b, []).append(a)
+    used, chains = set(), []
+
+    def walk(start, nxt):
+        chain, prev, cur = [start], start, nxt
+        used.add(frozenset((start, nxt)))
+        while True:
+            chain.append(cur)
+            if len(neighbours[cur]) != 2 or cur == start:
+                return chain
+            following = [w for w in neighbours[cur] if frozenset((cur, w)) not in used]
+            if not following:
+                return chain
+            prev, cur = cur, following[0]
+            used.add(frozenset((prev, cur)))
+
+    for v in sorted(neighbours):  # open chains first, from their ends or branch points
+        if len(neighbours[v]) != 2:
+            for w in neighbours[v]:
+                if frozenset((v, w)) not in used:
+                    chains.append((walk(v, w), False))
+    for v in sorted(neighbours):  # what is left are loops
+        for w in neighbours[v]:
+            if frozenset((v, w)) not in used:
+                chain = walk(v, w)
+                closed = chain[-1] == chain[0]
+                chains.append((chain[:-1] if closed else chain, closed))
+    return chains
+
+
+def patch_polylines(macrocon, region, chains):
+    """Host vertex chains as polylines of patch surface points; the parts outside the patch are
+    left out (a chain leaving the disk becomes its pieces on it). Returns (polylines, left_out)."""
+    v0, v1, t = region.host_vertices
+    tris = region.triangles
+    at_host = {int(h): w for w, h in enumerate(v0) if h != NO_HOST and v1[w] == h and t[w] == 0}
+    corner = {}
+    for f, tri in enumerate(tris):
+        for k, w in enumerate(tri):
+            corner.setdefault(int(w), (f, k))
+    polylines, left_out = [], 0
+    for chain, closed in chains:
+        inside = [h in at_host for h in chain]
+        left_out += inside.count(False)
+        if closed and not all(inside):  # start after a vertex outside, so no piece wraps around
+            first = inside.index(False) + 1
+            chain, inside, closed = chain[first:] + chain[:first], inside[first:] + inside[:first], False
+        pieces, piece = [], []
+        for h, ok in zip(chain, inside):
+            if ok:
+                piece.append(at_host[h])
+            elif piece:
+                pieces.append(piece)
+                piece = []
+        pieces.append(piece)
+        for piece in pieces:
+            if len(piece) < (3 if closed else 2):
+                continue
+            faces = np.array([corner[w][0] for w in piece], np.uint32)
+            bary = np.zeros((len(piece), 3))
+            bary[np.arange(len(piece)), [corner[w][1] for w in piece]] = 1
+            polylines.append(macrocon.Polyline(faces, bary, macrocon.PolylineKind.GUIDE, closed))
+    return polylines, left_out
+
+
+ATTRIBUTE_KINDS = {"FLOAT": ("value", 1), "INT": ("value", 1), "FLOAT2": ("vector", 2),
+                   "FLOAT_VECTOR": ("vector", 3)}
+
+
+def patch_field(macrocon, mesh, region, name):
+    """A point-domain attribute of the host as a field of the patch: vertices on a host edge blend
+    its two ends (INT attributes, labels, take the nearer end's), vertices filling a hole take a
+    neighbour's value."""
+    attr = mesh.attributes.get(name)
+    if attr is None or attr.domain != "POINT" or attr.data_type not in ATTRIBUTE_KINDS:
+        raise ValueError(f"'{name}' is not a point attribute of type {', '.join(ATTRIBUTE_KINDS)}")
+    key, width = ATTRIBUTE_KINDS[attr.data_type]
+    labels = attr.data_type == "INT"
+    host = np.empty(len(mesh.vertices) * width, np.int32 if labels else np.float32)
+    attr.data.foreach_get(key, host)
+    host = host.reshape(-1, width)
+    v0, v1, t = region.host_vertices
+    known = v0 != NO_HOST
+    a, b = np.where(known, v0, 0), np.where(known, v1, 0)
+    if labels:
+        values = np.where((t < 0.5)[:, None], host[a], host[b]).astype(np.int32)
+    else:
+        values = (1 - t)[:, None] * host[a] + t[:, None] * host[b]
+    tris = region.triangles
+    while not known.all():  # hole fills: spread values inward from the known ring
+        spread = False
+        for tri in tris:
+            k = known[tri]
+            if k.any() and not k.all():
+                src = tri[np.argmax(k)]
+                for w in tri[~k]:
+                    values[w], known[w], spread = values[src], True, True
+        if not spread:
+            raise ValueError("patch vertices not connected to any host vertex")
+    kind = (macrocon.FieldKind.INTEGER_LABEL if labels else
+            {1: macrocon.FieldKind.SCALAR, 2: macrocon.FieldKind.UV, 3: macrocon.FieldKind.VECTOR3}[width])
+    return macrocon.Field(name, kind, values)
+
+
+def nearest_vertex(obj, world_point):
+    """The vertex of obj nearest to a world-space point (the 3D cursor)."""
+    local = obj.matrix_world.inverted() @ world_point
+    n = len(obj.data.vertices)
+    co = np.empty(n * 3, np.float32)
+    obj.data.vertices.foreach_get("co", co)
+    return int(np.argmin(((co.reshape(n, 3) - np.array(local)) ** 2).sum(1)))
+
+
+def author(obj, vertex, radius, library_path, class_label, name="", field_names=(), author_name="",
+           licence="", binding_dir=None):
+    """Appends an entry to library_path (created if missing, saved atomically): the disk of `radius`
+    around `vertex`, the selected edges as guides, the named point attributes as fields."""
+    macrocon = import_macrocon(binding_dir)
+    positions, triangles = mesh_arrays(obj.data)
+    chains = selected_edge_chains(obj.data)
+    with macrocon.Context() as context:
+        library = (macrocon.Library.open(context, library_path) if os.path.exists(library_path)
+                   else macrocon.Library(context))
+        with library, macrocon.Mesh(context, positions, triangles) as host_mesh:
+            region = macrocon.Patch.extract(host_mesh, radius, center_vertex=vertex)
+            polylines, left_out = patch_polylines(macrocon, region, chains)
+            fields = [patch_field(macrocon, obj.data, region, f) for f in field_names]
+            entry_id = library.add_entry(region, name=name, class_label=class_label, author=author_name,
+                                         licence=licence, polylines=polylines, fields=fields)
+            if library.info.vocabulary_size == 0:  # a new library: make it queryable
+                library.build_retrieval(vocabulary_size=min(128, region.vertex_count))
+            library.save(library_path)
+            summary = {"library": library_path, "id": entry_id, "entries": len(library), "vertex": vertex,
+                       "radius": radius, "region_vertices": region.vertex_count, "guides": len(polylines),
+                       "guide_points": int(sum(len(p.faces) for p in polylines)),
+                       "selected_vertices_outside": left_out, "fields": list(field_names)}
+            region.close()
+    return summary
+
+
 # ---- Blender UI (add-on) -------------------------------------------------------------------------
 
 
@@ -301,6 +454,52 @@ class MESH_OT_macrocon_apply(bpy.types.Operator):
         return {"FINISHED"}
 
 
+class MESH_OT_macrocon_author(bpy.types.Operator):
+    """Append the region under the 3D cursor to a library: selected edges become guides, the named
+    point attributes fields"""
+
+    bl_idname = "mesh.macrocon_author"
+    bl_label = "Add region to constraint library"
+    bl_options = {"REGISTER"}
+
+    library_path: bpy.props.StringProperty(name="Library (.mclb)", subtype="FILE_PATH",
+                                           description="Appended to; created if missing")
+    radius: bpy.props.FloatProperty(name="Radius", default=0.5, min=1e-6, description="Geodesic radius (scene units)")
+    class_label: bpy.props.StringProperty(name="Class", default="")
+    entry_name: bpy.props.StringProperty(name="Name", default="")
+    fields: bpy.props.StringProperty(name="Fields", default="",
+                                     description="Point attributes to store, separated by commas")
+
+    @classmethod
+    def poll(cls, context):
+        return context.active_object is not None and context.active_object.type == "MESH"
+
+    def execute(self, context):
+        obj = context.active_object
+        if not self.class_label:
+            self.report({"ERROR"}, "Give the entry a class (e.g. nose)")
+            return {"CANCELLED"}
+        prefs = _prefs(context)
+        library = bpy.path.abspath(self.library_path or (prefs.library_path if prefs else ""))
+        if not library:
+            self.report({"ERROR"}, "Give a library file (.mclb) to append to")
+            return {"CANCELLED"}
+        if obj.mode == "EDIT":
+            bpy.ops.object.mode_set(mode="OBJECT")  # the edge selection is read from the object-mode mesh
+        vertex = nearest_vertex(obj, context.scene.cursor.location)
+        names = [f.strip() for f in self.fields.split(",") if f.strip()]
+        try:
+            summary = author(obj, vertex, self.radius, library, self.class_label, self.entry_name, names,
+                             binding_dir=bpy.path.abspath(prefs.binding_dir) if prefs and prefs.binding_dir else None)
+        except Exception as e:  # noqa: BLE001 - shown to the user (macrocon.Error carries the SDK message)
+            self.report({"ERROR"}, f"Macrocon: {e}")
+            return {"CANCELLED"}
+        context.scene["macrocon_last_author"] = json.dumps(summary)
+        self.report({"INFO"}, f"Added entry #{summary['id']} ({summary['guides']} guides, "
+                              f"{len(summary['fields'])} fields) to {library}")
+        return {"FINISHED"}
+
+
 class VIEW3D_PT_macrocon(bpy.types.Panel):
     bl_label = "Macrocon"
     bl_space_type = "VIEW_3D"
@@ -310,6 +509,7 @@ class VIEW3D_PT_macrocon(bpy.types.Panel):
     def draw(self, context):
         layout = self.layout
         layout.operator(MESH_OT_macrocon_apply.bl_idname)
+        layout.operator(MESH_OT_macrocon_author.bl_idname)
         last = context.scene.get("macrocon_last")
         if last:
             summary = json.loads(last)
@@ -318,7 +518,7 @@ class VIEW3D_PT_macrocon(bpy.types.Panel):
             layout.label(text=f"applied #{summary['chosen']}, overlap {summary['map']['overlap_ratio']:.2f}")
 
 
-_classes = (MacroconPreferences, MESH_OT_macrocon_apply, VIEW3D_PT_macrocon)
+_classes = (MacroconPreferences, MESH_OT_macrocon_apply, MESH_OT_macrocon_author, VIEW3D_PT_macrocon)
 
 
 def register():

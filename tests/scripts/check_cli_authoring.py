@@ -230,6 +230,22 @@ def check_embed(lib, nose_id):
         "--center-vertex", str(NOSE), "--radius", "0.45", "--out", out_dir + "_by_id", "--quiet")
 
 
+def check_spec():
+    """The same constraint keys in a --spec file (paths relative to it)."""
+    spec = {"mesh": BODY, "face_range": "0:%d" % BODY_FACES,
+            "entries": [{"center_vertex": NOSE, "radius": 0.5, "class": "nose", "name": "nose",
+                         "guides": "guides.obj", "features": ["features.obj"], "singularities": "singularities.csv",
+                         "fields": "fields.ply", "field": ["height", "side:label"], "max_snap_distance": 0.01}]}
+    path = os.path.join(WORK, "spec.json")
+    with open(path, "w") as f:
+        json.dump(spec, f)
+    out = json.loads(run("library", "build", "--out", os.path.join(WORK, "spec.mclb"), "--spec", path,
+                         "--vocabulary", "8", "--json").stdout)
+    r = out["authoring"][0]
+    if (r["guides"], r["features"], r["singularities"], r["fields"]) != (1, 1, 1, ["height", "side"]):
+        fail("--spec authoring gave %s" % r)
+
+
 def check_errors(lib):
     mesh = ["--mesh", BODY, "--face-range", "0:%d" % BODY_FACES]
     entry = ["--center-vertex", str(NOSE), "--radius", "0.5", "--class", "nose"]
@@ -267,6 +283,7 @@ def main():
     check_info(lib)
     nose_id = check_values(lib, positions, nose_guide)
     check_embed(lib, nose_id)
+    check_spec()
     check_errors(lib)
     print("PASS")
 

@@ -6,6 +6,7 @@
 #   samples.csharp_transfer       the C# binding under Mono (samples/csharp)
 #   samples.python_dask_library   a library built on a Dask cluster (samples/python), if Dask is found
 #   samples.blender_headless      the Blender script, registered only if blender is found
+#   samples.blender_author        the add-on's authoring operator, headless (same condition)
 #   samples.build_without_tests   the sample binaries are targets with -DMACROCON_BUILD_TESTS=OFF
 # The region is not one the library was built from (another radius), so the map is not trivial.
 set(MACROCON_SAMPLE_BODY ${PROJECT_SOURCE_DIR}/samples/data/makehuman-body.obj.gz)
@@ -114,6 +115,13 @@ if(NOT MACROCON_SANITIZE)
       COMMAND ${MACROCON_BLENDER} -b ${blend} --factory-startup --python-exit-code 1
               --python ${PROJECT_SOURCE_DIR}/samples/blender/check_blend.py -- ${blend_json})
     set_tests_properties(samples.blender_headless_output PROPERTIES TIMEOUT 300 FIXTURES_REQUIRED sample_blender)
+    # The authoring operator headless: selected edges and point attributes into a new library file.
+    add_test(NAME samples.blender_author
+      COMMAND ${MACROCON_BLENDER} -b --factory-startup --python-exit-code 1
+              --python ${PROJECT_SOURCE_DIR}/samples/blender/check_author.py --
+              ${MACROCON_SAMPLE_BODY} ${MACROCON_SAMPLE_OUT}/blender_author.mclb)
+    set_tests_properties(samples.blender_author PROPERTIES TIMEOUT 600
+      ENVIRONMENT "MACROCON_LIBRARY=$<TARGET_FILE:macrocon>;MACROCON_PYTHON_PATH=${PROJECT_SOURCE_DIR}/bindings/python")
   else()
     message(STATUS "samples.blender_headless NOT registered: blender was not found "
                    "(apt-get install blender, see tools/debian-packages-extra.txt)")
