@@ -24,7 +24,7 @@
 
 namespace macrocon {
 
-// A failed call: the C status and the library's message.
+/// A failed call: the C status and the library's message.
 class Error : public std::runtime_error {
  public:
   Error(mcon_status status, const std::string& message) : std::runtime_error(message), status_(status) {}
@@ -34,7 +34,7 @@ class Error : public std::runtime_error {
   mcon_status status_;
 };
 
-// "MCON_ERROR_NOT_A_DISK" etc.; "unknown status N" for a code this library does not know.
+/// "MCON_ERROR_NOT_A_DISK" etc.; "unknown status N" for a code this library does not know.
 inline std::string status_name(mcon_status status) {
   const char* name = nullptr;
   if (mcon_get_status_name(status, &name) != MCON_OK || name == nullptr)
@@ -42,7 +42,7 @@ inline std::string status_name(mcon_status status) {
   return name;
 }
 
-// Throws Error for anything but MCON_OK, with the calling thread's last error message.
+/// Throws Error for anything but MCON_OK, with the calling thread's last error message.
 inline void check(mcon_status status) {
   if (status == MCON_OK) return;
   const char* message = nullptr;
@@ -59,32 +59,32 @@ struct Version {
   }
 };
 
-// The version of the loaded library.
+/// The version of the loaded library.
 inline Version library_version() {
   Version v;
   check(mcon_get_version(&v.major, &v.minor, &v.patch));
   return v;
 }
 
-// The version of the header this code was compiled against.
+/// The version of the header this code was compiled against.
 inline constexpr Version header_version() {
   return Version{MCON_VERSION_MAJOR, MCON_VERSION_MINOR, MCON_VERSION_PATCH};
 }
 
-// True if the loaded library can be used with this header (same major version).
+/// True if the loaded library can be used with this header (same major version).
 inline bool is_compatible() { return library_version().major == header_version().major; }
 
-// Waits for the SDK's worker threads (mcon_shutdown): call after every object is destroyed.
+/// Waits for the SDK's worker threads (mcon_shutdown): call after every object is destroyed.
 inline void shutdown() { check(mcon_shutdown()); }
 
 namespace detail {
 
-// One counted reference to a C handle.
+/// One counted reference to a C handle.
 template <typename Handle, mcon_status (*Retain)(Handle), mcon_status (*Release)(Handle)>
 class Ref {
  public:
   Ref() noexcept = default;
-  // Takes over a reference the caller owns (e.g. fresh from a *_create call).
+  /// Takes over a reference the caller owns (e.g. fresh from a *_create call).
   explicit Ref(Handle handle) noexcept : handle_(handle) {}
   Ref(const Ref& other) : handle_(other.handle_) {
     if (handle_) check(Retain(handle_));
@@ -111,14 +111,14 @@ class Ref {
     if (handle_) Release(std::exchange(handle_, nullptr));
   }
   Handle get() const noexcept { return handle_; }
-  // Gives up ownership without releasing: the caller now owns the reference.
+  /// Gives up ownership without releasing: the caller now owns the reference.
   Handle detach() noexcept { return std::exchange(handle_, nullptr); }
 
  private:
   Handle handle_ = nullptr;
 };
 
-// Throws for a default-constructed or moved-from object instead of passing NULL to C.
+/// Throws for a default-constructed or moved-from object instead of passing NULL to C.
 template <typename Handle>
 Handle require(Handle handle, const char* what) {
   if (handle == nullptr)
@@ -128,14 +128,14 @@ Handle require(Handle handle, const char* what) {
 
 }  // namespace detail
 
-// The root object: thread pool and settings. Every Mesh and Patch keeps its context alive.
-// `Context ctx;` makes a working context with default options; `Context ctx(nullptr);` an empty one.
+/// The root object: thread pool and settings. Every Mesh and Patch keeps its context alive.
+/// `Context ctx;` makes a working context with default options; `Context ctx(nullptr);` an empty one.
 class Context {
  public:
   struct Options {
-    // 0 = all hardware threads. Results never depend on it.
+    /// 0 = all hardware threads. Results never depend on it.
     std::uint32_t max_threads = 0;
-    // Optional error log (any thread). user_data must outlive every object of this context.
+    /// Optional error log (any thread). user_data must outlive every object of this context.
     mcon_log_callback log_callback = nullptr;
     void* log_user_data = nullptr;
   };
@@ -148,7 +148,7 @@ class Context {
     ref_ = Ref(handle);
   }
   explicit Context(std::nullptr_t) noexcept {}
-  // Takes over a reference the caller owns.
+  /// Takes over a reference the caller owns.
   static Context adopt(mcon_context handle) noexcept {
     Context c(nullptr);
     c.ref_ = Ref(handle);
@@ -173,17 +173,17 @@ class Context {
   Ref ref_;
 };
 
-// A validated, manifold triangle mesh (the library keeps its own copy of the arrays).
+/// A validated, manifold triangle mesh (the library keeps its own copy of the arrays).
 class Mesh {
  public:
-  // Flat arrays: positions = x0 y0 z0 x1 ..., indices = a0 b0 c0 a1 ...; flags: mcon_mesh_flags
-  // (MCON_MESH_VALIDATE_LOCALLY).
+  /// Flat arrays: positions = x0 y0 z0 x1 ..., indices = a0 b0 c0 a1 ...; flags: mcon_mesh_flags
+  /// (MCON_MESH_VALIDATE_LOCALLY).
   template <typename Scalar>
   static Mesh from_arrays(const Context& context, const std::vector<Scalar>& positions,
                           const std::vector<std::uint32_t>& indices, std::uint32_t flags = 0) {
     return from_indices(context, positions, indices.data(), indices.size(), MCON_INDEX_FORMAT_UINT32, flags);
   }
-  // int32 (MCON_INDEX_FORMAT_INT32) or int64 (INT64) indices, read as they are.
+  /// int32 (MCON_INDEX_FORMAT_INT32) or int64 (INT64) indices, read as they are.
   template <typename Scalar>
   static Mesh from_arrays(const Context& context, const std::vector<Scalar>& positions,
                           const std::vector<std::int32_t>& indices, std::uint32_t flags = 0) {
@@ -194,7 +194,7 @@ class Mesh {
                           const std::vector<std::int64_t>& indices, std::uint32_t flags = 0) {
     return from_indices(context, positions, indices.data(), indices.size(), MCON_INDEX_FORMAT_INT64, flags);
   }
-  // Strided arrays: strides in bytes, 0 = tightly packed.
+  /// Strided arrays: strides in bytes, 0 = tightly packed.
   static Mesh from_arrays(const Context& context, const float* positions, std::size_t position_stride,
                           std::size_t vertex_count, const std::uint32_t* indices, std::size_t index_stride,
                           std::size_t triangle_count) {
@@ -213,9 +213,9 @@ class Mesh {
     return adopt(handle);
   }
 
-  // An empty mesh object (no handle).
+  /// An empty mesh object (no handle).
   Mesh() noexcept = default;
-  // Takes over a reference the caller owns.
+  /// Takes over a reference the caller owns.
   static Mesh adopt(mcon_mesh handle) noexcept {
     Mesh m;
     m.ref_ = detail::Ref<mcon_mesh, mcon_mesh_retain, mcon_mesh_release>(handle);
@@ -225,20 +225,20 @@ class Mesh {
   std::size_t vertex_count() const { return counts().first; }
   std::size_t triangle_count() const { return counts().second; }
 
-  // What creating the mesh changed to orient it consistently and outward.
+  /// What creating the mesh changed to orient it consistently and outward.
   mcon_mesh_orientation_info orientation() const {
     mcon_mesh_orientation_info i;
     check(mcon_mesh_orientation_info_init(&i));
     check(mcon_mesh_get_orientation(detail::require(get(), "Mesh"), &i));
     return i;
   }
-  // Per input triangle: 1 if its corners 1 and 2 were swapped.
+  /// Per input triangle: 1 if its corners 1 and 2 were swapped.
   std::vector<std::uint8_t> reoriented_triangles() const {
     std::vector<std::uint8_t> out(triangle_count());
     check(mcon_mesh_get_reoriented_triangles(detail::require(get(), "Mesh"), out.data(), out.size()));
     return out;
   }
-  // The oriented triangles, 3 indices each.
+  /// The oriented triangles, 3 indices each.
   std::vector<std::uint32_t> triangles() const {
     std::vector<std::uint32_t> out(3 * triangle_count());
     check(mcon_mesh_get_triangles(detail::require(get(), "Mesh"), out.data(), out.size()));
@@ -292,17 +292,17 @@ class Mesh {
   detail::Ref<mcon_mesh, mcon_mesh_retain, mcon_mesh_release> ref_;
 };
 
-// Options of Patch::extract; the C struct mcon_patch_options works too.
+/// Options of Patch::extract; the C struct mcon_patch_options works too.
 struct PatchOptions {
-  // A host vertex, or (MCON_INVALID_INDEX) a point in center_triangle at center_barycentric.
+  /// A host vertex, or (MCON_INVALID_INDEX) a point in center_triangle at center_barycentric.
   std::uint32_t center_vertex = MCON_INVALID_INDEX;
   std::uint32_t center_triangle = MCON_INVALID_INDEX;
   std::array<double, 3> center_barycentric{{1.0 / 3, 1.0 / 3, 1.0 / 3}};
-  double radius = 0;  // geodesic radius in host units, > 0
+  double radius = 0;  ///< geodesic radius in host units, > 0
   bool fill_holes = true;
   double snap_fraction = 0.2;
-  // Fraction in [0, 1]; return false to cancel (Error with MCON_ERROR_CANCELLED). Exceptions it
-  // throws cancel the extraction and are rethrown from Patch::extract.
+  /// Fraction in [0, 1]; return false to cancel (Error with MCON_ERROR_CANCELLED). Exceptions it
+  /// throws cancel the extraction and are rethrown from Patch::extract.
   std::function<bool(double)> progress;
 
   static PatchOptions at_vertex(std::uint32_t vertex, double radius) {
@@ -320,13 +320,13 @@ struct PatchOptions {
   }
 };
 
-// Where one patch vertex lies on the host: (1 - t) * host[v0] + t * host[v1].
+/// Where one patch vertex lies on the host: (1 - t) * host[v0] + t * host[v1].
 struct HostVertices {
   std::vector<std::uint32_t> v0, v1;
   std::vector<double> t;
 };
 
-// A geodesic disk of a host mesh, normalized to geodesic radius 1 (host = center + radius * p).
+/// A geodesic disk of a host mesh, normalized to geodesic radius 1 (host = center + radius * p).
 class Patch {
  public:
   static Patch extract(const Mesh& host, const PatchOptions& options) {
@@ -355,9 +355,9 @@ class Patch {
     return adopt(handle);
   }
 
-  // An empty patch object (no handle).
+  /// An empty patch object (no handle).
   Patch() noexcept = default;
-  // Takes over a reference the caller owns.
+  /// Takes over a reference the caller owns.
   static Patch adopt(mcon_patch handle) noexcept {
     Patch p;
     p.ref_ = detail::Ref<mcon_patch, mcon_patch_retain, mcon_patch_release>(handle);
@@ -373,19 +373,19 @@ class Patch {
   std::size_t vertex_count() const { return info().vertex_count; }
   std::size_t triangle_count() const { return info().triangle_count; }
 
-  // 3 doubles per vertex, normalized.
+  /// 3 doubles per vertex, normalized.
   std::vector<double> positions() const {
     std::vector<double> out(3 * vertex_count());
     check(mcon_patch_get_positions(handle(), out.data(), out.size()));
     return out;
   }
-  // 3 indices per triangle.
+  /// 3 indices per triangle.
   std::vector<std::uint32_t> triangles() const {
     std::vector<std::uint32_t> out(3 * triangle_count());
     check(mcon_patch_get_triangles(handle(), out.data(), out.size()));
     return out;
   }
-  // 2 doubles per vertex in the unit disk.
+  /// 2 doubles per vertex in the unit disk.
   std::vector<double> uv() const {
     std::vector<double> out(2 * vertex_count());
     check(mcon_patch_get_uv(handle(), out.data(), out.size()));
@@ -400,13 +400,13 @@ class Patch {
     check(mcon_patch_get_host_vertices(handle(), h.v0.data(), h.v1.data(), h.t.data(), n));
     return h;
   }
-  // The host triangle of each patch triangle (MCON_INVALID_INDEX for hole fillers).
+  /// The host triangle of each patch triangle (MCON_INVALID_INDEX for hole fillers).
   std::vector<std::uint32_t> host_triangles() const {
     std::vector<std::uint32_t> out(triangle_count());
     check(mcon_patch_get_host_triangles(handle(), out.data(), out.size()));
     return out;
   }
-  // vertex_count * descriptor_dimension(d) values, vertex-major.
+  /// vertex_count * descriptor_dimension(d) values, vertex-major.
   std::vector<double> compute_descriptors(mcon_descriptor descriptor) const {
     std::vector<double> out(vertex_count() * descriptor_dimension(descriptor));
     check(mcon_patch_compute_descriptors(handle(), descriptor, out.data(), out.size()));
@@ -423,8 +423,8 @@ class Patch {
   explicit operator bool() const noexcept { return ref_.get() != nullptr; }
 
  private:
-  // Carries a std::function through the C callback; an exception becomes "cancel" and is
-  // rethrown by extract() (no exception may cross the C boundary).
+  /// Carries a std::function through the C callback; an exception becomes "cancel" and is
+  /// rethrown by extract() (no exception may cross the C boundary).
   struct ProgressForward {
     const std::function<bool(double)>* function;
     std::exception_ptr exception;
@@ -444,33 +444,33 @@ class Patch {
   detail::Ref<mcon_patch, mcon_patch_retain, mcon_patch_release> ref_;
 };
 
-// ---- Libraries and retrieval ----
-// One polyline of an entry (points on the entry's patch triangles).
+/// ---- Libraries and retrieval ----
+/// One polyline of an entry (points on the entry's patch triangles).
 struct Polyline {
-  std::uint32_t kind = MCON_POLYLINE_GUIDE;  // mcon_polyline_kind
+  std::uint32_t kind = MCON_POLYLINE_GUIDE;  ///< mcon_polyline_kind
   bool closed = false;
   std::vector<mcon_surface_point> points;
 };
 
-// A named per-vertex field: `values` for real kinds, `labels` for MCON_FIELD_INTEGER_LABEL,
-// vertex_count * dimension of them (vertex-major).
+/// A named per-vertex field: `values` for real kinds, `labels` for MCON_FIELD_INTEGER_LABEL,
+/// vertex_count * dimension of them (vertex-major).
 struct VertexField {
   std::string name;
-  std::uint32_t kind = MCON_FIELD_SCALAR;  // mcon_field_kind
+  std::uint32_t kind = MCON_FIELD_SCALAR;  ///< mcon_field_kind
   std::uint32_t dimension = 1;
   std::vector<double> values;
   std::vector<std::int32_t> labels;
 };
 
-// What an entry carries besides its patch; also what Library::entry reads back.
+/// What an entry carries besides its patch; also what Library::entry reads back.
 struct EntryData {
-  std::uint64_t id = 0;  // 0 = assign
+  std::uint64_t id = 0;  ///< 0 = assign
   std::string name, class_label, author, licence;
   std::vector<std::string> tags;
-  std::vector<Polyline> polylines;  // read back: guides first, then features
+  std::vector<Polyline> polylines;  ///< read back: guides first, then features
   std::vector<mcon_singularity> singularities;
   std::vector<VertexField> fields;
-  // Caller-supplied descriptors (custom libraries): vertex_count * descriptor_dimension values.
+  /// Caller-supplied descriptors (custom libraries): vertex_count * descriptor_dimension values.
   std::vector<double> descriptors;
   std::uint32_t descriptor_dimension = 0;
 };
@@ -481,7 +481,7 @@ struct QueryHit {
   double distance = 0;
 };
 
-// A constraint library (mcon_library_*): copy = retain (the same library), move = steal.
+/// A constraint library (mcon_library_*): copy = retain (the same library), move = steal.
 class Library {
  public:
   static Library create(const Context& context) {
@@ -527,7 +527,7 @@ class Library {
     return n;
   }
 
-  // Adds the patch with `data`'s metadata, constraints and fields; returns the entry's id.
+  /// Adds the patch with `data`'s metadata, constraints and fields; returns the entry's id.
   std::uint64_t add(const Patch& patch, const EntryData& data) {
     mcon_library_entry_desc d;
     check(mcon_library_entry_desc_init(&d));
@@ -571,7 +571,7 @@ class Library {
   }
   void merge(const Library& other) { check(mcon_library_merge(handle(), other.handle())); }
 
-  // mcon_retrieval_options_init's defaults (CURV9, k = 128, the measured best rings).
+  /// mcon_retrieval_options_init's defaults (CURV9, k = 128, the measured best rings).
   static mcon_retrieval_options default_retrieval_options() {
     mcon_retrieval_options o;
     check(mcon_retrieval_options_init(&o));
@@ -587,7 +587,7 @@ class Library {
                                 count);
     });
   }
-  // For a custom library: the patch's own descriptors, vertex_count * dimension values.
+  /// For a custom library: the patch's own descriptors, vertex_count * dimension values.
   std::vector<QueryHit> query(const Patch& patch, const std::vector<double>& descriptors, std::uint32_t dimension,
                               std::size_t n) const {
     return run_query(n, [&](std::uint64_t* ids, std::uint32_t* indices, double* distances, std::size_t cap,
@@ -618,7 +618,7 @@ class Library {
     check(mcon_library_get_entry_retrieval(handle(), index, nullptr, 0, out.data(), out.size()));
     return out;
   }
-  // Everything but the geometry, read back (descriptors included).
+  /// Everything but the geometry, read back (descriptors included).
   EntryData entry(std::size_t index) const {
     const mcon_library_entry_info ei = entry_info(index);
     EntryData e;
@@ -695,9 +695,9 @@ class Library {
 
 // ---- Re-embedding maps and constraint transfer ----
 
-// A patch made from a normalized disk mesh (e.g. a constraint library entry): flat arrays
-// positions = x0 y0 z0 ..., indices = a0 b0 c0 ...; the center is a point of the mesh; host
-// coordinates are origin + scale * p. Throws Error (NOT_A_DISK, validation errors, ...).
+/// A patch made from a normalized disk mesh (e.g. a constraint library entry): flat arrays
+/// positions = x0 y0 z0 ..., indices = a0 b0 c0 ...; the center is a point of the mesh; host
+/// coordinates are origin + scale * p. Throws Error (NOT_A_DISK, validation errors, ...).
 inline Patch patch_from_arrays(const Context& context, const std::vector<double>& positions,
                                const std::vector<std::uint32_t>& indices, std::uint32_t center_triangle,
                                const std::array<double, 3>& center_barycentric = {{1.0 / 3, 1.0 / 3, 1.0 / 3}},
@@ -724,15 +724,15 @@ inline Patch patch_from_arrays(const Context& context, const std::vector<double>
   return Patch::adopt(handle);
 }
 
-// Points on a patch: triangle, 3 barycentric weights and the 3D position (host units) each.
+/// Points on a patch: triangle, 3 barycentric weights and the 3D position (host units) each.
 struct SurfacePoints {
-  std::vector<std::uint32_t> triangles;  // MCON_INVALID_INDEX: no image (outside the overlap)
-  std::vector<double> barycentric;       // 3 per point
-  std::vector<double> xyz;               // 3 per point
+  std::vector<std::uint32_t> triangles;  ///< MCON_INVALID_INDEX: no image (outside the overlap)
+  std::vector<double> barycentric;       ///< 3 per point
+  std::vector<double> xyz;               ///< 3 per point
   std::size_t size() const { return triangles.size(); }
 };
 
-// Polylines re-traced on a target patch (Map::transfer_polylines).
+/// Polylines re-traced on a target patch (Map::transfer_polylines).
 class PolylineSet {
  public:
   PolylineSet() noexcept = default;
@@ -743,11 +743,11 @@ class PolylineSet {
   }
   std::size_t polyline_count() const { return counts().first; }
   std::size_t point_count() const { return counts().second; }
-  // Per polyline: point count, closed flag, index of the input polyline it came from.
+  /// Per polyline: point count, closed flag, index of the input polyline it came from.
   std::vector<std::uint32_t> sizes() const { return polylines().sizes; }
   std::vector<std::uint8_t> closed() const { return polylines().closed; }
   std::vector<std::uint32_t> input_polylines() const { return polylines().input; }
-  // All points, polyline after polyline.
+  /// All points, polyline after polyline.
   SurfacePoints points() const {
     const std::size_t n = point_count();
     SurfacePoints s;
@@ -785,29 +785,29 @@ class PolylineSet {
   Ref ref_;
 };
 
-// Options of Map::compute; the C struct mcon_map_options works too. Members left empty keep
-// mcon_map_options_init's defaults.
+/// Options of Map::compute; the C struct mcon_map_options works too. Members left empty keep
+/// mcon_map_options_init's defaults.
 struct MapOptions {
   std::uint64_t seed = 0;
   std::optional<std::uint32_t> alignment_samples;
-  bool allow_reflection = true;  // restricts automatic only
+  bool allow_reflection = true;  ///< restricts automatic only
   std::optional<std::uint32_t> max_iterations;
-  // Fraction in [0, 1]; return false to cancel (Error with MCON_ERROR_CANCELLED). An exception it
-  // throws cancels the computation and is rethrown from Map::compute.
+  /// Fraction in [0, 1]; return false to cancel (Error with MCON_ERROR_CANCELLED). An exception it
+  /// throws cancels the computation and is rethrown from Map::compute.
   std::function<bool(double)> progress;
-  // Automatic, or force one orientation (a "flip" recomputes with the one opposite to info().reflected).
+  /// Automatic, or force one orientation (a "flip" recomputes with the one opposite to info().reflected).
   mcon_map_orientation orientation = MCON_MAP_ORIENTATION_AUTOMATIC;
-  // Optional guidance channels (see mcon_map_options): guidance_dimension doubles per vertex,
-  // packed, source_vertex_count rows in source_guidance and target_vertex_count in
-  // target_guidance; both empty: none.
+  /// Optional guidance channels (see mcon_map_options): guidance_dimension doubles per vertex,
+  /// packed, source_vertex_count rows in source_guidance and target_vertex_count in
+  /// target_guidance; both empty: none.
   std::uint32_t guidance_dimension = 0;
   std::vector<double> source_guidance, target_guidance;
   std::optional<double> guidance_weight;
-  // Gaussian width factor of the refinement pass after the finest level (0: no pass; (0, 1]).
+  /// Gaussian width factor of the refinement pass after the finest level (0: no pass; (0, 1]).
   std::optional<double> refine_sigma_factor;
 };
 
-// The re-embedding map Phi of a source patch onto a target patch, and transfers through it.
+/// The re-embedding map Phi of a source patch onto a target patch, and transfers through it.
 class Map {
  public:
   static Map compute(const Patch& source, const Patch& target, const MapOptions& options = {}) {
@@ -853,7 +853,7 @@ class Map {
     check(mcon_map_get_info(handle(), &i));
     return i;
   }
-  // The energy terms in evaluation order: name and final unweighted value.
+  /// The energy terms in evaluation order: name and final unweighted value.
   std::vector<std::pair<std::string, double>> energy_terms() const {
     std::uint32_t n = 0;
     check(mcon_map_get_energy_term_count(handle(), &n));
@@ -865,7 +865,7 @@ class Map {
     }
     return out;
   }
-  // Per vertex of the direction's domain: triangle of the other patch (-1 outside) and 3 weights.
+  /// Per vertex of the direction's domain: triangle of the other patch (-1 outside) and 3 weights.
   std::pair<std::vector<std::int32_t>, std::vector<double>> correspondences(mcon_map_direction direction) const {
     const mcon_map_info i = info();
     const std::size_t n = direction == MCON_MAP_SOURCE_TO_TARGET ? i.source_vertex_count : i.target_vertex_count;
@@ -875,13 +875,13 @@ class Map {
     check(mcon_map_get_correspondences(handle(), direction, out.first.data(), out.second.data(), n));
     return out;
   }
-  // 2 doubles per source vertex.
+  /// 2 doubles per source vertex.
   std::vector<double> phi() const {
     std::vector<double> out(2 * info().source_vertex_count);
     check(mcon_map_get_phi(handle(), out.data(), out.size()));
     return out;
   }
-  // 1 per target vertex outside the overlap.
+  /// 1 per target vertex outside the overlap.
   std::vector<std::uint8_t> outside_mask() const {
     std::vector<std::uint8_t> out(info().target_vertex_count);
     check(mcon_map_get_outside_mask(handle(), out.data(), out.size()));
@@ -899,7 +899,7 @@ class Map {
                                    s.barycentric.data(), s.xyz.data(), n));
     return s;
   }
-  // Points grouped by `sizes` into polylines; `closed` empty = all open.
+  /// Points grouped by `sizes` into polylines; `closed` empty = all open.
   PolylineSet transfer_polylines(const std::vector<std::uint32_t>& triangles, const std::vector<double>& barycentric,
                                  const std::vector<std::uint32_t>& sizes,
                                  const std::vector<std::uint8_t>& closed = {}) const {
@@ -910,7 +910,7 @@ class Map {
                                       closed.empty() ? nullptr : closed.data(), sizes.size(), &handle_out));
     return PolylineSet::adopt(handle_out);
   }
-  // source_vertex_count * dimension values -> target_vertex_count * dimension values.
+  /// source_vertex_count * dimension values -> target_vertex_count * dimension values.
   std::vector<double> transfer_field(mcon_field_kind kind, std::uint32_t dimension,
                                      const std::vector<double>& source_values) const {
     std::vector<double> out(info().target_vertex_count * dimension);
@@ -918,7 +918,7 @@ class Map {
                                   out.size()));
     return out;
   }
-  // The same in float32 (mcon_map_transfer_field_f32: computed in double, rounded once).
+  /// The same in float32 (mcon_map_transfer_field_f32: computed in double, rounded once).
   std::vector<float> transfer_field(mcon_field_kind kind, std::uint32_t dimension,
                                     const std::vector<float>& source_values) const {
     std::vector<float> out(info().target_vertex_count * dimension);
@@ -956,13 +956,13 @@ class Map {
   Ref ref_;
 };
 
-// A guide-aligned cross field: one unit direction (3 doubles) and a confidence per triangle.
+/// A guide-aligned cross field: one unit direction (3 doubles) and a confidence per triangle.
 struct CrossField {
   std::vector<double> directions;
   std::vector<double> confidence;
 };
 
-// `guides` may be an empty PolylineSet (the smoothest field); they must lie on `patch`.
+/// `guides` may be an empty PolylineSet (the smoothest field); they must lie on `patch`.
 inline CrossField compute_cross_field(const Patch& patch, const PolylineSet& guides, double alignment_weight = 10.0,
                                       bool align_to_boundary = false, double boundary_weight = 1.0) {
   mcon_cross_field_options o;
@@ -979,14 +979,14 @@ inline CrossField compute_cross_field(const Patch& patch, const PolylineSet& gui
   return f;
 }
 
-// QuadWild `.rosy` (a `.gz` path is refused: QuadWild reads it as zeros).
+/// QuadWild `.rosy` (a `.gz` path is refused: QuadWild reads it as zeros).
 inline void write_rosy(const Patch& patch, const std::vector<double>& directions, const std::string& path) {
   check(mcon_patch_write_rosy(detail::require(patch.get(), "Patch"), directions.data(), directions.size() / 3,
                               path.c_str()));
 }
 
-// Guides cut into a patch (mcon_patch_cut_guides): every guide a chain of edges. Positions in the
-// patch's host units. Options left empty keep mcon_guide_cut_options_init's defaults.
+/// Guides cut into a patch (mcon_patch_cut_guides): every guide a chain of edges. Positions in the
+/// patch's host units. Options left empty keep mcon_guide_cut_options_init's defaults.
 class CutMesh {
  public:
   CutMesh() noexcept = default;
@@ -1003,8 +1003,8 @@ class CutMesh {
     c.ref_ = Ref(out);
     return c;
   }
-  // The guides of several macro constraints cut into the whole host (mcon_mesh_cut_guides): each
-  // set lies on a patch extracted from `mesh`; the result covers every face of `mesh`.
+  /// The guides of several macro constraints cut into the whole host (mcon_mesh_cut_guides): each
+  /// set lies on a patch extracted from `mesh`; the result covers every face of `mesh`.
   static CutMesh cut_whole_host(const Mesh& mesh, const std::vector<PolylineSet>& guide_sets,
                                 std::optional<double> snap_fraction = {}, std::optional<double> simplify_fraction = {}) {
     mcon_guide_cut_options o;
@@ -1040,7 +1040,7 @@ class CutMesh {
     check(mcon_cut_mesh_get_guide_edges(handle(), out.data(), out.size()));
     return out;
   }
-  // One vertex chain per guide (a closed guide repeats its first vertex at its end).
+  /// One vertex chain per guide (a closed guide repeats its first vertex at its end).
   std::vector<std::vector<std::uint32_t>> guides() const {
     const mcon_cut_mesh_info i = info();
     std::vector<std::uint32_t> sizes(i.guide_count), all(i.guide_vertex_count);
@@ -1053,7 +1053,7 @@ class CutMesh {
     }
     return out;
   }
-  // Per chain: {guide set, polyline of that set}.
+  /// Per chain: {guide set, polyline of that set}.
   std::vector<std::array<std::uint32_t, 2>> guide_origins() const {
     const std::size_t n = info().guide_count;
     std::vector<std::uint32_t> sets(n), lines(n);
@@ -1062,8 +1062,8 @@ class CutMesh {
     for (std::size_t g = 0; g < n; ++g) out.push_back({sets[g], lines[g]});
     return out;
   }
-  // A per-vertex field of the patch (of the mesh for cut_whole_host; vertices x dimension) at the
-  // cut mesh's vertices.
+  /// A per-vertex field of the patch (of the mesh for cut_whole_host; vertices x dimension) at the
+  /// cut mesh's vertices.
   std::vector<double> carry_field(const std::vector<double>& patch_values, std::uint32_t dimension) const {
     std::vector<double> out(static_cast<std::size_t>(dimension) * info().vertex_count);
     check(mcon_cut_mesh_carry_field(handle(), dimension, patch_values.data(), patch_values.size(), out.data(),

@@ -1,0 +1,23 @@
+# Driven by docs.tests.cmake: DOXYGEN, DOXYFILE, OUT. Runs Doxygen and fails on any warning or
+# when the reference lacks the pages a user starts from.
+file(REMOVE_RECURSE ${OUT})
+file(MAKE_DIRECTORY ${OUT})
+execute_process(COMMAND ${DOXYGEN} ${DOXYFILE} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "doxygen failed (${rc}):\n${out}\n${err}")
+endif()
+file(READ ${OUT}/warnings.log warnings)
+if(NOT warnings STREQUAL "")
+  message(FATAL_ERROR "doxygen warnings:\n${warnings}")
+endif()
+foreach(page index.html macrocon_8h.html macrocon_8hpp.html)
+  if(NOT EXISTS ${OUT}/html/${page})
+    message(FATAL_ERROR "the API reference has no ${page}")
+  endif()
+endforeach()
+# The documentation made it in: the one-line doc of a function and of a wrapper class.
+file(READ ${OUT}/html/macrocon_8h.html header_page)
+if(NOT header_page MATCHES "most recent failed call on the calling thread")
+  message(FATAL_ERROR "macrocon_8h.html lacks the documentation of mcon_get_last_error")
+endif()
+message(STATUS "API reference: ${OUT}/html/index.html, no warnings")
