@@ -52,6 +52,13 @@ foreach(e IN LISTS entries)
   message(STATUS "query ${name}: first ${first}, next at ${d1}")
 endforeach()
 
+# --progress: the query's stage bar finishes on stderr; stdout keeps only the JSON.
+run_checked(OUTPUT_VARIABLE out ERROR_VARIABLE err COMMAND ${CLI} query
+  --library ${LIB} --mesh ${MESH} --face-range ${RANGE} --center-vertex 297 --radius 0.5 --json --progress)
+if(NOT err MATCHES "\rquery \\[#+\\] 100% [0-9.]+ s\n" OR out MATCHES "\r")
+  message(FATAL_ERROR "query --progress drew no finished bar on stderr (or wrote it to stdout):\n${err}")
+endif()
+
 # 3. info --json describes the library and every entry.
 run_checked(OUTPUT_VARIABLE out COMMAND ${CLI} library info --library ${LIB} --json)
 string(JSON n GET "${out}" entries)

@@ -6,6 +6,7 @@
 
 #include "base/text.h"
 #include "command/args.h"
+#include "command/progress_bar.h"
 #include "library_cli.h"
 #include "library/library_file.h"
 #include "library/library_retrieval.h"
@@ -15,10 +16,12 @@ namespace {
 
 const char* kUsage =
     "usage: macrocon query --library LIB.mclb --mesh FILE --center-vertex N --radius R [--top N]\n"
-    "                      [--face-range A:B] [--json]\n"
+    "                      [--face-range A:B] [--json] [--quiet | --progress]\n"
     "Cuts the geodesic disk of radius R (mesh units) around vertex N (file numbering; --face-range\n"
     "keeps file faces [A, B)) and prints the N (default 5) nearest library entries by L1 distance of\n"
     "their bag-of-features histograms, nearest first.\n"
+    "A progress bar over the stages (reading the library, cutting the patch, its histogram, the scan)\n"
+    "is drawn on stderr when it is a terminal; --quiet hides it, --progress draws it anyway.\n"
     MACROCON_HELP_NUMBERING;
 
 int run_query(const Args& args) {
@@ -26,7 +29,7 @@ int run_query(const Args& args) {
     std::fputs(kUsage, stdout);
     return 0;
   }
-  const ArgParser p(args, {"library", "mesh", "center-vertex", "radius", "top", "face-range"}, {"json"});
+  const ArgParser p(args, {"library", "mesh", "center-vertex", "radius", "top", "face-range"}, {"json", "quiet", "progress"});
   const std::string path = p.required("library");
   EntrySpec spec;
   spec.mesh = p.required("mesh");
@@ -36,15 +39,25 @@ int run_query(const Args& args) {
   const long top = p.integer("top", 5);
   require(top >= 1, MCON_ERROR_INVALID_ARGUMENT, "--top must be >= 1");
 
+  // A bar over the stages, not inside them (loading and the scan take no callback): reading and
+  // verifying the file grows with the library, so it gets the largest share.
+  ProgressBar bar("query", progress_wanted(p));
+  bar.update(0.0);
   const ConstraintLibrary lib = load_library_from_file(path);
+  bar.update(0.6);
   require(lib.retrieval().vocabulary_size > 0, MCON_ERROR_INVALID_ARGUMENT,
           "'" + path + "' has no vocabulary yet: run macrocon library build");
   MeshCache meshes;
   const Patch patch = cut_patch(meshes, spec);
+  bar.update(0.7);
   const std::vector<float> flat = flat_histograms(lib);
+  bar.update(0.8);
   const auto t0 = std::chrono::steady_clock::now();
   const std::vector<float> histogram = query_histogram(lib.retrieval(), patch);
+  bar.update(0.85);
   const std::vector<RetrievalHit> hits = query_top_n(lib.retrieval(), flat, histogram, static_cast<std::size_t>(top));
+  bar.update(1.0);
+  bar.finish();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   if (p.flag("json")) {
