@@ -247,6 +247,13 @@ namespace Macrocon
         }
 
         [StructLayout(LayoutKind.Sequential)]
+        public struct PatchRepairInfo
+        {
+            public uint struct_size; public uint zero_area_triangles_removed; public uint triangles_split;
+            public uint vertices_merged; public uint pinched_vertices_split;
+        }
+
+        [StructLayout(LayoutKind.Sequential)]
         public struct MeshOrientationInfo
         {
             public uint struct_size; public UIntPtr reoriented_triangles; public uint component_count;
@@ -274,6 +281,8 @@ namespace Macrocon
         [DllImport(Lib)] internal static extern Status mcon_patch_release(IntPtr patch);
         [DllImport(Lib)] internal static extern Status mcon_patch_info_init(ref PatchInfo info);
         [DllImport(Lib)] internal static extern Status mcon_patch_get_info(PatchHandle patch, ref PatchInfo info);
+        [DllImport(Lib)] internal static extern Status mcon_patch_repair_info_init(ref PatchRepairInfo info);
+        [DllImport(Lib)] internal static extern Status mcon_patch_get_repairs(PatchHandle patch, ref PatchRepairInfo info);
         [DllImport(Lib)] internal static extern Status mcon_patch_get_positions(PatchHandle patch, [Out] double[] xyz, UIntPtr capacity);
         [DllImport(Lib)] internal static extern Status mcon_patch_get_triangles(PatchHandle patch, [Out] uint[] indices, UIntPtr capacity);
         [DllImport(Lib)] internal static extern Status mcon_patch_get_uv(PatchHandle patch, [Out] double[] uv, UIntPtr capacity);
@@ -985,6 +994,18 @@ namespace Macrocon
         public void Dispose() => Handle.Dispose();
     }
 
+    /// <summary>What Patch.Extract(..., repair: true) changed (mcon_patch_repair_info).</summary>
+    public readonly struct PatchRepairs
+    {
+        public readonly int ZeroAreaTrianglesRemoved, TrianglesSplit, VerticesMerged, PinchedVerticesSplit;
+        public PatchRepairs(int zeroArea, int split, int merged, int pinched)
+        {
+            ZeroAreaTrianglesRemoved = zeroArea; TrianglesSplit = split; VerticesMerged = merged; PinchedVerticesSplit = pinched;
+        }
+        public override string ToString() =>
+            $"PatchRepairs(zero-area removed {ZeroAreaTrianglesRemoved}, split {TrianglesSplit}, merged {VerticesMerged}, pinched {PinchedVerticesSplit})";
+    }
+
     public sealed class Patch : IDisposable
     {
         internal readonly PatchHandle Handle;
@@ -1001,7 +1022,7 @@ namespace Macrocon
         /// <summary>Cuts the geodesic disk of `radius` around host vertex `centerVertex` (0-based).</summary>
         public static Patch Extract(Mesh mesh, uint centerVertex, double radius, bool fillHoles = true,
                                     Func<double, bool> progress = null)
-            => Cut(mesh, radius, centerVertex, Native.InvalidIndex, null, fillHoles, null, progress);
+            => Cut(mesh, radius, centerVertex, Native.InvalidIndex, null, fillHoles, null, progress, false);
 
         /// <summary>Cuts the geodesic disk of `radius` (host units) around a center on `mesh`, with the
         /// arguments of Python's Patch.extract: the center is host vertex `centerVertex` or the point
@@ -1010,12 +1031,14 @@ namespace Macrocon
         /// <c>Patch.Extract(mesh, radius: 0.3, centerTriangle: 12, barycentric: new[] { 0.2, 0.3, 0.5 })</c>.
         /// `fillHoles` fills enclosed pockets and inner holes; iso-line crossings closer to a vertex than
         /// `snapFraction` of the local edge length snap onto it (range [0, 0.45]; null keeps the
-        /// default 0.2); `progress(fraction)` returning false cancels (CancelledException).
+        /// default 0.2); `progress(fraction)` returning false cancels (CancelledException); `repair`
+        /// (on a mesh made with MeshFlags.ValidateLocally) removes zero-area triangles and splits
+        /// pinched vertices in the part of the host the patch reads, reported by `Repairs`.
         /// ArgumentException (before any native call) unless exactly one center is given and
         /// `barycentric`, if given, has 3 values and goes with `centerTriangle`.</summary>
         public static Patch Extract(Mesh mesh, double radius, uint? centerVertex = null, uint? centerTriangle = null,
                                     double[] barycentric = null, bool fillHoles = true, double? snapFraction = null,
-                                    Func<double, bool> progress = null)
+                                    Func<double, bool> progress = null, bool repair = false)
         {
             if (centerVertex.HasValue == centerTriangle.HasValue)
                 throw new ArgumentException("give exactly one of centerVertex and centerTriangle");
@@ -1024,11 +1047,11 @@ namespace Macrocon
             if (barycentric != null && barycentric.Length != 3)
                 throw new ArgumentException($"barycentric needs 3 values, got {barycentric.Length}");
             return Cut(mesh, radius, centerVertex ?? Native.InvalidIndex, centerTriangle ?? 0, barycentric, fillHoles,
-                       snapFraction, progress);
+                       snapFraction, progress, repair);
         }
 
         private static unsafe Patch Cut(Mesh mesh, double radius, uint centerVertex, uint centerTriangle, double[] barycentric,
-                                        bool fillHoles, double? snapFraction, Func<double, bool> progress)
+                                        bool fillHoles, double? snapFraction, Func<double, bool> progress, bool repair)
         {
             if (mesh == null) throw new ArgumentNullException(nameof(mesh));
             var options = new Native.PatchOptions();
@@ -1040,7 +1063,7 @@ namespace Macrocon
                 for (int k = 0; k < 3; ++k) options.center_barycentric[k] = barycentric == null ? 1.0 / 3 : barycentric[k];
             }
             options.radius = radius;
-            options.flags = fillHoles ? 1u : 0u;
+            options.flags = (fillHoles ? 1u : 0u) | (repair ? 2u : 0u);  // MCON_PATCH_FILL_HOLES, _REPAIR_REGION
             if (snapFraction.HasValue) options.snap_fraction = snapFraction.Value;
             using (var scope = new Native.ProgressScope(progress))
             {
@@ -1153,6 +1176,19 @@ namespace Macrocon
             if (snapFraction.HasValue) o.snap_fraction = snapFraction.Value;
             if (simplifyFraction.HasValue) o.simplify_fraction = simplifyFraction.Value;
             return o;
+        }
+
+        /// <summary>What `repair: true` changed in the part of the host the patch read (all 0 otherwise).</summary>
+        public PatchRepairs Repairs
+        {
+            get
+            {
+                var r = new Native.PatchRepairInfo();
+                Native.Check(Native.mcon_patch_repair_info_init(ref r));
+                Native.Check(Native.mcon_patch_get_repairs(Handle, ref r));
+                return new PatchRepairs((int)r.zero_area_triangles_removed, (int)r.triangles_split, (int)r.vertices_merged,
+                                        (int)r.pinched_vertices_split);
+            }
         }
 
         public int VertexCount => (int)info.vertex_count;

@@ -218,7 +218,11 @@ typedef struct mcon_patch_t* mcon_patch;
 
 typedef enum mcon_patch_flags {
   /** Fill enclosed pockets (with host faces) and inner holes (with new, flagged triangles). */
-  MCON_PATCH_FILL_HOLES = 1u << 0
+  MCON_PATCH_FILL_HOLES = 1u << 0,
+  /** On a host made with MCON_MESH_VALIDATE_LOCALLY: repair what the patch reads instead of refusing
+   * it (zero-area triangles removed without a hole, pinched vertices split per fan); what changed
+   * is in mcon_patch_get_repairs. Edges of more than two triangles are still refused. */
+  MCON_PATCH_REPAIR_REGION = 1u << 1
 } mcon_patch_flags;
 
 typedef struct mcon_patch_options {
@@ -272,6 +276,18 @@ typedef struct mcon_patch_info {
 
 MCON_API mcon_status mcon_patch_info_init(mcon_patch_info* info);
 MCON_API mcon_status mcon_patch_get_info(mcon_patch patch, mcon_patch_info* info);
+
+/** What MCON_PATCH_REPAIR_REGION changed in the part of the host the patch read (all 0 without it). */
+typedef struct mcon_patch_repair_info {
+  uint32_t struct_size;
+  uint32_t zero_area_triangles_removed; /**< zero-area triangles taken out (also those a merge emptied) */
+  uint32_t triangles_split;             /**< neighbours of a removed cap split at its corner */
+  uint32_t vertices_merged;             /**< coincident corners of a zero-area triangle made one vertex */
+  uint32_t pinched_vertices_split;      /**< host vertices of the patch that joined separate fans */
+} mcon_patch_repair_info;
+
+MCON_API mcon_status mcon_patch_repair_info_init(mcon_patch_repair_info* info);
+MCON_API mcon_status mcon_patch_get_repairs(mcon_patch patch, mcon_patch_repair_info* info);
 
 /** Normalized positions (host = center + radius * p), 3 doubles per vertex. capacity in doubles. */
 MCON_API mcon_status mcon_patch_get_positions(mcon_patch patch, double* out_xyz, size_t capacity);

@@ -300,6 +300,9 @@ struct PatchOptions {
   std::array<double, 3> center_barycentric{{1.0 / 3, 1.0 / 3, 1.0 / 3}};
   double radius = 0;  ///< geodesic radius in host units, > 0
   bool fill_holes = true;
+  /// MCON_PATCH_REPAIR_REGION: on a host made with MCON_MESH_VALIDATE_LOCALLY, repair what the patch
+  /// reads (zero-area triangles, pinched vertices) instead of refusing it; Patch::repairs says what.
+  bool repair_region = false;
   double snap_fraction = 0.2;
   /// Fraction in [0, 1]; return false to cancel (Error with MCON_ERROR_CANCELLED). Exceptions it
   /// throws cancel the extraction and are rethrown from Patch::extract.
@@ -336,7 +339,8 @@ class Patch {
     c.center_triangle = options.center_triangle;
     for (int i = 0; i < 3; ++i) c.center_barycentric[i] = options.center_barycentric[static_cast<std::size_t>(i)];
     c.radius = options.radius;
-    c.flags = options.fill_holes ? static_cast<std::uint32_t>(MCON_PATCH_FILL_HOLES) : 0u;
+    c.flags = (options.fill_holes ? static_cast<std::uint32_t>(MCON_PATCH_FILL_HOLES) : 0u) |
+              (options.repair_region ? static_cast<std::uint32_t>(MCON_PATCH_REPAIR_REGION) : 0u);
     c.snap_fraction = options.snap_fraction;
     ProgressForward forward{&options.progress, nullptr};
     if (options.progress) {
@@ -372,6 +376,13 @@ class Patch {
   }
   std::size_t vertex_count() const { return info().vertex_count; }
   std::size_t triangle_count() const { return info().triangle_count; }
+  /// What PatchOptions::repair_region changed (all 0 without it).
+  mcon_patch_repair_info repairs() const {
+    mcon_patch_repair_info r;
+    check(mcon_patch_repair_info_init(&r));
+    check(mcon_patch_get_repairs(handle(), &r));
+    return r;
+  }
 
   /// 3 doubles per vertex, normalized.
   std::vector<double> positions() const {

@@ -60,14 +60,17 @@ PatchOptions to_core_options(const mcon_patch_options& o, const TriMesh& host, c
   }
   require(std::isfinite(o.radius), MCON_ERROR_NON_FINITE, "radius is not finite (" + number(o.radius) + ")");
   require(o.radius > 0, MCON_ERROR_INVALID_ARGUMENT, "radius must be > 0 (got " + number(o.radius) + ")");
-  require((o.flags & ~static_cast<std::uint32_t>(MCON_PATCH_FILL_HOLES)) == 0, MCON_ERROR_INVALID_ARGUMENT,
-          "flags " + std::to_string(o.flags) + " has bits that are not mcon_patch_flags");
+  require((o.flags & ~static_cast<std::uint32_t>(MCON_PATCH_FILL_HOLES | MCON_PATCH_REPAIR_REGION)) == 0,
+          MCON_ERROR_INVALID_ARGUMENT,
+          "flags " + std::to_string(o.flags) +
+              " has bits that are not mcon_patch_flags (MCON_PATCH_FILL_HOLES = 1, MCON_PATCH_REPAIR_REGION = 2)");
   require(std::isfinite(o.snap_fraction), MCON_ERROR_NON_FINITE,
           "snap_fraction is not finite (" + number(o.snap_fraction) + ")");
   require(o.snap_fraction >= 0 && o.snap_fraction <= 0.45, MCON_ERROR_INVALID_ARGUMENT,
           "snap_fraction " + number(o.snap_fraction) + " is outside [0, 0.45]");
   po.radius = o.radius;
   po.fill_holes = (o.flags & MCON_PATCH_FILL_HOLES) != 0;
+  po.repair_region = (o.flags & MCON_PATCH_REPAIR_REGION) != 0;
   po.snap_fraction = o.snap_fraction;
   return po;
 }
@@ -101,6 +104,10 @@ mcon_status mcon_patch_extract(mcon_mesh host, const mcon_patch_options* options
     const auto o = read_options(options, sizeof(mcon_patch_options), "mcon_patch_options", default_patch_options());
     PatchOptions po = to_core_options(o, host->mesh, host->orientation);
     po.validate_region = host->validated_locally;
+    // A host validated whole has nothing to repair; asking for it there is a slip worth naming.
+    require(!po.repair_region || host->validated_locally, MCON_ERROR_INVALID_ARGUMENT,
+            "MCON_PATCH_REPAIR_REGION needs a host made with MCON_MESH_VALIDATE_LOCALLY (a host validated whole has "
+            "no defect to repair)");
     std::shared_ptr<const std::atomic<bool>> cancelled;
     po.progress = make_progress(o.progress, o.progress_user_data, &cancelled);
 
@@ -159,6 +166,22 @@ mcon_status mcon_patch_get_info(mcon_patch patch, mcon_patch_info* info) {
     v.host_inconsistent_components = patch->host_inconsistent_components;
     v.reoriented_triangles = patch->reoriented_triangles;
     write_info(info, kPatchInfoMinSize, "mcon_patch_info", v);
+  });
+}
+
+mcon_status mcon_patch_repair_info_init(mcon_patch_repair_info* info) {
+  return init_struct("mcon_patch_repair_info_init", info, "info", zeroed_struct<mcon_patch_repair_info>());
+}
+
+mcon_status mcon_patch_get_repairs(mcon_patch patch, mcon_patch_repair_info* info) {
+  return guard_object("mcon_patch_get_repairs", patch, "patch", [&] {
+    const PatchRepairs& r = patch->patch.repairs;
+    auto v = zeroed_struct<mcon_patch_repair_info>();
+    v.zero_area_triangles_removed = static_cast<std::uint32_t>(r.zero_area_triangles_removed);
+    v.triangles_split = static_cast<std::uint32_t>(r.triangles_split);
+    v.vertices_merged = static_cast<std::uint32_t>(r.vertices_merged);
+    v.pinched_vertices_split = static_cast<std::uint32_t>(r.pinched_vertices_split);
+    write_info(info, sizeof(mcon_patch_repair_info), "mcon_patch_repair_info", v);
   });
 }
 

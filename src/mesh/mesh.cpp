@@ -16,6 +16,15 @@
 #include "mesh/edge_key.h"
 
 namespace mcon {
+
+bool has_zero_area(const TriMesh& mesh, int t) {
+  const Tri& tri = mesh.triangles[t];
+  const Vec3 &a = mesh.positions[tri[0]], &b = mesh.positions[tri[1]], &c = mesh.positions[tri[2]];
+  const double longest = std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
+  // Relative test: exact collinearity gives round-off of order 1e-16 * longest^2.
+  return !((b - a).cross(c - a).norm() > 1e-12 * longest);
+}
+
 namespace {
 
 int find_root(std::vector<int>& parent, int i) {
@@ -109,14 +118,6 @@ void check_positions_and_indices(const TriMesh& mesh) {
       });
   }
   repeated.fail_if_any();
-}
-
-bool has_zero_area(const TriMesh& mesh, int t) {
-  const Tri& tri = mesh.triangles[t];
-  const Vec3 &a = mesh.positions[tri[0]], &b = mesh.positions[tri[1]], &c = mesh.positions[tri[2]];
-  const double longest = std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
-  // Relative test: exact collinearity gives round-off of order 1e-16 * longest^2.
-  return !((b - a).cross(c - a).norm() > 1e-12 * longest);
 }
 
 void check_triangle_areas(const TriMesh& mesh) {
@@ -262,13 +263,16 @@ void validate_mesh_elements(const TriMesh& mesh) { check_elements(mesh); }
 
 void validate_mesh_indices(const TriMesh& mesh) { check_indices(mesh); }
 
-void validate_mesh_part(const TriMesh& mesh, const std::vector<int>& part, const std::vector<int>& whole_vertices,
-                        const std::string& where) {
+PartDefects validate_mesh_part(const TriMesh& mesh, const std::vector<int>& part, const std::vector<int>& whole_vertices,
+                               const std::string& where, bool accept_repairable) {
+  PartDefects defects;
   Offenders zero_area(MCON_ERROR_DEGENERATE_TRIANGLE, "triangles have zero area", where);
   for (int t : part)
-    if (has_zero_area(mesh, t))
+    if (has_zero_area(mesh, t)) {
       zero_area.add(t, [&] { return "triangle " + std::to_string(t) + " has zero area"; });
-  zero_area.fail_if_any();
+      defects.zero_area_triangles.push_back(t);
+    }
+  if (!accept_repairable) zero_area.fail_if_any();
 
   // Edges: the undirected edge's triangles in the part, and each direction's count.
   std::unordered_map<std::uint64_t, std::array<int, 3>> edges;  // key -> {triangles, forward, first triangle}
@@ -314,11 +318,19 @@ void validate_mesh_part(const TriMesh& mesh, const std::vector<int>& part, const
       continue;
     }
     const int fans = fan_count(mesh, v, it->second, parent, link);
-    if (fans != 1) pinched.add(v, [&] { return pinched_text(v, fans); });
+    if (fans != 1) {
+      pinched.add(v, [&] { return pinched_text(v, fans); });
+      defects.pinched_vertices.push_back(v);
+    }
+  }
+  if (accept_repairable) {
+    isolated.fail_if_any();
+    return defects;
   }
   if (isolated.first() < pinched.first()) isolated.fail_if_any();  // in vertex order, as validate_mesh
   pinched.fail_if_any();
   isolated.fail_if_any();
+  return defects;
 }
 
 TriMesh mesh_from_arrays(const MeshArrays& in) {

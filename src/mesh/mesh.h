@@ -93,9 +93,17 @@ void validate_mesh_indices(const TriMesh& mesh);
 // and vertex, it applies validate_mesh's rules beyond validate_mesh_indices, with their statuses.
 // Messages name mesh indices, count the offenders as validate_mesh does and end with `where`
 // (e.g. "within 3 radii of the center").
-void validate_mesh_part(const TriMesh& mesh, const std::vector<int>& part, const std::vector<int>& whole_vertices,
-                        const std::string& where);
+// With `accept_repairable`, zero-area triangles and pinched vertices are not errors but returned
+// (for an opt-in repair that removes or splits them); the other rules still throw.
+struct PartDefects {
+  std::vector<int> zero_area_triangles;
+  std::vector<int> pinched_vertices;
+};
+PartDefects validate_mesh_part(const TriMesh& mesh, const std::vector<int>& part, const std::vector<int>& whole_vertices,
+                               const std::string& where, bool accept_repairable = false);
 
+// Zero area relative to the longest edge (|cross| <= 1e-12 * longest^2): what validate_mesh refuses.
+bool has_zero_area(const TriMesh& mesh, int t);
 double triangle_area(const TriMesh& mesh, int t);
 Vec3 triangle_normal(const TriMesh& mesh, int t);  // unit normal (zero for a degenerate triangle)
 double total_area(const TriMesh& mesh);

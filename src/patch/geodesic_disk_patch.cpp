@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numeric>
 #include <string>
 #include <unordered_map>
@@ -14,6 +15,7 @@
 #include "mesh/edge_key.h"
 #include "operators/heat_geodesics.h"
 #include "mesh/mesh_region.h"
+#include "patch/region_repair.h"
 #include "mesh/mesh_topology.h"
 
 namespace mcon {
@@ -49,46 +51,6 @@ void check_options(const TriMesh& host, const PatchOptions& o) {
           "center barycentric coordinates must be finite, >= 0 and sum to 1");
 }
 
-// Splits vertices whose triangles form several fans (possible where the cut pinches the disk
-// at a single vertex) into one vertex per fan. Returns, per new vertex, the old vertex.
-std::vector<int> split_nonmanifold_vertices(TriMesh& mesh) {
-  const int nv = mesh.num_vertices();
-  std::vector<std::vector<int>> corners(nv);  // (triangle * 3 + corner) per vertex
-  for (int t = 0; t < mesh.num_triangles(); ++t)
-    for (int k = 0; k < 3; ++k) corners[mesh.triangles[t][k]].push_back(3 * t + k);
-  std::vector<int> origin(nv);
-  std::iota(origin.begin(), origin.end(), 0);
-  std::vector<int> parent;
-  for (int v = 0; v < nv; ++v) {
-    const auto& cs = corners[v];
-    parent.resize(cs.size());
-    std::iota(parent.begin(), parent.end(), 0);
-    auto find = [&](int i) {
-      while (parent[i] != i) i = parent[i] = parent[parent[i]];
-      return i;
-    };
-    std::unordered_map<int, int> first_with;  // link vertex -> corner slot
-    for (int k = 0; k < static_cast<int>(cs.size()); ++k)
-      for (int w : mesh.triangles[cs[k] / 3]) {
-        if (w == v) continue;
-        auto [it, inserted] = first_with.emplace(w, k);
-        if (!inserted) parent[find(k)] = find(it->second);
-      }
-    std::unordered_map<int, int> fan_vertex;
-    for (int k = 0; k < static_cast<int>(cs.size()); ++k) {
-      const int root = find(k);
-      if (fan_vertex.empty()) fan_vertex[root] = v;
-      auto it = fan_vertex.find(root);
-      if (it == fan_vertex.end()) {
-        it = fan_vertex.emplace(root, mesh.num_vertices()).first;
-        mesh.positions.push_back(mesh.positions[v]);
-        origin.push_back(v);
-      }
-      mesh.triangles[cs[k] / 3][cs[k] % 3] = it->second;
-    }
-  }
-  return origin;
-}
 
 // 0. Where the center lies on the host.
 Vec3 center_point_on_host(const TriMesh& host, const PatchCenter& c) {
@@ -108,21 +70,78 @@ MeshRegion region_around_center(const TriMesh& host, const PatchCenter& c, const
 
 // Local validation (PatchOptions::validate_region): the region's triangles, and the fans of the
 // vertices whose every triangle is in it; defects farther out are never read.
-void validate_region(const TriMesh& host, const MeshRegion& region) {
+// With `repair`, zero-area triangles and pinched vertices are returned instead of refused.
+PartDefects validate_region(const TriMesh& host, const MeshRegion& region, bool repair) {
   std::vector<int> whole;
   for (std::size_t v = 0; v < region.vertex_to_host.size(); ++v)
     if (!region.vertex_on_cut[v]) whole.push_back(region.vertex_to_host[v]);
-  validate_mesh_part(host, region.triangle_to_host, whole,
-                     "within " + number_text(kRegionFactor) +
-                         " radii of the center, the part of the host this patch reads (defects farther out are "
-                         "accepted): fix the mesh there or pick another center or radius");
+  return validate_mesh_part(host, region.triangle_to_host, whole,
+                            "within " + number_text(kRegionFactor) +
+                                " radii of the center, the part of the host this patch reads (defects farther out "
+                                "are accepted): fix the mesh there, pick another center or radius" +
+                                (repair ? "" : ", or ask for the repair (MCON_PATCH_REPAIR_REGION)"),
+                            repair);
 }
 
-Eigen::VectorXd distance_from_center(const MeshRegion& region, const PatchCenter& c) {
+// The repair's region part: zero-area triangles out; the center must survive it.
+RegionRepairs repair_region(MeshRegion& region, const PatchCenter& c, const PartDefects& defects) {
+  RegionRepairs r;
+  if (!defects.zero_area_triangles.empty()) r = remove_zero_area_triangles(region);
+  if (!defects.pinched_vertices.empty()) separate_pinched_fans(region, c.vertex, c.triangle);
+  require(c.vertex < 0 || region.host_to_vertex[c.vertex] >= 0, MCON_ERROR_DEGENERATE_TRIANGLE,
+          "the center vertex " + std::to_string(c.vertex) + " lies only in zero-area triangles: pick another center");
+  require(c.vertex >= 0 || std::find(region.triangle_to_host.begin(), region.triangle_to_host.end(), c.triangle) !=
+                               region.triangle_to_host.end(),
+          MCON_ERROR_DEGENERATE_TRIANGLE,
+          "the center triangle " + std::to_string(c.triangle) + " has zero area: pick another center");
+  return r;
+}
+
+// Host vertices that joined separate fans and are vertices of the patch (stage 6 split them).
+int pinched_in_patch(const Patch& patch, const std::vector<int>& pinched) {
+  std::vector<int> sorted = pinched;
+  std::sort(sorted.begin(), sorted.end());
+  std::vector<int> found;
+  for (const HostPoint& h : patch.host_vertex)
+    if (h.v0 >= 0 && h.v0 == h.v1 && std::binary_search(sorted.begin(), sorted.end(), h.v0)) found.push_back(h.v0);
+  std::sort(found.begin(), found.end());
+  return static_cast<int>(std::unique(found.begin(), found.end()) - found.begin());
+}
+
+// A repair may have split the center's host triangle in two: the piece that holds the center
+// point best (largest smallest weight), with the point's weights in that piece.
+std::pair<int, Vec3> center_piece(const MeshRegion& region, const PatchCenter& c, const Vec3& center_point) {
+  const auto first = std::find(region.triangle_to_host.begin(), region.triangle_to_host.end(), c.triangle);
+  if (std::count(first, region.triangle_to_host.end(), c.triangle) == 1)  // not split: the host triangle itself
+    return {static_cast<int>(first - region.triangle_to_host.begin()), c.barycentric / c.barycentric.sum()};
+  int best = -1;
+  Vec3 best_weights = c.barycentric / c.barycentric.sum();
+  double best_min = -std::numeric_limits<double>::infinity();
+  for (int t = 0; t < region.mesh.num_triangles(); ++t) {
+    if (region.triangle_to_host[t] != c.triangle) continue;
+    const Tri& tri = region.mesh.triangles[t];
+    const Vec3 &a = region.mesh.positions[tri[0]], &b = region.mesh.positions[tri[1]], &d = region.mesh.positions[tri[2]];
+    // Weights of the point's projection onto the piece's plane.
+    const Vec3 n = (b - a).cross(d - a);
+    const double area2 = n.squaredNorm();
+    Vec3 w((b - center_point).cross(d - center_point).dot(n), (d - center_point).cross(a - center_point).dot(n), 0);
+    w /= area2;
+    w[2] = 1 - w[0] - w[1];
+    if (w.minCoeff() > best_min) {
+      best_min = w.minCoeff();
+      best = t;
+      best_weights = w;
+    }
+  }
+  const Vec3 clamped = best_weights.cwiseMax(0.0);
+  return {best, clamped / clamped.sum()};
+}
+
+Eigen::VectorXd distance_from_center(const MeshRegion& region, const PatchCenter& c, const Vec3& center_point) {
   HeatGeodesics heat(region.mesh);
   if (c.vertex >= 0) return heat.from_vertices({region.host_to_vertex[c.vertex]});
-  const auto it = std::find(region.triangle_to_host.begin(), region.triangle_to_host.end(), c.triangle);
-  return heat.from_point(static_cast<int>(it - region.triangle_to_host.begin()), c.barycentric / c.barycentric.sum());
+  const auto [piece, weights] = center_piece(region, c, center_point);
+  return heat.from_point(piece, weights);
 }
 
 // The region cut by the geodesic circle d = r: what stages 3 to 5 read.
@@ -554,10 +573,15 @@ Patch extract_geodesic_disk(const TriMesh& host, const PatchOptions& options) {
   const PatchCenter& c = options.center;
   const Vec3 center_point = center_point_on_host(host, c);
 
-  const MeshRegion region = region_around_center(host, c, center_point, r);  // 1.
-  if (options.validate_region) validate_region(host, region);
+  MeshRegion region = region_around_center(host, c, center_point, r);  // 1.
+  PartDefects defects;
+  RegionRepairs repairs;
+  const bool repair = options.validate_region && options.repair_region;
+  if (options.validate_region) defects = validate_region(host, region, repair);
+  if (repair && !(defects.zero_area_triangles.empty() && defects.pinched_vertices.empty()))
+    repairs = repair_region(region, c, defects);
   report(0.1);
-  Eigen::VectorXd d = distance_from_center(region, c);
+  Eigen::VectorXd d = distance_from_center(region, c, center_point);
   report(0.4);
   const IsoRegion iso = cut_at_radius(region, std::move(d), c, r, options.snap_fraction);  // 2.
   const std::vector<char> kept = disk_triangles(iso, c);                                  // 3.
@@ -580,6 +604,8 @@ Patch extract_geodesic_disk(const TriMesh& host, const PatchOptions& options) {
     center_in_triangle(patch, c.triangle, center_point);
   require(patch.center.triangle >= 0, MCON_ERROR_UNKNOWN, "the center was lost while cutting the patch");
 
+  patch.repairs = {repairs.zero_area_triangles_removed, repairs.triangles_split, repairs.vertices_merged,
+                   pinched_in_patch(patch, defects.pinched_vertices)};
   normalize_to_unit_radius(patch, center_point, r);  // 9.
   report(0.8);
   parametrize_and_measure(patch);

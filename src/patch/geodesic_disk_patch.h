@@ -26,6 +26,10 @@ struct PatchOptions {
   // The host's defects were deferred (DefectPolicy::defer, mesh/orientation.h): validate the part
   // of the host this extraction reads, and only that (validate_mesh_part).
   bool validate_region = false;
+  // With validate_region: repair instead of refusing what the patch reads (opt-in, reported in
+  // Patch::repairs): zero-area triangles are removed without a hole (patch/region_repair.h) and
+  // pinched vertices split into one vertex per fan. Other defects are still refused.
+  bool repair_region = false;
   // Progress in [0, 1]; returning false cancels (MCON_ERROR_CANCELLED).
   std::function<bool(double)> progress;
 };
@@ -36,6 +40,14 @@ struct HostPoint {
   int v0 = -1;
   int v1 = -1;
   double t = 0;
+};
+
+// What PatchOptions::repair_region changed in the part of the host the patch reads.
+struct PatchRepairs {
+  int zero_area_triangles_removed = 0;
+  int triangles_split = 0;     // neighbours of a removed cap, split at its corner
+  int vertices_merged = 0;     // coincident corners of a zero-area triangle
+  int pinched_vertices_split = 0;  // host vertices of the patch that joined separate fans
 };
 
 struct Patch {
@@ -49,6 +61,7 @@ struct Patch {
   SurfacePoint center{-1, Vec3(1, 0, 0)};  // the center as a point of the patch
   double max_geodesic_distance = 0; // measured on the normalized patch
   int param_flipped_triangles = 0;
+  PatchRepairs repairs;
   int filled_triangles() const;
 };
 

@@ -163,3 +163,113 @@ TEST(CapiLocalValidation, UnknownFlagsAreRefused) {
   create(ctx.get(), arrays_of(mcon::test_meshes::make_grid(4)), 1u << 7, MCON_ERROR_INVALID_ARGUMENT);
   EXPECT_NE(last_message().find("MCON_MESH_VALIDATE_LOCALLY"), std::string::npos) << last_message();
 }
+
+// MCON_PATCH_REPAIR_REGION: each defect kind inside the region is repaired and reported.
+namespace {
+
+// The clean grid with, each far from the others: a zero-area cap on the bottom boundary edge at
+// (5, 0)-(6, 0) (its third corner at the edge's midpoint), a zero-area triangle on the top boundary
+// edge at (5, 20)-(6, 20) whose third corner duplicates (5, 20), and a sheet glued at the interior
+// vertex (15, 10) (a pinched vertex).
+Arrays repairable_host() {
+  Arrays a = arrays_of(bumpy_grid());
+  auto add_vertex = [&](const double* p) {
+    a.positions.insert(a.positions.end(), {p[0], p[1], p[2]});
+    return static_cast<uint32_t>(a.vertex_count() - 1);
+  };
+  auto at = [&](int i, int j) { return a.positions.data() + 3 * grid_vertex(i, j); };
+  const uint32_t p = static_cast<uint32_t>(grid_vertex(5, 0)), q = static_cast<uint32_t>(grid_vertex(6, 0));
+  const double mid_xyz[3] = {0.5 * (at(5, 0)[0] + at(6, 0)[0]), 0.5 * (at(5, 0)[1] + at(6, 0)[1]),
+                             0.5 * (at(5, 0)[2] + at(6, 0)[2])};
+  const uint32_t mid = add_vertex(mid_xyz);
+  a.indices.insert(a.indices.end(), {q, p, mid});
+  const uint32_t r = static_cast<uint32_t>(grid_vertex(5, 20)), s = static_cast<uint32_t>(grid_vertex(6, 20));
+  const uint32_t twin = add_vertex(at(5, 20));
+  a.indices.insert(a.indices.end(), {s, r, twin});
+  const uint32_t pin = static_cast<uint32_t>(grid_vertex(15, 10));
+  const double u_xyz[3] = {at(15, 10)[0] + 0.3, at(15, 10)[1], at(15, 10)[2] + 0.6};
+  const double w_xyz[3] = {at(15, 10)[0], at(15, 10)[1] + 0.3, at(15, 10)[2] + 0.6};
+  const uint32_t u = add_vertex(u_xyz), w = add_vertex(w_xyz);
+  a.indices.insert(a.indices.end(), {pin, u, w});
+  return a;
+}
+
+mcon_status extract_repaired(mcon_mesh mesh, int vertex, double radius, PatchPtr& out, mcon_patch_repair_info& info) {
+  mcon_patch_options o;
+  EXPECT_EQ(mcon_patch_options_init(&o), MCON_OK);
+  o.center_vertex = static_cast<uint32_t>(vertex);
+  o.radius = radius;
+  o.flags |= MCON_PATCH_REPAIR_REGION;
+  mcon_patch p = nullptr;
+  const mcon_status s = mcon_patch_extract(mesh, &o, &p);
+  out.reset(p);
+  EXPECT_EQ(mcon_patch_repair_info_init(&info), MCON_OK);
+  if (s == MCON_OK) {
+    EXPECT_EQ(mcon_patch_get_repairs(p, &info), MCON_OK) << last_message();
+  }
+  return s;
+}
+
+}  // namespace
+
+TEST(CapiLocalValidation, RepairRemovesZeroAreaTrianglesAndSplitsPinchedVertices) {
+  ContextPtr ctx = make_context();
+  const MeshPtr host = create(ctx.get(), repairable_host(), MCON_MESH_VALIDATE_LOCALLY);
+  ASSERT_TRUE(host);
+  const MeshPtr clean = create(ctx.get(), arrays_of(bumpy_grid()), 0);
+  PatchPtr patch, reference;
+  mcon_patch_repair_info info;
+
+  // The cap: refused without the repair (which the message offers), removed with it, and the
+  // triangle across its long edge split at its corner.
+  EXPECT_EQ(extract(host.get(), grid_vertex(5, 1), 0.5, patch), MCON_ERROR_DEGENERATE_TRIANGLE);
+  EXPECT_NE(last_message().find("MCON_PATCH_REPAIR_REGION"), std::string::npos) << last_message();
+  ASSERT_EQ(extract_repaired(host.get(), grid_vertex(5, 1), 0.5, patch, info), MCON_OK) << last_message();
+  EXPECT_EQ(info.zero_area_triangles_removed, 1u);
+  EXPECT_EQ(info.triangles_split, 1u);
+  EXPECT_EQ(info.vertices_merged, 0u);
+  EXPECT_EQ(info.pinched_vertices_split, 0u);
+  ASSERT_EQ(extract(clean.get(), grid_vertex(5, 1), 0.5, reference), MCON_OK) << last_message();
+  // The split adds the cap's corner on the boundary: one vertex more than the clean patch.
+  EXPECT_EQ(positions_of(patch.get()).size(), positions_of(reference.get()).size() + 3);
+
+  // Coincident corners: merged, the triangle gone, and the patch the clean host's, bit for bit.
+  ASSERT_EQ(extract_repaired(host.get(), grid_vertex(5, 19), 0.5, patch, info), MCON_OK) << last_message();
+  EXPECT_EQ(info.zero_area_triangles_removed, 1u);
+  EXPECT_EQ(info.vertices_merged, 1u);
+  EXPECT_EQ(info.triangles_split, 0u);
+  ASSERT_EQ(extract(clean.get(), grid_vertex(5, 19), 0.5, reference), MCON_OK) << last_message();
+  EXPECT_EQ(positions_of(patch.get()), positions_of(reference.get()));
+
+  // The pinched vertex: the glued sheet's fan is not the patch's; the patch is the clean one.
+  EXPECT_EQ(extract(host.get(), grid_vertex(14, 10), 0.5, patch), MCON_ERROR_NON_MANIFOLD_VERTEX);
+  ASSERT_EQ(extract_repaired(host.get(), grid_vertex(14, 10), 0.5, patch, info), MCON_OK) << last_message();
+  EXPECT_EQ(info.pinched_vertices_split, 1u);
+  EXPECT_EQ(info.zero_area_triangles_removed, 0u);
+  ASSERT_EQ(extract(clean.get(), grid_vertex(14, 10), 0.5, reference), MCON_OK) << last_message();
+  EXPECT_EQ(positions_of(patch.get()), positions_of(reference.get()));
+
+  // Away from every defect the repair changes nothing and says so.
+  ASSERT_EQ(extract_repaired(host.get(), grid_vertex(10, 14), 0.4, patch, info), MCON_OK) << last_message();
+  EXPECT_EQ(info.zero_area_triangles_removed + info.triangles_split + info.vertices_merged + info.pinched_vertices_split,
+            0u);
+}
+
+TEST(CapiLocalValidation, RepairNeedsALocallyValidatedHostAndLeavesEdgesToTheCaller) {
+  ContextPtr ctx = make_context();
+  const MeshPtr clean = create(ctx.get(), arrays_of(bumpy_grid()), 0);
+  PatchPtr patch;
+  mcon_patch_repair_info info;
+  EXPECT_EQ(extract_repaired(clean.get(), grid_vertex(5, 5), 0.5, patch, info), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(last_message().find("MCON_MESH_VALIDATE_LOCALLY"), std::string::npos) << last_message();
+  // An edge of three triangles is not repaired: still refused, with the repair asked for.
+  const MeshPtr host = create(ctx.get(), defective_host(), MCON_MESH_VALIDATE_LOCALLY);
+  EXPECT_EQ(extract_repaired(host.get(), grid_vertex(18, 15), 0.3, patch, info), MCON_ERROR_NON_MANIFOLD_EDGE);
+  // The repair info of a patch that needed none, and of one made from arrays, is all zero.
+  ASSERT_EQ(extract(clean.get(), grid_vertex(5, 5), 0.5, patch), MCON_OK) << last_message();
+  ASSERT_EQ(mcon_patch_repair_info_init(&info), MCON_OK);
+  ASSERT_EQ(mcon_patch_get_repairs(patch.get(), &info), MCON_OK);
+  EXPECT_EQ(info.zero_area_triangles_removed + info.pinched_vertices_split, 0u);
+  EXPECT_EQ(mcon_patch_get_repairs(nullptr, &info), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_patch_get_repairs(patch.get(), nullptr), MCON_ERROR_NULL_POINTER);
+}

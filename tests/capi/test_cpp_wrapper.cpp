@@ -116,6 +116,22 @@ TEST(CppWrapper, MeshFlagsValidateLocally) {
   EXPECT_EQ(macrocon::Mesh::from_arrays(ctx, g.xyz, t32, MCON_MESH_VALIDATE_LOCALLY).vertex_count(), 37u);
 }
 
+TEST(CppWrapper, PatchOptionsRepairRegion) {
+  macrocon::Context ctx;
+  // A 7 x 7 grid with a zero-area cap on its bottom edge (2, 0)-(3, 0).
+  Flat g = flat(mcon::test_meshes::make_grid(7));
+  const std::uint32_t a = 2, b = 3, mid = 49;
+  for (int k = 0; k < 3; ++k) g.xyz.push_back(0.5 * (g.xyz[3 * a + k] + g.xyz[3 * b + k]));
+  g.tris.insert(g.tris.end(), {b, a, mid});
+  const macrocon::Mesh m = macrocon::Mesh::from_arrays(ctx, g.xyz, g.tris, MCON_MESH_VALIDATE_LOCALLY);
+  macrocon::PatchOptions o = macrocon::PatchOptions::at_vertex(9, 0.4);  // (2, 1), next to the cap
+  EXPECT_EQ(error_of([&] { macrocon::Patch::extract(m, o); }).status(), MCON_ERROR_DEGENERATE_TRIANGLE);
+  o.repair_region = true;
+  const macrocon::Patch p = macrocon::Patch::extract(m, o);
+  EXPECT_EQ(p.repairs().zero_area_triangles_removed, 1u);
+  EXPECT_EQ(p.repairs().triangles_split, 1u);
+}
+
 TEST(CppWrapper, ErrorsCarryStatusAndLibraryMessage) {
   macrocon::Context ctx;
   Flat g = flat(mcon::test_meshes::make_grid(4));

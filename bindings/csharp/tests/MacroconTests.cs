@@ -924,6 +924,34 @@ static class Tests
         }
     }
 
+    // Patch.Extract(..., repair: true): a zero-area cap on the bottom edge and a sheet glued at an
+    // interior vertex are repaired, and Repairs says so; without the flag both are refused.
+    static void TestRepair()
+    {
+        int n = 31; var g = Grid(n);
+        var p = new List<double>(g.P); var t = new List<uint>(g.T);
+        uint a = 5, b = 6, pin = (uint)(15 * n + 15);
+        p.AddRange(new[] { (g.P[3 * a] + g.P[3 * b]) / 2, 0.0, 0.0 });
+        p.AddRange(new[] { g.P[3 * pin] + 0.1, g.P[3 * pin + 1], 0.2, g.P[3 * pin], g.P[3 * pin + 1] + 0.1, 0.2 });
+        uint mid = (uint)(n * n), u = mid + 1, w = mid + 2;
+        t.AddRange(new[] { b, a, mid, pin, u, w });
+        using (var ctx = new Context())
+        using (var mesh = new Mesh(ctx, p.ToArray(), t.ToArray(), MeshFlags.ValidateLocally))
+        using (var clean = new Mesh(ctx, g.P, g.T))
+        {
+            var e = Expect<InvalidMeshException>(() => Patch.Extract(mesh, 0.15, centerVertex: (uint)(n + 5)));
+            Check(e.Status == Status.DegenerateTriangle && e.Message.Contains("MCON_PATCH_REPAIR_REGION"), e.Message);
+            using (var cap = Patch.Extract(mesh, 0.15, centerVertex: (uint)(n + 5), repair: true))
+                Check(cap.Repairs.ZeroAreaTrianglesRemoved == 1 && cap.Repairs.TrianglesSplit == 1, cap.Repairs.ToString());
+            using (var pinched = Patch.Extract(mesh, 0.15, centerVertex: pin - 1, repair: true))
+            using (var reference = Patch.Extract(clean, 0.15, centerVertex: pin - 1))
+            {
+                Check(pinched.Repairs.PinchedVerticesSplit == 1, pinched.Repairs.ToString());
+                Check(System.Linq.Enumerable.SequenceEqual(pinched.Positions(), reference.Positions()), "the clean host's patch");
+            }
+        }
+    }
+
     // Every struct handed to the C ABI against macrocon.h: its size and the offset of each field whose
     // snake_case name exists in C, measured by a C probe compiled with `cc` (MACROCON_INCLUDE_DIR).
     static void TestLayout()
@@ -935,6 +963,7 @@ static class Tests
         {
             { "mcon_context_options", typeof(Native.ContextOptions) }, { "mcon_mesh_desc", typeof(Native.MeshDesc) },
             { "mcon_patch_options", typeof(Native.PatchOptions) }, { "mcon_patch_info", typeof(Native.PatchInfo) },
+            { "mcon_patch_repair_info", typeof(Native.PatchRepairInfo) },
             { "mcon_polyline", typeof(Native.PolylineDesc) }, { "mcon_vertex_field", typeof(Native.VertexField) },
             { "mcon_library_entry_desc", typeof(Native.EntryDesc) }, { "mcon_retrieval_options", typeof(Native.RetrievalOptions) },
             { "mcon_patch_frame", typeof(Native.PatchFrame) }, { "mcon_map_options", typeof(Native.MapOptions) },
@@ -992,7 +1021,7 @@ static class Tests
     // No tuple deconstruction (`var (a, b) = ...`) anywhere here: mcs 6.8 silently drops a lambda that
     // contains one (which hid most of this runner's tests before) or crashes when a lambda captures
     // a deconstructed variable. The runner also checks how many tests ran.
-    const int ExpectedTests = 23;
+    const int ExpectedTests = 24;
 
     // The log callback receives the status and the message of the exception (mesh and patch
     // errors of the context); other contexts do not log; a disposed context drops late messages.
@@ -1322,6 +1351,7 @@ static class Tests
         Run("mesh from doubles and floats", Test1);
         Run("invalid mesh throws with status and message", Test2);
         Run("MeshFlags.ValidateLocally: defects away from the patch", TestValidateLocally);
+        Run("Patch.Extract(repair: true): zero-area triangles and pinched vertices repaired", TestRepair);
         Run("patch extraction", Test3);
         Run("patch extraction at a triangle + barycentric, Python's arguments", TestExtractAtTriangle);
         Run("progress cancels and callback exceptions propagate", Test4);

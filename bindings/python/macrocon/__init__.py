@@ -13,6 +13,7 @@ from .core import (
     Mesh,
     Patch,
     PatchInfo,
+    PatchRepairs,
     close_all,
     shutdown,
     version,
@@ -55,7 +56,7 @@ from .errors import (
 __version__ = "0.1.0"
 
 __all__ = [
-    "ABI_MAJOR", "library_version", "library_path", "starter_library", "version", "shutdown", "Context", "LogCallbackWarning", "Mesh", "Patch",
+    "ABI_MAJOR", "library_version", "library_path", "starter_library", "version", "shutdown", "Context", "LogCallbackWarning", "Mesh", "Patch", "PatchRepairs",
     "DESCRIPTOR_CURV9", "DESCRIPTOR_MEAN_CURVATURE", "Error", "InvalidArgumentError", "NullPointerError",
     "StructSizeError", "BufferTooSmallError", "CancelledError", "InvalidMeshError", "NotADiskError",
     "NumericalError", "InvalidLibraryError", "UnsupportedError", "NotFoundError", "status_name", "close_all",

@@ -125,6 +125,16 @@ class PatchInfo(Struct):
     ]
 
 
+class PatchRepairInfo(Struct):
+    _fields_ = [
+        ("struct_size", ctypes.c_uint32),
+        ("zero_area_triangles_removed", ctypes.c_uint32),
+        ("triangles_split", ctypes.c_uint32),
+        ("vertices_merged", ctypes.c_uint32),
+        ("pinched_vertices_split", ctypes.c_uint32),
+    ]
+
+
 class MeshOrientationInfo(Struct):
     _fields_ = [
         ("struct_size", ctypes.c_uint32),
@@ -424,6 +434,8 @@ _SIGNATURES = {
     "mcon_patch_release": [ctypes.c_void_p],
     "mcon_patch_info_init": [ctypes.POINTER(PatchInfo)],
     "mcon_patch_get_info": [ctypes.c_void_p, ctypes.POINTER(PatchInfo)],
+    "mcon_patch_repair_info_init": [ctypes.POINTER(PatchRepairInfo)],
+    "mcon_patch_get_repairs": [ctypes.c_void_p, ctypes.POINTER(PatchRepairInfo)],
     "mcon_patch_get_positions": [ctypes.c_void_p, c_double_p, c_size],
     "mcon_patch_get_triangles": [ctypes.c_void_p, c_uint32_p, c_size],
     "mcon_patch_get_uv": [ctypes.c_void_p, c_double_p, c_size],

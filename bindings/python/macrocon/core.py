@@ -407,6 +407,17 @@ class PatchInfo:
                    i.host_outward_turned_components, i.host_inconsistent_components, i.reoriented_triangles)
 
 
+@dataclass(frozen=True)
+class PatchRepairs:
+    """What ``Patch.extract(..., repair=True)`` changed in the part of the host the patch read
+    (mcon_patch_repair_info; all 0 without the repair)."""
+
+    zero_area_triangles_removed: int  # zero-area triangles taken out (also those a merge emptied)
+    triangles_split: int  # neighbours of a removed cap split at its corner
+    vertices_merged: int  # coincident corners of a zero-area triangle made one vertex
+    pinched_vertices_split: int  # host vertices of the patch that joined separate fans
+
+
 class Patch(_Handle):
     """A geodesic disk cut out of a host mesh, normalized to geodesic radius 1."""
 
@@ -428,6 +439,7 @@ class Patch(_Handle):
         fill_holes: bool = True,
         snap_fraction: Optional[float] = None,
         progress: Optional[ProgressCallback] = None,
+        repair: bool = False,
     ) -> "Patch":
         """Cuts the geodesic disk of ``radius`` (host units) around a center on ``mesh``.
 
@@ -437,8 +449,11 @@ class Patch(_Handle):
         pockets and inner holes (new triangles: ``info.filled_triangle_count``). Iso-line crossings
         closer to a vertex than ``snap_fraction`` of the local edge length snap onto it (range
         [0, 0.45]; None keeps the default 0.2). ``progress(fraction)`` is called as the cut
-        proceeds; returning False cancels (CancelledError). Raises NotADiskError if the region is
-        not a disk, InvalidArgumentError for an out-of-range center or radius.
+        proceeds; returning False cancels (CancelledError). ``repair`` (on a mesh made with
+        ``validate_locally=True``) removes zero-area triangles and splits pinched vertices in the part
+        of the host the patch reads instead of refusing them; ``Patch.repairs`` says what changed.
+        Raises NotADiskError if the region is not a disk, InvalidArgumentError for an out-of-range
+        center or radius, InvalidMeshError for a defect it does not repair.
         """
         require_type(mesh, Mesh, "mesh")
         options = _native.PatchOptions()
@@ -463,7 +478,7 @@ class Patch(_Handle):
             for i, b in enumerate(barycentric):
                 options.center_barycentric[i] = float(b)
         options.radius = float(radius)
-        options.flags = 1 if fill_holes else 0
+        options.flags = (1 if fill_holes else 0) | (2 if repair else 0)  # MCON_PATCH_FILL_HOLES, _REPAIR_REGION
         if snap_fraction is not None:
             options.snap_fraction = float(snap_fraction)
         cb = _Progress(progress)
@@ -574,6 +589,15 @@ class Patch(_Handle):
             check(_native.lib.mcon_patch_get_info(self.handle, ctypes.byref(info)))
             self._info = PatchInfo._from_c(info)
         return self._info
+
+    @property
+    def repairs(self) -> "PatchRepairs":
+        """A :class:`PatchRepairs`: what ``repair=True`` changed (all 0 otherwise)."""
+        r = _native.PatchRepairInfo()
+        check(_native.lib.mcon_patch_repair_info_init(ctypes.byref(r)))
+        check(_native.lib.mcon_patch_get_repairs(self.handle, ctypes.byref(r)))
+        return PatchRepairs(r.zero_area_triangles_removed, r.triangles_split, r.vertices_merged,
+                            r.pinched_vertices_split)
 
     @property
     def vertex_count(self) -> int:

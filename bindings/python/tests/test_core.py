@@ -239,3 +239,27 @@ def test_validate_locally_accepts_defects_away_from_the_patch(context):
         with pytest.raises(macrocon.InvalidMeshError) as err:
             mesh.cut_guides([])
         assert "reads the whole mesh" in err.value.message
+
+
+def test_repair_removes_zero_area_triangles_and_splits_pinched_vertices(context):
+    # The 21 x 21 grid with a zero-area cap on the bottom edge (5, 0)-(6, 0) and a sheet glued at
+    # the interior vertex (15, 10).
+    p, t = grid(21, size=4.0)
+    a, b = 5, 6
+    p = np.vstack([p, [(p[a] + p[b]) / 2], p[15 + 10 * 21] + [[0.3, 0, 0.6], [0, 0.3, 0.6]]])
+    n = len(p)
+    t = np.vstack([t, [[b, a, n - 3], [15 + 10 * 21, n - 2, n - 1]]]).astype(np.uint32)
+    clean_p, clean_t = grid(21, size=4.0)
+    with macrocon.Mesh(context, p, t, validate_locally=True) as mesh, macrocon.Mesh(context, clean_p, clean_t) as clean:
+        with pytest.raises(macrocon.InvalidMeshError) as err:
+            macrocon.Patch.extract(mesh, 0.5, center_vertex=5 + 21)
+        assert "MCON_PATCH_REPAIR_REGION" in err.value.message
+        with macrocon.Patch.extract(mesh, 0.5, center_vertex=5 + 21, repair=True) as cap:
+            assert cap.repairs == macrocon.PatchRepairs(1, 1, 0, 0)
+        with macrocon.Patch.extract(mesh, 0.5, center_vertex=14 + 10 * 21, repair=True) as pinched, \
+                macrocon.Patch.extract(clean, 0.5, center_vertex=14 + 10 * 21) as reference:
+            assert pinched.repairs.pinched_vertices_split == 1
+            assert np.array_equal(pinched.positions, reference.positions)
+            assert reference.repairs == macrocon.PatchRepairs(0, 0, 0, 0)
+        with pytest.raises(macrocon.InvalidArgumentError):
+            macrocon.Patch.extract(clean, 0.5, center_vertex=30, repair=True)  # nothing deferred to repair
