@@ -255,6 +255,42 @@ TEST(CapiLocalValidation, RepairRemovesZeroAreaTrianglesAndSplitsPinchedVertices
             0u);
 }
 
+// A center inside the host triangle that the cap's repair splits: the patch is centered at the same
+// host point as without the cap (the piece holding the point is found).
+TEST(CapiLocalValidation, RepairKeepsACenterInsideASplitTriangle) {
+  ContextPtr ctx = make_context();
+  const MeshPtr host = create(ctx.get(), repairable_host(), MCON_MESH_VALIDATE_LOCALLY);
+  const MeshPtr clean = create(ctx.get(), arrays_of(bumpy_grid()), 0);
+  int splits = 0;
+  for (int t : {grid_triangle(5, 0), grid_triangle(5, 0) + 1}) {
+    mcon_patch_options o;
+    ASSERT_EQ(mcon_patch_options_init(&o), MCON_OK);
+    o.center_triangle = static_cast<uint32_t>(t);
+    o.center_barycentric[0] = 0.5;
+    o.center_barycentric[1] = 0.3;
+    o.center_barycentric[2] = 0.2;
+    o.radius = 0.5;
+    mcon_patch reference = nullptr, repaired = nullptr;
+    ASSERT_EQ(mcon_patch_extract(clean.get(), &o, &reference), MCON_OK) << last_message();
+    o.flags |= MCON_PATCH_REPAIR_REGION;
+    ASSERT_EQ(mcon_patch_extract(host.get(), &o, &repaired), MCON_OK) << last_message();
+    mcon_patch_info a, b;
+    ASSERT_EQ(mcon_patch_info_init(&a), MCON_OK);
+    ASSERT_EQ(mcon_patch_info_init(&b), MCON_OK);
+    ASSERT_EQ(mcon_patch_get_info(reference, &a), MCON_OK);
+    ASSERT_EQ(mcon_patch_get_info(repaired, &b), MCON_OK);
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(a.center[k], b.center[k], 1e-12) << "triangle " << t;
+    EXPECT_NEAR(a.max_geodesic_distance, b.max_geodesic_distance, 0.05) << "triangle " << t;
+    mcon_patch_repair_info r;
+    ASSERT_EQ(mcon_patch_repair_info_init(&r), MCON_OK);
+    ASSERT_EQ(mcon_patch_get_repairs(repaired, &r), MCON_OK);
+    splits += static_cast<int>(r.triangles_split);
+    mcon_patch_release(reference);
+    mcon_patch_release(repaired);
+  }
+  EXPECT_EQ(splits, 2);  // the split triangle is one of the two: each run split it
+}
+
 TEST(CapiLocalValidation, RepairNeedsALocallyValidatedHostAndLeavesEdgesToTheCaller) {
   ContextPtr ctx = make_context();
   const MeshPtr clean = create(ctx.get(), arrays_of(bumpy_grid()), 0);
