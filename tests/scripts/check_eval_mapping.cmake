@@ -81,6 +81,16 @@ if(eps_clean STREQUAL eps_dense OR NOT described_dense STREQUAL "density 2")
   message(FATAL_ERROR "--density 2 did not change the target: ${eps_clean} vs ${eps_dense} (${described_dense})")
 endif()
 
+# --progress: the pair's log line above a bar that finishes; stdout stays the JSON alone.
+run_checked(WHAT "eval-mapping --progress" OUTPUT_VARIABLE progress_out ERROR_VARIABLE progress_err
+  COMMAND ${CLI} eval-mapping --shared ${SHARED} --classes nose --pairs 1 --method macrocon --samples 300
+          --eval-vertices 40 --json --progress)
+string(JSON progress_eps GET "${progress_out}" methods macrocon overall mean_eps100)
+if(NOT progress_eps STREQUAL eps_clean OR NOT progress_err MATCHES "\rpairs \\[#+\\] 100% [0-9.]+ s\n"
+   OR NOT progress_err MATCHES "pair 0")
+  message(FATAL_ERROR "eval-mapping --progress: eps ${progress_eps} (clean ${eps_clean}); stderr:\n${progress_err}")
+endif()
+
 # The oracle diagnostic (ground-truth guidance channels): asked for explicitly, it must run, keep
 # the map flip-free, and on the featureless forearm strip, where the descriptors leave the map
 # sliding (macrocon ~7.3 mean eps x 100 on these two pairs, oracle ~4.0), land clearly closer.

@@ -53,6 +53,16 @@ class ProgressBar {
     return [this, begin, end](double f) { return update(begin + (end - begin) * f); };
   }
 
+  // A log line (stderr) above the bar: the bar is cleared, the line printed, the bar redrawn, so
+  // commands that log per case keep both. Without a bar it is a plain line.
+  void println(const std::string& line) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    const bool bar = enabled_ && drawn_ && !finished_;
+    std::fprintf(stderr, "%s%s\n", bar ? "\r\033[K" : "", line.c_str());
+    if (bar) draw(std::chrono::steady_clock::now());
+    std::fflush(stderr);
+  }
+
   // Ends the line (once); later updates are ignored. An error message printed afterwards starts
   // on its own line.
   void finish() {

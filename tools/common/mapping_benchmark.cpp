@@ -708,9 +708,11 @@ std::vector<MappingPairResult> run_mapping_evaluation(const MappingEvalOptions& 
       uncut_pairs->push_back("pair " + std::to_string(i) + " " + slot.source_class + " -> " + slot.target_class + ": " +
                              e.what());
       if (options.log) options.log(uncut_pairs->back());
+      if (options.progress) options.progress(static_cast<double>(i + 1) / pairs);
       continue;
     }
     if (options.log) log_pair(options, i, slot, res);
+    if (options.progress) options.progress(static_cast<double>(i + 1) / pairs);
     results.push_back(std::move(res));
   }
   return results;
@@ -989,6 +991,7 @@ std::vector<CrossFamilyPairResult> run_cross_family_evaluation(const MappingEval
       if (!res.orientation_note.empty()) line << " (" << res.orientation_note << ")";
       options.log(line.str());
     }
+    if (options.progress) options.progress(static_cast<double>(i + 1) / static_cast<double>(slots.size()));
     results.push_back(std::move(res));
   }
   return results;

@@ -62,6 +62,7 @@ struct MappingEvalOptions {
   bool plain_newton = false;  // macrocon, -frame, -up: one factorization per Newton iteration (no reuse)
   double up_anchor = -1;  // macrocon-up's start anchor (PatchMapOptions::up_start_anchor); < 0: default
   std::function<void(const std::string&)> log;  // one line per pair (stderr in the CLI)
+  std::function<void(double)> progress;         // fraction of the pairs done, after each pair
 };
 
 struct MethodPairResult {

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "command/args.h"
+#include "command/progress_bar.h"
 #include "json/json_file.h"
 #include "common/mapping_benchmark.h"
 
@@ -13,7 +14,7 @@ namespace {
 const char* kUsage =
     "usage: macrocon-eval eval-mapping --shared DIR [--seed S] [--pairs N] [--classes a,b,...] [--method NAME]\n"
     "                             [--samples K] [--thesis-iterations I] [--eval-vertices V] [--threads T]\n"
-    "                             [--cross-family] [--noise F] [--density S] [--flip-winding] [--plain-newton] [--cycle-signal] [--json] [--quiet]\n"
+    "                             [--cross-family] [--noise F] [--density S] [--flip-winding] [--plain-newton] [--cycle-signal] [--json] [--quiet | --progress]\n"
     "Maps patches of the same class between two random people (MakeHuman) or faces (ICT), the target\n"
     "re-tessellated by seeded random decimation, mirrored pairs included (a right eye onto a left\n"
     "eye), and measures eps = geodesic distance on the target between the mapped and the true point /\n"
@@ -42,7 +43,8 @@ const char* kUsage =
     "on 2 cores, most of it the thesis baseline; --pairs 20 adds the 7 ICT slots (eye, ear twice;\n"
     "nose, mouth, face), --pairs > 20 cycles with new people. --samples: rigid candidates (default 10000);\n"
     "--eval-vertices: evaluated source vertices per pair (default 300, deterministic stride);\n"
-    "--threads: TBB threads (default 2). Per-pair lines go to stderr unless --quiet.\n"
+    "--threads: TBB threads (default 2). Per-pair lines go to stderr unless --quiet, above a progress bar\n"
+    "when stderr is a terminal (--progress draws it anyway).\n"
     "--plain-newton: macrocon, macrocon-frame and macrocon-up factorize the Hessian at every Newton\n"
     "iteration instead of reusing factorizations (NewtonOptions::reuse_factorization), for side-by-side runs.\n"
     "--cycle-signal: also maps macrocon, macrocon-frame and macrocon-up pairs backwards (same options) and\n"
@@ -92,7 +94,7 @@ int run_eval_mapping(const Args& args) {
   const ArgParser p(args,
                     {"shared", "seed", "pairs", "classes", "method", "samples", "thesis-iterations", "eval-vertices",
                      "threads", "landmarks", "noise", "density", "frame-anchor", "frame-anchor-decay", "up-anchor"},
-                    {"json", "quiet", "cross-family", "flip-winding", "plain-newton", "cycle-signal"});
+                    {"json", "quiet", "progress", "cross-family", "flip-winding", "plain-newton", "cycle-signal"});
   tools::MappingEvalOptions o;
   o.shared_dir = p.required("shared");
   const long seed = p.integer("seed", 1);
@@ -134,17 +136,27 @@ int run_eval_mapping(const Args& args) {
   o.perturbation.density = p.number("density", 1.0);
   o.perturbation.flip_winding = p.flag("flip-winding");
   tools::check_perturbation(o.perturbation);
-  if (!p.flag("quiet")) o.log = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
+  // One log line per pair above a progress bar (stderr, a terminal or --progress); --quiet: neither.
+  ProgressBar bar("pairs", progress_wanted(p.flag("quiet"), p.flag("progress")));
+  if (!p.flag("quiet")) o.log = [&bar](const std::string& line) { bar.println(line); };
+  o.progress = [&bar](double f) { bar.update(f); };
 
   std::vector<std::string> uncut;
+  bar.update(0.0);
   const std::vector<tools::MappingPairResult> pairs = tools::run_mapping_evaluation(o, &uncut);
+  bar.finish();
   tools::Json json = tools::mapping_evaluation_json(pairs, o.methods);
   json.set("perturbation", o.perturbation.describe());
   tools::Json uncut_json = tools::Json::array();
   for (const std::string& u : uncut) uncut_json.push_back(u);
   json.set("uncut_pairs", uncut_json);
-  if (p.flag("cross-family"))
+  if (p.flag("cross-family")) {
+    ProgressBar cross("cross-family pairs", progress_wanted(p.flag("quiet"), p.flag("progress")));
+    if (!p.flag("quiet")) o.log = [&cross](const std::string& line) { cross.println(line); };
+    o.progress = [&cross](double f) { cross.update(f); };
+    cross.update(0.0);
     json.set("cross_family", tools::cross_family_json(tools::run_cross_family_evaluation(o), o.methods));
+  }
   if (p.flag("json")) {
     std::printf("%s\n", tools::write_json(json, true).c_str());
     return 0;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdio>
+#include <functional>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -14,6 +15,7 @@
 #include <tbb/task_arena.h>
 
 #include "command/args.h"
+#include "command/progress_bar.h"
 #include "common/leave_family_out.h"
 #include "json/json_file.h"
 #include "common/retrieval_benchmark.h"
@@ -34,7 +36,7 @@ constexpr std::uint32_t kDefaultRings = 1;
 const char* kUsage =
     "usage: macrocon-eval eval-retrieval --shared DIR [--seed S] [--people N] [--faces N]\n"
     "                               [--descriptor curv9|hks|wks] [--rings K] [--vocabulary K] [--sigma S]\n"
-    "                               [--compare] [--threads T] [--json] [--plot DIR]\n"
+    "                               [--compare] [--threads T] [--json] [--plot DIR] [--quiet | --progress]\n"
     "                               [--noise F] [--flip-winding] [--density S] [--leave-family-out]\n"
     "Builds N random MakeHuman people and N random ICT faces from DIR (the shared folder, seeded by S),\n"
     "cuts a patch at every landmark class on its own random triangulation (quad diagonals + 20-40%\n"
@@ -82,13 +84,14 @@ struct EvalRetrievalCommand {
   long rings = kDefaultRings, vocabulary = 128, threads = 0;
   double sigma = 0.0;
   bool compare = false, json = false, leave_family_out = false;
+  bool quiet = false, progress = false;  // log lines and progress bar off / bar forced on
   std::string plot_dir;
 };
 
 EvalRetrievalCommand parse_eval_retrieval(const Args& args) {
   const ArgParser p(args, {"shared", "seed", "people", "faces", "descriptor", "rings", "vocabulary", "sigma",
                            "threads", "plot", "noise", "density"},
-                    {"json", "compare", "flip-winding", "leave-family-out"});
+                    {"json", "compare", "flip-winding", "leave-family-out", "quiet", "progress"});
   EvalRetrievalCommand cmd;
   tools::RetrievalBenchmarkOptions& options = cmd.options;
   options.shared_dir = p.required("shared");
@@ -119,6 +122,8 @@ EvalRetrievalCommand parse_eval_retrieval(const Args& args) {
   cmd.compare = p.flag("compare");
   cmd.json = p.flag("json");
   cmd.leave_family_out = p.flag("leave-family-out");
+  cmd.quiet = p.flag("quiet");
+  cmd.progress = p.flag("progress");
   options.perturbation.noise = p.number("noise", 0.0);
   options.perturbation.density = p.number("density", 1.0);
   options.perturbation.flip_winding = p.flag("flip-winding");
@@ -135,13 +140,14 @@ EvalRetrievalCommand parse_eval_retrieval(const Args& args) {
   if (cmd.compare)
     for (const BuiltinDescriptor& row : builtin_descriptors())
       if (row.name != descriptor) options.descriptors.push_back(row.name);
-  options.log = [](const std::string& s) { std::fprintf(stderr, "eval-retrieval: %s\n", s.c_str()); };
+  if (!cmd.quiet) options.log = [](const std::string& s) { std::fprintf(stderr, "eval-retrieval: %s\n", s.c_str()); };
   return cmd;
 }
 
 // Every evaluated (descriptor, rings), the main one first, each logged with its wrong nearest neighbours.
 std::vector<tools::RetrievalEvaluation> evaluate_table(const tools::RetrievalBenchmark& set,
-                                                       const EvalRetrievalCommand& cmd) {
+                                                       const EvalRetrievalCommand& cmd,
+                                                       const std::function<void(double)>& progress) {
   const tools::RetrievalBenchmarkOptions& options = cmd.options;
   tools::RetrievalEvalOptions eo;
   eo.vocabulary_size = static_cast<int>(cmd.vocabulary);
@@ -164,9 +170,11 @@ std::vector<tools::RetrievalEvaluation> evaluate_table(const tools::RetrievalBen
       char line[200];
       std::snprintf(line, sizeof line, "%s rings %u: nn accuracy %.4f, precision@4 %.4f;", ev.descriptor.c_str(),
                     ev.rings, ev.nn_accuracy, ev.precision_at[3]);
-      options.log(line + (confused.empty() ? std::string(" no wrong nearest neighbour") : " wrong:" + confused));
+      if (options.log)
+        options.log(line + (confused.empty() ? std::string(" no wrong nearest neighbour") : " wrong:" + confused));
       table.push_back(std::move(ev));
     }
+    progress(static_cast<double>(d + 1) / static_cast<double>(set.descriptors.size()));
   }
   return table;
 }
@@ -448,17 +456,25 @@ int run_eval_retrieval(const Args& args) {
     std::fputs(kUsage, stdout);
     return 0;
   }
-  const EvalRetrievalCommand cmd = parse_eval_retrieval(args);
+  EvalRetrievalCommand cmd = parse_eval_retrieval(args);
+  // Log lines above a bar over the stages: the patches (half), then each descriptor's evaluation.
+  ProgressBar bar("eval-retrieval", progress_wanted(cmd.quiet, cmd.progress));
+  if (cmd.options.log) cmd.options.log = [&bar](const std::string& s) { bar.println("eval-retrieval: " + s); };
+  bar.update(0.0);
 
   tbb::task_arena arena(cmd.threads > 0 ? static_cast<int>(cmd.threads) : tbb::task_arena::automatic);
   int status = 0;
   arena.execute([&] {
     if (cmd.leave_family_out) {
       run_leave_family_out(cmd);
+      bar.finish();
       return;
     }
     const tools::RetrievalBenchmark set = tools::build_retrieval_benchmark(cmd.options);
-    const std::vector<tools::RetrievalEvaluation> table = evaluate_table(set, cmd);
+    bar.update(0.5);
+    const std::vector<tools::RetrievalEvaluation> table =
+        evaluate_table(set, cmd, [&bar](double f) { bar.update(0.5 + 0.5 * f); });
+    bar.finish();
     const PatchTotals totals = patch_totals(set);
     if (!cmd.plot_dir.empty()) write_plots(set, table.front(), cmd.plot_dir);
     if (cmd.json)
