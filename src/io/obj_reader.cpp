@@ -1,6 +1,7 @@
 // Wavefront OBJ: `v` positions, `f` polygons (v, v/vt, v//vn, v/vt/vn; negative indices count back
-// from the last vertex read), `l` polylines (same index forms), `g`/`o` group names. Texture coordinates, normals, materials and
-// everything else are skipped, since only the surface itself is needed.
+// from the last vertex read), `l` polylines (same index forms), `g`/`o` group names. Texture
+// coordinates, normals, materials and everything else are skipped: only the surface and the
+// polylines drawn on it are needed.
 #include <climits>
 #include <utility>
 

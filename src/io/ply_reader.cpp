@@ -1,7 +1,7 @@
 // PLY body: vertex x, y, z of any scalar type (and, when asked, the vertex element's other scalar
 // properties) and the face `vertex_indices` (or `vertex_index`) list of any integer type, in
-// ASCII or either binary byte order. Every other element and
-// property is read past according to its declared type, so unknown data never shifts the rest.
+// ASCII or either binary byte order. Every other element and property is read past according to
+// its declared type, so unknown data never shifts the rest.
 #include <algorithm>
 #include <climits>
 #include <cstdint>
