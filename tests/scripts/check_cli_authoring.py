@@ -158,6 +158,9 @@ def check_info(lib):
     nose, eye = info["entry_list"]
     if (nose["guides"], nose["features"], nose["singularities"], nose["fields"]) != (1, 1, 1, ["height", "uv", "side"]):
         fail("library info lists %s for the nose" % nose)
+    kinds = [(f["name"], f["kind"], f["dimension"]) for f in nose["field_kinds"]]
+    if kinds != [("height", "scalar", 1), ("uv", "uv", 2), ("side", "label", 1)]:
+        fail("library info lists field kinds %s for the nose" % kinds)
     if (eye["guides"], eye["features"], eye["singularities"]) != (1, 0, 0):
         fail("library info lists %s for the eye" % eye)
 

@@ -39,7 +39,8 @@ const char* kUsage =
     "  are computed; rings default to the measured best. The file is written atomically.\n"
     "add: the entry's histogram is computed with the library's vocabulary (no rebuild), and the\n"
     "  file is rewritten atomically.\n"
-    "info: counts, retrieval config and per-entry id/name/class/vertices/constraints/fields.\n"
+    "info: counts, retrieval config and per-entry id/name/class/vertices/constraints/fields (--json:\n"
+    "  also each field's kind and dimension, as --field names them).\n"
     "CONSTRAINTS of an entry, from files a DCC exports, in the mesh file's coordinates:\n"
     "  --guides FILE.obj / --features FILE.obj (each repeatable): polylines as OBJ 'l' statements on or\n"
     "    near the surface; each point snaps to the closest point of the patch. Points outside the\n"
@@ -378,6 +379,18 @@ int run_add(const Args& args) {
   return 0;
 }
 
+// The --field kind names (entry_authoring.h) of a stored field.
+const char* field_kind_name(FieldKind kind) {
+  switch (kind) {
+    case FieldKind::scalar: return "scalar";
+    case FieldKind::vector3: return "vector3";
+    case FieldKind::tangent_vector: return "tangent";
+    case FieldKind::uv: return "uv";
+    case FieldKind::integer_label: return "label";
+  }
+  return "unknown";
+}
+
 int run_info(const Args& args) {
   Parsed p = parse(args, {"library"});
   require(p.entries.empty(), MCON_ERROR_INVALID_ARGUMENT, "library info takes no entries");
@@ -400,9 +413,17 @@ int run_info(const Args& args) {
       o.set("guides", static_cast<unsigned long>(e.guides.size()));
       o.set("features", static_cast<unsigned long>(e.features.size()));
       o.set("singularities", static_cast<unsigned long>(e.singularities.size()));
-      tools::Json fields = tools::Json::array();
-      for (const VertexField& f : e.fields) fields.push_back(f.name);
+      tools::Json fields = tools::Json::array(), kinds = tools::Json::array();
+      for (const VertexField& f : e.fields) {
+        fields.push_back(f.name);
+        tools::Json k = tools::Json::object();
+        k.set("name", f.name);
+        k.set("kind", field_kind_name(f.kind));
+        k.set("dimension", static_cast<unsigned long>(f.dimension));
+        kinds.push_back(k);
+      }
       o.set("fields", fields);
+      o.set("field_kinds", kinds);
       o.set("source_scale", e.source_scale);
       entries.push_back(o);
     }
