@@ -10,6 +10,7 @@
 #include "io/file_suffix.h"
 #include "io/mesh_io.h"
 #include "io/polygon_soup.h"
+#include "io/text_cursor.h"
 
 namespace mcon::io {
 namespace {
@@ -51,12 +52,7 @@ bool parse_number(std::string_view token, double& value) {
   return ec == std::errc() && ptr == token.data() + token.size();
 }
 
-std::string printable(std::string_view token) {
-  std::string out(token.substr(0, 32));
-  for (char& c : out)
-    if (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126) c = '?';
-  return "'" + out + "'";
-}
+std::string printable(std::string_view token) { return "'" + TextCursor::printable(token) + "'"; }
 
 void check_columns(const std::vector<std::string>& columns, const std::string& where) {
   require(!columns.empty(), MCON_ERROR_IO, where + ": no columns");

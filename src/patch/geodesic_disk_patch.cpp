@@ -108,33 +108,37 @@ int pinched_in_patch(const Patch& patch, const std::vector<int>& pinched) {
   return static_cast<int>(std::unique(found.begin(), found.end()) - found.begin());
 }
 
-// A repair may have split the center's host triangle in two: the piece that holds the center
-// point best (largest smallest weight), with the point's weights in that piece.
-std::pair<int, Vec3> center_piece(const MeshRegion& region, const PatchCenter& c, const Vec3& center_point) {
-  const auto first = std::find(region.triangle_to_host.begin(), region.triangle_to_host.end(), c.triangle);
-  if (std::count(first, region.triangle_to_host.end(), c.triangle) == 1)  // not split: the host triangle itself
-    return {static_cast<int>(first - region.triangle_to_host.begin()), c.barycentric / c.barycentric.sum()};
-  int best = -1;
-  Vec3 best_weights = c.barycentric / c.barycentric.sum();
-  double best_min = -std::numeric_limits<double>::infinity();
-  for (int t = 0; t < region.mesh.num_triangles(); ++t) {
-    if (region.triangle_to_host[t] != c.triangle) continue;
-    const Tri& tri = region.mesh.triangles[t];
-    const Vec3 &a = region.mesh.positions[tri[0]], &b = region.mesh.positions[tri[1]], &d = region.mesh.positions[tri[2]];
-    // Weights of the point's projection onto the piece's plane.
-    const Vec3 n = (b - a).cross(d - a);
-    const double area2 = n.squaredNorm();
-    Vec3 w((b - center_point).cross(d - center_point).dot(n), (d - center_point).cross(a - center_point).dot(n), 0);
-    w /= area2;
-    w[2] = 1 - w[0] - w[1];
-    if (w.minCoeff() > best_min) {
-      best_min = w.minCoeff();
-      best = t;
-      best_weights = w;
+// Of the triangles of `m` that lie in host triangle `host_t` (`host_of` per triangle), the piece
+// that holds `point` best (largest smallest barycentric weight of its projection), with the point's
+// weights in it, clamped to >= 0. Used where a host triangle was cut into pieces: by the patch cut
+// (stage 8) and by the repair's split of a cap's neighbour (the center's region triangle).
+std::pair<int, Vec3> piece_holding(const TriMesh& m, const std::vector<int>& host_of, int host_t, const Vec3& point) {
+  double best = -1e300;
+  std::pair<int, Vec3> out{-1, Vec3::Zero()};
+  for (int t = 0; t < m.num_triangles(); ++t) {
+    if (host_of[t] != host_t) continue;
+    const Tri& tri = m.triangles[t];
+    const Vec3 a = m.positions[tri[0]], e1 = m.positions[tri[1]] - a, e2 = m.positions[tri[2]] - a;
+    const Vec3 p = point - a;
+    const double d11 = e1.dot(e1), d12 = e1.dot(e2), d22 = e2.dot(e2), p1 = p.dot(e1), p2 = p.dot(e2);
+    const double det = d11 * d22 - d12 * d12;
+    const double u = (d22 * p1 - d12 * p2) / det, v = (d11 * p2 - d12 * p1) / det;
+    const Vec3 b(1 - u - v, u, v);
+    if (b.minCoeff() > best) {
+      best = b.minCoeff();
+      out = {t, b.cwiseMax(0.0) / b.cwiseMax(0.0).sum()};
     }
   }
-  const Vec3 clamped = best_weights.cwiseMax(0.0);
-  return {best, clamped / clamped.sum()};
+  return out;
+}
+
+// The center's region triangle and weights: the host triangle itself with the caller's weights,
+// unless a repair split it (then the piece holding the center point).
+std::pair<int, Vec3> center_piece(const MeshRegion& region, const PatchCenter& c, const Vec3& center_point) {
+  const auto first = std::find(region.triangle_to_host.begin(), region.triangle_to_host.end(), c.triangle);
+  if (std::count(first, region.triangle_to_host.end(), c.triangle) == 1)
+    return {static_cast<int>(first - region.triangle_to_host.begin()), c.barycentric / c.barycentric.sum()};
+  return piece_holding(region.mesh, region.triangle_to_host, c.triangle, center_point);
 }
 
 Eigen::VectorXd distance_from_center(const MeshRegion& region, const PatchCenter& c, const Vec3& center_point) {
@@ -518,23 +522,10 @@ void center_at_vertex(Patch& patch, int pv) {
 
 // ... or in the piece of host triangle `host_t` that holds it best (largest smallest weight).
 void center_in_triangle(Patch& patch, int host_t, const Vec3& center_point) {
-  const TriMesh& pm = patch.mesh;
-  double best = -1e300;
-  for (int t = 0; t < pm.num_triangles(); ++t) {
-    if (patch.host_triangle[t] != host_t) continue;
-    const Tri& tri = pm.triangles[t];
-    const Vec3 a = pm.positions[tri[0]], e1 = pm.positions[tri[1]] - a, e2 = pm.positions[tri[2]] - a;
-    const Vec3 p = center_point - a;
-    const double d11 = e1.dot(e1), d12 = e1.dot(e2), d22 = e2.dot(e2), p1 = p.dot(e1), p2 = p.dot(e2);
-    const double det = d11 * d22 - d12 * d12;
-    const double u = (d22 * p1 - d12 * p2) / det, v = (d11 * p2 - d12 * p1) / det;
-    const Vec3 b(1 - u - v, u, v);
-    if (b.minCoeff() > best) {
-      best = b.minCoeff();
-      patch.center.triangle = t;
-      patch.center.barycentric = b.cwiseMax(0.0) / b.cwiseMax(0.0).sum();
-    }
-  }
+  const auto [t, weights] = piece_holding(patch.mesh, patch.host_triangle, host_t, center_point);
+  if (t < 0) return;
+  patch.center.triangle = t;
+  patch.center.barycentric = weights;
 }
 
 // 9. Normalize to geodesic radius 1 around the center, ...

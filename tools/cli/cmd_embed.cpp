@@ -3,9 +3,11 @@
 // polylines re-traced on the target (OBJ `l` lines), the target's guide-aligned cross field
 // (QuadWild `.rosy`) and a JSON summary of the map.
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <sstream>
@@ -254,13 +256,16 @@ struct EmbedPatches {
 MacroConstraint find_library_entry(const std::string& path, const std::string& which) {
   const ConstraintLibrary lib = load_library_from_file(path);
   const bool numeric = !which.empty() && which.find_first_not_of("0123456789") == std::string::npos;
-  const MacroConstraint* found = nullptr;
+  errno = 0;
+  const unsigned long long id = numeric ? std::strtoull(which.c_str(), nullptr, 10) : 0;
+  const MacroConstraint* found = numeric && errno != ERANGE ? lib.find_entry(id) : nullptr;
   std::size_t named = 0;
-  for (const MacroConstraint& e : lib.entries())
-    if (numeric ? std::to_string(e.id) == which : e.name == which) {
-      found = &e;
-      ++named;
-    }
+  if (!numeric)
+    for (const MacroConstraint& e : lib.entries())
+      if (e.name == which) {
+        found = &e;
+        ++named;
+      }
   require(named <= 1, MCON_ERROR_INVALID_ARGUMENT,
           "--entry '" + printable_text(which) + "': " + std::to_string(named) + " entries of '" + path +
               "' have that name; give the id (macrocon library info lists them)");

@@ -379,18 +379,6 @@ int run_add(const Args& args) {
   return 0;
 }
 
-// The --field kind names (entry_authoring.h) of a stored field.
-const char* field_kind_name(FieldKind kind) {
-  switch (kind) {
-    case FieldKind::scalar: return "scalar";
-    case FieldKind::vector3: return "vector3";
-    case FieldKind::tangent_vector: return "tangent";
-    case FieldKind::uv: return "uv";
-    case FieldKind::integer_label: return "label";
-  }
-  return "unknown";
-}
-
 int run_info(const Args& args) {
   Parsed p = parse(args, {"library"});
   require(p.entries.empty(), MCON_ERROR_INVALID_ARGUMENT, "library info takes no entries");

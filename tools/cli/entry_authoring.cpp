@@ -10,6 +10,7 @@
 
 #include "base/error.h"
 #include "base/text.h"
+#include "map/similarity_icp.h"
 #include "mesh/closest_point_3d.h"
 
 namespace mcon::cli {
@@ -19,7 +20,7 @@ namespace {
 class PatchSnapper {
  public:
   PatchSnapper(const io::LoadedMesh& host, const Patch& patch, double max_distance)
-      : patch_host_units_(in_host_units(patch)),
+      : patch_host_units_(host_mesh(patch)),
         host_tree_(host.mesh),
         patch_tree_(patch_host_units_),
         max_distance_(max_distance),
@@ -38,12 +39,6 @@ class PatchSnapper {
   }
 
  private:
-  static TriMesh in_host_units(const Patch& patch) {
-    TriMesh m = patch.mesh;
-    for (Vec3& v : m.positions) v = patch.center_position + patch.radius * v;
-    return m;
-  }
-
   TriMesh patch_host_units_;  // before the trees, which keep a reference to it
   TriangleTree3D host_tree_, patch_tree_;
   double max_distance_, tolerance_;
@@ -122,11 +117,8 @@ void add_singularities(const PatchSnapper& snapper, const std::string& file, Mac
 }
 
 FieldKind kind_of(const std::string& text, const std::string& spec) {
-  if (text == "scalar") return FieldKind::scalar;
-  if (text == "vector3") return FieldKind::vector3;
-  if (text == "tangent") return FieldKind::tangent_vector;
-  if (text == "uv") return FieldKind::uv;
-  if (text == "label") return FieldKind::integer_label;
+  for (FieldKind k : kFieldKinds)
+    if (text == field_kind_name(k)) return k;
   fail(MCON_ERROR_INVALID_ARGUMENT,
        "--field '" + spec + "': unknown kind '" + text + "' (scalar, vector3, tangent, uv or label)");
 }
@@ -213,6 +205,17 @@ void add_fields(const io::LoadedMesh& host, const Patch& patch, const AuthoringS
 }
 
 }  // namespace
+
+const char* field_kind_name(FieldKind kind) {
+  switch (kind) {
+    case FieldKind::scalar: return "scalar";
+    case FieldKind::vector3: return "vector3";
+    case FieldKind::tangent_vector: return "tangent";
+    case FieldKind::uv: return "uv";
+    case FieldKind::integer_label: return "label";
+  }
+  return "unknown";
+}
 
 FieldSpec parse_field_spec(const std::string& text) {
   FieldSpec f;

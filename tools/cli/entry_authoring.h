@@ -49,6 +49,11 @@ struct FieldSpec {
 };
 FieldSpec parse_field_spec(const std::string& text);
 
+// The KIND names of --field (and of `library info --json`), one per FieldKind.
+inline constexpr FieldKind kFieldKinds[] = {FieldKind::scalar, FieldKind::vector3, FieldKind::tangent_vector,
+                                            FieldKind::uv, FieldKind::integer_label};
+const char* field_kind_name(FieldKind kind);
+
 // Fills content.guides / features / singularities / fields from the spec's files for the patch
 // cut from `host` (its positions in file coordinates). Throws mcon::Error naming the file and line
 // (MCON_ERROR_IO for unreadable files, MCON_ERROR_INVALID_ARGUMENT for a point too far from the
