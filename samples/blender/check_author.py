@@ -10,7 +10,6 @@ the cursor on the eye, appending to the same file. Checks with the Python bindin
 the nose entry's guide lies on the selected path and leaves the eye path out; its fields hold the
 host's values (blended on host edges). MACROCON_LIBRARY / MACROCON_PYTHON_PATH as for the add-on.
 """
-import heapq
 import json
 import os
 import sys
@@ -18,8 +17,10 @@ import sys
 import bpy
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path[:0] = [HERE, os.path.join(HERE, "..", "..", "tests", "scripts")]
 import macrocon_blender  # noqa: E402
+from edge_paths import shortest_edge_path  # noqa: E402
 
 BODY, OUT = sys.argv[sys.argv.index("--") + 1:][:2]
 NOSE, EYE = 297, 8021  # file vertices (0-based), as in the other samples
@@ -29,29 +30,6 @@ failures = []
 def expect(cond, what):
     if not cond:
         failures.append(what)
-
-
-def shortest_path(co, edges, a, b):
-    neighbours = {}
-    for u, w in edges:
-        neighbours.setdefault(u, []).append(w)
-        neighbours.setdefault(w, []).append(u)
-    dist, back, heap = {a: 0.0}, {}, [(0.0, a)]
-    while heap:
-        d, u = heapq.heappop(heap)
-        if u == b:
-            break
-        if d > dist[u]:
-            continue
-        for w in neighbours[u]:
-            nd = d + float(np.linalg.norm(co[u] - co[w]))
-            if nd < dist.get(w, np.inf):
-                dist[w], back[w] = nd, u
-                heapq.heappush(heap, (nd, w))
-    path = [b]
-    while path[-1] != a:
-        path.append(back[path[-1]])
-    return path[::-1]
 
 
 def main():
@@ -70,8 +48,8 @@ def main():
     mesh.attributes.new("side", "INT", "POINT").data.foreach_set("value", np.where(co[:, 0] >= 0, 1, 2).astype(np.int32))
     edges = [tuple(e.vertices) for e in mesh.edges]
     near = lambda v, d: int(np.argmin(((co - (co[v] + np.array(d))) ** 2).sum(1)))
-    nose_path = shortest_path(co, edges, near(NOSE, [-0.25, 0, 0]), near(NOSE, [0.25, 0, 0]))
-    eye_path = shortest_path(co, edges, near(EYE, [-0.2, 0, 0]), near(EYE, [0.2, 0, 0]))
+    nose_path = shortest_edge_path(co, edges, near(NOSE, [-0.25, 0, 0]), near(NOSE, [0.25, 0, 0]))
+    eye_path = shortest_edge_path(co, edges, near(EYE, [-0.2, 0, 0]), near(EYE, [0.2, 0, 0]))
     wanted = {frozenset(p) for path in (nose_path, eye_path) for p in zip(path, path[1:])}
     for e in mesh.edges:
         e.select = frozenset(e.vertices) in wanted

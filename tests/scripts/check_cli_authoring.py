@@ -10,7 +10,6 @@ usage: check_cli_authoring.py CLI BODY.obj.gz WORK   (MACROCON_LIBRARY and PYTHO
 binding)
 """
 import gzip
-import heapq
 import json
 import os
 import shutil
@@ -18,6 +17,9 @@ import subprocess
 import sys
 
 import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from edge_paths import shortest_edge_path  # noqa: E402
 
 CLI, BODY, WORK = sys.argv[1:4]
 BODY_FACES = 13378  # the body group of the sample OBJ (faces [0, 13378))
@@ -41,29 +43,9 @@ def read_body():
 
 
 def shortest_path(positions, faces, a, b):
-    """Dijkstra over mesh edges: a polyline that lies exactly on the surface."""
-    neighbours = {}
-    for face in faces:
-        for i, u in enumerate(face):
-            w = face[(i + 1) % len(face)]
-            neighbours.setdefault(u, set()).add(w)
-            neighbours.setdefault(w, set()).add(u)
-    dist, back, heap = {a: 0.0}, {}, [(0.0, a)]
-    while heap:
-        d, u = heapq.heappop(heap)
-        if u == b:
-            break
-        if d > dist[u]:
-            continue
-        for w in neighbours[u]:
-            nd = d + float(np.linalg.norm(positions[u] - positions[w]))
-            if nd < dist.get(w, np.inf):
-                dist[w], back[w] = nd, u
-                heapq.heappush(heap, (nd, w))
-    path = [b]
-    while path[-1] != a:
-        path.append(back[path[-1]])
-    return path[::-1]
+    """A path along mesh edges: a polyline that lies exactly on the surface."""
+    return shortest_edge_path(positions, ((u, face[(i + 1) % len(face)]) for face in faces for i, u in enumerate(face)),
+                              a, b)
 
 
 def nearest_vertex(positions, used, point):
