@@ -308,4 +308,7 @@ TEST(CapiLocalValidation, RepairNeedsALocallyValidatedHostAndLeavesEdgesToTheCal
   EXPECT_EQ(info.zero_area_triangles_removed + info.pinched_vertices_split, 0u);
   EXPECT_EQ(mcon_patch_get_repairs(nullptr, &info), MCON_ERROR_NULL_POINTER);
   EXPECT_EQ(mcon_patch_get_repairs(patch.get(), nullptr), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_patch_repair_info_init(nullptr), MCON_ERROR_NULL_POINTER);
+  info.struct_size = 4;  // smaller than the first version of the struct
+  EXPECT_EQ(mcon_patch_get_repairs(patch.get(), &info), MCON_ERROR_STRUCT_SIZE) << last_message();
 }
