@@ -52,17 +52,22 @@ std::string read_file_maybe_gz(const std::string& path, std::size_t max_bytes) {
     std::ifstream in(path, std::ios::binary);
     require(static_cast<bool>(in), MCON_ERROR_IO, "cannot open '" + path + "'");
     struct stat st {};
-    require(::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode) || static_cast<std::uintmax_t>(st.st_size) <= limit,
+    const bool regular = ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
+    require(!regular || static_cast<std::uintmax_t>(st.st_size) <= limit,
             MCON_ERROR_IO, "'" + path + "' has more than " + std::to_string(limit) + " bytes" + raise_hint(limit));
     std::string data;
     std::size_t size = 0;
-    // In chunks, checked as they come: the size above says nothing for pipes or growing files.
+    // In chunks, checked as they come: the size above says nothing for pipes or growing files. The
+    // first chunk is the file's size plus one byte (to see the end), so a small file does not
+    // allocate and zero a whole megabyte; later chunks double up to 1 MiB.
+    std::size_t step = std::clamp<std::size_t>(regular ? static_cast<std::size_t>(st.st_size) + 1 : 0, 4096, 1u << 20);
     while (in) {
       require(size <= limit, MCON_ERROR_IO,
               "'" + path + "' has more than " + std::to_string(limit) + " bytes" + raise_hint(limit));
-      data.resize(size + (1u << 20));
-      in.read(&data[size], 1u << 20);
+      data.resize(size + step);
+      in.read(&data[size], static_cast<std::streamsize>(step));
       size += static_cast<std::size_t>(in.gcount());
+      step = std::min<std::size_t>(2 * step, 1u << 20);
     }
     require(!in.bad(), MCON_ERROR_IO, "error reading '" + path + "'");
     require(size <= limit, MCON_ERROR_IO,
@@ -79,7 +84,7 @@ std::string read_file_maybe_gz(const std::string& path, std::size_t max_bytes) {
   for (;;) {
     // Decompress straight into the string, growing it geometrically up to the limit.
     if (data.size() - size < (1u << 16) && data.size() < room)
-      data.resize(std::min(std::max<std::size_t>(2 * data.size(), 1u << 20), room));
+      data.resize(std::min(std::max<std::size_t>(2 * data.size(), 1u << 17), room));
     if (size == data.size())  // `room` bytes and not at the end: over the limit
       fail(MCON_ERROR_IO, "'" + path + "' decompresses to more than " + std::to_string(limit) + " bytes" +
                               raise_hint(limit));
