@@ -5,6 +5,10 @@ find_package(FlatBuffers CONFIG REQUIRED)
 find_package(TBB REQUIRED CONFIG)
 find_package(spectra CONFIG QUIET)
 find_package(ZLIB REQUIRED)
+# JSON for the CLI and the tools (tools/json; header-only, MIT), never in libmacrocon.
+find_package(nlohmann_json 3.10 REQUIRED CONFIG)
+# Argument parsing and generated help of the CLI and the tools (header-only, BSD-3-Clause).
+find_package(CLI11 2.1 REQUIRED CONFIG)
 find_package(Threads REQUIRED)
 if(MACROCON_BUILD_TESTS)
   find_package(GTest REQUIRED)

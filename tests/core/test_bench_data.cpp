@@ -149,17 +149,21 @@ TEST(Json, ParsesEscapesAndAccessors) {
 }
 
 TEST(Json, MalformedInputNamesTheOffset) {
+  // The offset is of the byte at which the error is found (nlohmann-json's lexer position): the
+  // second digit of "01", the end of an unterminated string, the bad byte of an escape or of a
+  // UTF-8 sequence; duplicate names and numbers out of range are named where they start.
   struct Case {
     const char* text;
     std::size_t offset;
   };
   const Case cases[] = {
       {"", 0},           {"  ", 2},           {"{", 1},           {"[1,]", 3},        {"[1 2]", 3},
-      {"{\"a\" 1}", 5},  {"{\"a\":1,}", 7},   {"{a:1}", 1},       {"01", 0},          {"-", 1},
-      {"1.", 2},         {"1e", 2},           {".5", 0},          {"+1", 0},          {"tru", 0},
-      {"nul", 0},        {"\"abc", 0},        {"\"a\nb\"", 2},    {"\"\\x\"", 1},     {"\"\\u12g4\"", 5},
-      {"\"\\ud800\"", 1}, {"\"\\udc00\"", 1}, {"\"\xC3\x28\"", 1}, {"\"\xED\xA0\x80\"", 1}, {"[1] x", 4},
+      {"{\"a\" 1}", 5},  {"{\"a\":1,}", 7},   {"{a:1}", 1},       {"01", 1},          {"-", 1},
+      {"1.", 2},         {"1e", 2},           {".5", 0},          {"+1", 0},          {"tru", 3},
+      {"nul", 3},        {"\"abc", 4},        {"\"a\nb\"", 2},    {"\"\\x\"", 2},     {"\"\\u12g4\"", 5},
+      {"\"\\ud800\"", 7}, {"\"\\udc00\"", 6}, {"\"\xC3\x28\"", 2}, {"\"\xED\xA0\x80\"", 2}, {"[1] x", 4},
       {"{\"a\":1,\"a\":2}", 7}, {"1e400", 0},   {"NaN", 0},         {"[1,\n  x]", 6},
+      {"{\"x\\\"\":1,\"x\\\"\":2}", 9}, {"{\"x\\\\\":1,\"x\\\\\":2}", 9},  // escaped quote, backslash
   };
   for (const Case& c : cases) {
     mcon_status status = MCON_OK;
@@ -169,6 +173,10 @@ TEST(Json, MalformedInputNamesTheOffset) {
         << "input '" << c.text << "': " << message;
   }
   EXPECT_NE(error_of([] { parse_json("[1,\n  x]"); }).find("line 2, column 3"), std::string::npos);
+  // The message never echoes the input's raw bytes (an invalid sequence, a control character).
+  EXPECT_EQ(error_of([] { parse_json("\"\xC3\x28\""); }).find('\xC3'), std::string::npos);
+  EXPECT_NE(error_of([] { parse_json("{\"a\":1,\"a\":2}"); }).find("duplicate member name \"a\""), std::string::npos);
+  EXPECT_NE(error_of([] { parse_json("[1e400]"); }).find("number out of range at offset 1 "), std::string::npos);
   // Deep nesting is refused, not a stack overflow.
   EXPECT_NE(error_of([] { parse_json(std::string(100000, '[')); }).find("nesting"), std::string::npos);
   // Duplicate keys and trailing commas are errors; a valid deep-ish document is fine.

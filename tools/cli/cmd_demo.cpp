@@ -287,22 +287,22 @@ bool run_region(const macrocon::Context& ctx, const macrocon::Mesh& body, mcon_l
   return ok;
 }
 
+const char* kUsage =
+    "usage: macrocon demo [--data DIR] [--library FILE.mclb] [--out DIR] [--cut-guides] [--whole-host] [--snap F]\n"
+    "                     [--quiet | --progress]\n"
+    "Queries the bundled MakeHuman body at a few regions against the starter constraint library,\n"
+    "re-embeds the best match and writes PLY/OBJ/.rosy results to --out (default demo-out).\n"
+    "--cut-guides also cuts the transferred guides into each region and writes QuadWild's inputs\n"
+    "<region>_cut.obj, .rosy and .sharp (guides on mesh edges, as feature edges); crossings closer than\n"
+    "--snap F (default 0.25) edge lengths to a vertex snap to it.\n"
+    "--whole-host also queries the other eye and cuts every region's guides into the whole body:\n"
+    "body_whole.obj, .rosy (one field over every face), .sharp and .quadwild.json.\n"
+    "Each map draws a progress bar on stderr when it is a terminal; --quiet hides it, --progress draws\n"
+    "it anyway.\n";
+
 int run_demo(const Args& args) {
-  if (!args.empty() && (args[0] == "--help" || args[0] == "-h")) {
-    std::puts("usage: macrocon demo [--data DIR] [--library FILE.mclb] [--out DIR] [--cut-guides] [--whole-host] [--snap F]\n"
-              "                     [--quiet | --progress]\n"
-              "Queries the bundled MakeHuman body at a few regions against the starter constraint library,\n"
-              "re-embeds the best match and writes PLY/OBJ/.rosy results to --out (default demo-out).\n"
-              "--cut-guides also cuts the transferred guides into each region and writes QuadWild's inputs\n"
-              "<region>_cut.obj, .rosy and .sharp (guides on mesh edges, as feature edges); crossings closer than\n"
-              "--snap F (default 0.25) edge lengths to a vertex snap to it.\n"
-              "--whole-host also queries the other eye and cuts every region's guides into the whole body:\n"
-              "body_whole.obj, .rosy (one field over every face), .sharp and .quadwild.json.\n"
-              "Each map draws a progress bar on stderr when it is a terminal; --quiet hides it, --progress draws\n"
-              "it anyway.");
-    return 0;
-  }
-  const ArgParser p(args, {"data", "out", "library", "snap"}, {"cut-guides", "whole-host", "quiet", "progress"});
+  const ArgParser p(args, {"data", "out", "library", "snap"}, {"cut-guides", "whole-host", "quiet", "progress"},
+                    kUsage);
   mcon_guide_cut_options cut_options;
   check(mcon_guide_cut_options_init(&cut_options));
   require(p.flag("cut-guides") || p.flag("whole-host") || !p.has("snap"), MCON_ERROR_INVALID_ARGUMENT,

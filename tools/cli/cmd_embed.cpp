@@ -729,15 +729,11 @@ tools::Json embed_summary(const EmbedOptions& o, const EmbedPatches& e, const Em
 }
 
 int run_embed(const Args& args) {
-  if (!args.empty() && (args[0] == "--help" || args[0] == "-h")) {
-    std::fputs(kUsage, stdout);
-    return 0;
-  }
   const ArgParser p(args,
                     {"source", "target", "center-vertex", "radius", "source-center-vertex", "source-radius",
                      "face-range", "source-face-range", "seed", "samples", "iterations", "orientation", "landmarks",
                      "up", "source-up", "target-up", "out", "snap", "entry"},
-                    {"json", "cut-guides", "quiet", "progress"});
+                    {"json", "cut-guides", "quiet", "progress"}, kUsage);
   const auto t_start = std::chrono::steady_clock::now();
   const EmbedOptions o = embed_options(p);
   const EmbedPatches e = cut_embed_patches(p);

@@ -62,11 +62,14 @@ const char* kUsage =
     MACROCON_HELP_NUMBERING;
 
 // Options that describe one entry, and options that hold for the whole command.
-bool is_entry_option(const std::string& key) {
-  return key == "radius" || key == "class" || key == "name" || key == "author" || key == "licence" || key == "tag" ||
-         key == "guides" || key == "features" || key == "singularities" || key == "fields" || key == "field" ||
-         key == "max-snap-distance";
+// The options that describe the latest --center-vertex's entry.
+const std::set<std::string>& entry_options() {
+  static const std::set<std::string> keys{"radius", "class", "name", "author", "licence", "tag", "guides",
+                                          "features", "singularities", "fields", "field", "max-snap-distance"};
+  return keys;
 }
+
+bool is_entry_option(const std::string& key) { return entry_options().count(key) > 0; }
 
 // An authoring option of one entry (entry_authoring.h); `once` options given twice are refused.
 void set_authoring_option(AuthoringSpec& a, const std::string& key, const std::string& value) {
@@ -95,22 +98,17 @@ struct Parsed {
 // Reads the arguments in order: --mesh / --face-range set the source of the entries that
 // follow; --center-vertex starts an entry; entry options apply to the latest entry.
 Parsed parse(const Args& args, const std::set<std::string>& globals) {
+  std::set<std::string> keys(globals);
+  keys.insert({"mesh", "face-range", "center-vertex"});
+  keys.insert(entry_options().begin(), entry_options().end());
   Parsed p;
   std::string mesh, face_range;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    require(a.rfind("--", 0) == 0, MCON_ERROR_INVALID_ARGUMENT, "unexpected argument '" + a + "'");
-    const std::string key = a.substr(2);
-    if (key == "json" || key == "quiet" || key == "progress") {
+  for (const ArgOccurrence& o : parse_in_order(args, keys, {"json", "quiet", "progress"}, kUsage)) {
+    const std::string& key = o.key;
+    const std::string& value = o.value;
+    if (o.flag) {
       (key == "json" ? p.json : key == "quiet" ? p.quiet : p.progress) = true;
-      continue;
-    }
-    require(key == "mesh" || key == "face-range" || key == "center-vertex" || is_entry_option(key) ||
-                globals.count(key) > 0,
-            MCON_ERROR_INVALID_ARGUMENT, "unknown option '" + a + "'");
-    require(i + 1 < args.size(), MCON_ERROR_INVALID_ARGUMENT, "option '" + a + "' needs a value");
-    const std::string value = args[++i];
-    if (key == "mesh") {
+    } else if (key == "mesh") {
       mesh = value;
     } else if (key == "face-range") {
       long b = 0, e = 0;
@@ -123,7 +121,7 @@ Parsed parse(const Args& args, const std::set<std::string>& globals) {
       s.center_vertex = parse_integer(key, value);
       p.entries.push_back(s);
     } else if (is_entry_option(key)) {
-      require(!p.entries.empty(), MCON_ERROR_INVALID_ARGUMENT, "'" + a + "' before any --center-vertex");
+      require(!p.entries.empty(), MCON_ERROR_INVALID_ARGUMENT, "'--" + key + "' before any --center-vertex");
       EntrySpec& s = p.entries.back();
       if (key == "radius") s.radius = parse_real(key, value);
       if (key == "class") s.class_label = value;
@@ -133,7 +131,7 @@ Parsed parse(const Args& args, const std::set<std::string>& globals) {
       if (key == "tag") s.tags.push_back(value);
       set_authoring_option(s.authoring, key, value);
     } else {
-      require(p.global.count(key) == 0, MCON_ERROR_INVALID_ARGUMENT, "option '" + a + "' given twice");
+      require(p.global.count(key) == 0, MCON_ERROR_INVALID_ARGUMENT, "option '--" + key + "' given twice");
       p.global[key] = value;
     }
   }

@@ -57,13 +57,9 @@ void print_summary(const Patch& patch, const MeshTopology& topo, const Orientati
 }
 
 int run_patch(const Args& args) {
-  if (!args.empty() && (args[0] == "--help" || args[0] == "-h")) {
-    std::fputs(kUsage, stdout);
-    return 0;
-  }
   const ArgParser p(args, {"mesh", "center-vertex", "center-triangle", "barycentric", "radius", "out", "face-range",
                            "group", "snap"},
-                    {"json", "no-fill"});
+                    {"json", "no-fill"}, kUsage);
   io::MeshFileOptions file_options;
   if (p.has("face-range")) parse_range(p.get("face-range"), file_options.face_begin, file_options.face_end);
   file_options.obj_group = p.get("group");

@@ -25,11 +25,8 @@ const char* kUsage =
     MACROCON_HELP_NUMBERING;
 
 int run_query(const Args& args) {
-  if (!args.empty() && (args[0] == "--help" || args[0] == "-h")) {
-    std::fputs(kUsage, stdout);
-    return 0;
-  }
-  const ArgParser p(args, {"library", "mesh", "center-vertex", "radius", "top", "face-range"}, {"json", "quiet", "progress"});
+  const ArgParser p(args, {"library", "mesh", "center-vertex", "radius", "top", "face-range"},
+                    {"json", "quiet", "progress"}, kUsage);
   const std::string path = p.required("library");
   EntrySpec spec;
   spec.mesh = p.required("mesh");

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "base/error.h"
+#include "command/args.h"
 #include "command/command.h"
 #include "macrocon/macrocon.h"
 
@@ -17,30 +18,43 @@ std::vector<Command>& commands() {
 
 namespace {
 
-void print_usage(const char* program) {
+// To stdout when asked for (--help, help), to stderr when the command line was wrong.
+void print_usage(const char* program, std::FILE* out) {
   auto cmds = commands();
   std::sort(cmds.begin(), cmds.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
-  std::fprintf(stderr, "%s %d.%d.%d\nusage: %s <command> [options]   (%s <command> --help)\n\n", program,
-               MCON_VERSION_MAJOR, MCON_VERSION_MINOR, MCON_VERSION_PATCH, program, program);
-  for (const auto& c : cmds) std::fprintf(stderr, "  %-16s %s\n", c.name.c_str(), c.summary.c_str());
+  std::fprintf(out, "%s %d.%d.%d\nusage: %s <command> [options]   (%s help <command>, or %s <command> --help)\n\n",
+               program, MCON_VERSION_MAJOR, MCON_VERSION_MINOR, MCON_VERSION_PATCH, program, program, program);
+  for (const auto& c : cmds) std::fprintf(out, "  %-16s %s\n", c.name.c_str(), c.summary.c_str());
+  std::fprintf(out, "  %-16s %s\n", "help", "this list, or a command's options (help <command>)");
 }
 
 }  // namespace
 
 int run_commands(const char* program, int argc, char** argv) {
-  if (argc < 2 || std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h") {
-    print_usage(program);
-    return argc < 2 ? 2 : 0;
+  if (argc < 2) {
+    print_usage(program, stderr);
+    return 2;
   }
-  if (std::string(argv[1]) == "--version") {
+  const std::string first = argv[1];
+  if (first == "--help" || first == "-h" || (first == "help" && argc == 2)) {
+    print_usage(program, stdout);
+    return 0;
+  }
+  if (first == "--version") {
     std::printf("%d.%d.%d\n", MCON_VERSION_MAJOR, MCON_VERSION_MINOR, MCON_VERSION_PATCH);
     return 0;
   }
-  const std::string name = argv[1];
+  // `help CMD [SUB]` is `CMD [SUB] --help`.
+  const bool help = first == "help";
+  const std::string name = help ? argv[2] : first;
+  Args args(argv + (help ? 3 : 2), argv + argc);
+  if (help) args.push_back("--help");
   for (const auto& c : commands()) {
     if (c.name != name) continue;
     try {
-      return c.run(Args(argv + 2, argv + argc));
+      return c.run(args);
+    } catch (const HelpShown&) {
+      return 0;
     } catch (const Error& e) {
       const char* status = status_name(e.status());
       std::fprintf(stderr, "%s %s: error (%s): %s\n", program, name.c_str(), status ? status : "?", e.what());
@@ -54,7 +68,7 @@ int run_commands(const char* program, int argc, char** argv) {
     }
   }
   std::fprintf(stderr, "%s: unknown command '%s'\n\n", program, name.c_str());
-  print_usage(program);
+  print_usage(program, stderr);
   return 2;
 }
 

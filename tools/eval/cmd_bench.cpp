@@ -191,11 +191,7 @@ tools::Json heat_row(const Patch& dst, int runs, tbb::task_arena& arena) {
 }
 
 int run_bench(const Args& args) {
-  if (!args.empty() && (args[0] == "--help" || args[0] == "-h")) {
-    std::fputs(kUsage, stdout);
-    return 0;
-  }
-  const ArgParser p(args, {"shared", "runs", "threads", "seed", "cases"}, {"json", "large", "no-plain-newton"});
+  const ArgParser p(args, {"shared", "runs", "threads", "seed", "cases"}, {"json", "large", "no-plain-newton"}, kUsage);
   const std::string shared = p.required("shared");
   const int runs = static_cast<int>(p.integer("runs", 3));
   const int threads = static_cast<int>(p.integer("threads", 2));

@@ -87,14 +87,10 @@ void print_cross_family(const tools::Json& cross, const std::vector<std::string>
 }
 
 int run_eval_mapping(const Args& args) {
-  if (!args.empty() && (args[0] == "--help" || args[0] == "-h")) {
-    std::fputs(kUsage, stdout);
-    return 0;
-  }
   const ArgParser p(args,
                     {"shared", "seed", "pairs", "classes", "method", "samples", "thesis-iterations", "eval-vertices",
                      "threads", "landmarks", "noise", "density", "frame-anchor", "frame-anchor-decay", "up-anchor"},
-                    {"json", "quiet", "progress", "cross-family", "flip-winding", "plain-newton", "cycle-signal"});
+                    {"json", "quiet", "progress", "cross-family", "flip-winding", "plain-newton", "cycle-signal"}, kUsage);
   tools::MappingEvalOptions o;
   o.shared_dir = p.required("shared");
   const long seed = p.integer("seed", 1);

@@ -91,7 +91,7 @@ struct EvalRetrievalCommand {
 EvalRetrievalCommand parse_eval_retrieval(const Args& args) {
   const ArgParser p(args, {"shared", "seed", "people", "faces", "descriptor", "rings", "vocabulary", "sigma",
                            "threads", "plot", "noise", "density"},
-                    {"json", "compare", "flip-winding", "leave-family-out", "quiet", "progress"});
+                    {"json", "compare", "flip-winding", "leave-family-out", "quiet", "progress"}, kUsage);
   EvalRetrievalCommand cmd;
   tools::RetrievalBenchmarkOptions& options = cmd.options;
   options.shared_dir = p.required("shared");
@@ -452,10 +452,6 @@ void run_leave_family_out(const EvalRetrievalCommand& cmd) {
 }
 
 int run_eval_retrieval(const Args& args) {
-  if (!args.empty() && (args[0] == "--help" || args[0] == "-h")) {
-    std::fputs(kUsage, stdout);
-    return 0;
-  }
   EvalRetrievalCommand cmd = parse_eval_retrieval(args);
   // Log lines above a bar over the stages: the patches (half), then each descriptor's evaluation.
   ProgressBar bar("eval-retrieval", progress_wanted(cmd.quiet, cmd.progress));

@@ -1,8 +1,11 @@
 #include "json/json.h"
 
-#include <charconv>
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <iterator>
+
+#include <nlohmann/json.hpp>
 
 #include "base/error.h"  // header-only: mcon::Error, fail, require (no link dependency on the core)
 
@@ -11,338 +14,191 @@ namespace mcon::tools {
 namespace {
 
 constexpr double kMaxExactInteger = 9007199254740992.0;  // 2^53
-constexpr int kMaxDepth = 512;                           // nesting limit: no stack exhaustion
+constexpr int kMaxDepth = 512;                           // nesting limit for the documents we build
 
 [[noreturn]] void type_error(const std::string& message) { fail(MCON_ERROR_INVALID_ARGUMENT, "JSON: " + message); }
 
-// Length of the UTF-8 sequence starting at s[i], or 0 if it is not a valid (shortest-form,
-// non-surrogate, <= U+10FFFF) sequence.
-std::size_t utf8_sequence_length(std::string_view s, std::size_t i) {
-  const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(s[k]); };
-  const unsigned char c = byte(i);
-  if (c < 0x80) return 1;
-  std::size_t n = 0;
-  std::uint32_t code = 0;
-  if (c >= 0xC2 && c <= 0xDF) {
-    n = 2;
-    code = c & 0x1F;
-  } else if (c >= 0xE0 && c <= 0xEF) {
-    n = 3;
-    code = c & 0x0F;
-  } else if (c >= 0xF0 && c <= 0xF4) {
-    n = 4;
-    code = c & 0x07;
-  } else {
-    return 0;
+[[noreturn]] void error_at(std::string_view text, const std::string& what, std::size_t offset) {
+  std::size_t line = 1, column = 1;
+  for (std::size_t i = 0; i < offset && i < text.size(); ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      column = 1;
+    } else {
+      ++column;
+    }
   }
-  if (i + n > s.size()) return 0;
-  for (std::size_t k = 1; k < n; ++k) {
-    if ((byte(i + k) & 0xC0) != 0x80) return 0;
-    code = (code << 6) | (byte(i + k) & 0x3F);
-  }
-  if ((n == 3 && code < 0x800) || (n == 4 && code < 0x10000) || code > 0x10FFFF) return 0;
-  if (code >= 0xD800 && code <= 0xDFFF) return 0;
-  return n;
+  fail(MCON_ERROR_INVALID_ARGUMENT, "JSON: " + what + " at offset " + std::to_string(offset) + " (line " +
+                                        std::to_string(line) + ", column " + std::to_string(column) + ")");
 }
 
-void append_utf8(std::string& out, std::uint32_t code) {
-  if (code < 0x80) {
-    out += static_cast<char>(code);
-  } else if (code < 0x800) {
-    out += static_cast<char>(0xC0 | (code >> 6));
-    out += static_cast<char>(0x80 | (code & 0x3F));
-  } else if (code < 0x10000) {
-    out += static_cast<char>(0xE0 | (code >> 12));
-    out += static_cast<char>(0x80 | ((code >> 6) & 0x3F));
-    out += static_cast<char>(0x80 | (code & 0x3F));
-  } else {
-    out += static_cast<char>(0xF0 | (code >> 18));
-    out += static_cast<char>(0x80 | ((code >> 12) & 0x3F));
-    out += static_cast<char>(0x80 | ((code >> 6) & 0x3F));
-    out += static_cast<char>(0x80 | (code & 0x3F));
-  }
-}
-
-class Parser {
+// A char iterator that publishes how far nlohmann's lexer has read, so the handler below can name
+// the offset of the errors it finds itself (duplicate names, nesting, overflow).
+class ReadCursor {
  public:
-  explicit Parser(std::string_view text) : s_(text) {}
+  using iterator_category = std::forward_iterator_tag;
+  using value_type = char;
+  using difference_type = std::ptrdiff_t;
+  using pointer = const char*;
+  using reference = const char&;
 
-  Json parse_document() {
-    skip_whitespace();
-    Json value = parse_value(0);
-    skip_whitespace();
-    if (pos_ != s_.size()) error("unexpected text after the value");
-    return value;
+  ReadCursor(const char* p, const char** read) : p_(p), read_(read) {}
+  reference operator*() const { return *p_; }
+  ReadCursor& operator++() {
+    *read_ = ++p_;
+    return *this;
+  }
+  ReadCursor operator++(int) {
+    ReadCursor before = *this;
+    ++*this;
+    return before;
+  }
+  bool operator==(const ReadCursor& other) const { return p_ == other.p_; }
+  bool operator!=(const ReadCursor& other) const { return p_ != other.p_; }
+
+ private:
+  const char* p_;
+  const char** read_;
+};
+
+// nlohmann's SAX events, built into a Json. nlohmann tokenizes and enforces RFC 8259 (no comments,
+// trailing commas, leading zeros, unescaped control characters, invalid UTF-8 or lone surrogates);
+// this handler adds what it allows: duplicate member names, numbers that overflow a double (nlohmann
+// reports those as an error too, without the offset) and unbounded nesting.
+class JsonBuilder : public nlohmann::json_sax<nlohmann::json> {
+ public:
+  JsonBuilder(std::string_view text, const char* const* read) : text_(text), read_(read) {}
+
+  bool null() override { return add(Json()); }
+  bool boolean(bool value) override { return add(Json(value)); }
+  bool number_integer(number_integer_t value) override { return add(Json(static_cast<double>(value))); }
+  bool number_unsigned(number_unsigned_t value) override { return add(Json(static_cast<double>(value))); }
+  bool number_float(number_float_t value, const string_t&) override { return add(Json(value)); }
+  bool string(string_t& value) override { return add(Json(std::move(value))); }
+  bool binary(binary_t&) override { return stop("binary values are not JSON", read_offset()); }
+  bool start_object(std::size_t) override { return open(Json::object()); }
+  bool start_array(std::size_t) override { return open(Json::array()); }
+  bool end_object() override { return close(); }
+  bool end_array() override { return close(); }
+  bool key(string_t& name) override {
+    // The lexer has just read the name's closing quote; its opening quote is the last one before
+    // it that no backslash escapes (a quote inside a JSON string is always escaped).
+    if (stack_.back()->contains(name)) return stop("duplicate member name \"" + name + "\"", opening_quote());
+    key_ = std::move(name);
+    return true;
+  }
+  bool parse_error(std::size_t position, const std::string& last_token, const nlohmann::detail::exception& e) override {
+    std::string what = e.what();
+    const std::size_t colon = what.find(": ");
+    if (what.find("parse error") != std::string::npos && colon != std::string::npos) what = what.substr(colon + 2);
+    // The offset says where; nlohmann's "last read: '...'" would echo raw (possibly invalid) bytes.
+    const std::size_t echo = what.find("; last read: '");
+    if (echo != std::string::npos) {
+      const std::size_t echo_end = what.find("'", echo + 14);
+      what.erase(echo, echo_end == std::string::npos ? std::string::npos : echo_end + 1 - echo);
+    }
+    // nlohmann's position counts the bytes read, the offending one included.
+    std::size_t offset = position > 0 ? position - 1 : 0;
+    if (e.id == 406) {  // a number too large for a double: name where it starts
+      what = "number out of range";
+      offset = position >= last_token.size() ? position - last_token.size() : 0;
+    }
+    return stop(what, std::min(offset, text_.size()));
+  }
+
+  Json take() {
+    if (!message_.empty()) error_at(text_, message_, offset_);
+    return std::move(root_);
   }
 
  private:
-  [[noreturn]] void error(const std::string& what) const { error_at(what, pos_); }
+  std::size_t read_offset() const { return static_cast<std::size_t>(*read_ - text_.data()); }
 
-  [[noreturn]] void error_at(const std::string& what, std::size_t offset) const {
-    std::size_t line = 1, column = 1;
-    for (std::size_t i = 0; i < offset && i < s_.size(); ++i) {
-      if (s_[i] == '\n') {
-        ++line;
-        column = 1;
-      } else {
-        ++column;
+  std::size_t opening_quote() const {
+    std::size_t q = read_offset() >= 2 ? read_offset() - 2 : 0;
+    while (q > 0) {
+      if (text_[q] == '"') {
+        std::size_t backslashes = 0;
+        while (q > backslashes && text_[q - 1 - backslashes] == '\\') ++backslashes;
+        if (backslashes % 2 == 0) break;
       }
+      --q;
     }
-    fail(MCON_ERROR_INVALID_ARGUMENT, "JSON: " + what + " at offset " + std::to_string(offset) + " (line " +
-                                          std::to_string(line) + ", column " + std::to_string(column) + ")");
+    return q;
   }
 
-  bool at_end() const { return pos_ >= s_.size(); }
-  char peek() const { return at_end() ? '\0' : s_[pos_]; }
-
-  void skip_whitespace() {
-    while (!at_end() && (s_[pos_] == ' ' || s_[pos_] == '\t' || s_[pos_] == '\n' || s_[pos_] == '\r')) ++pos_;
+  bool stop(std::string what, std::size_t offset) {
+    if (message_.empty()) {
+      message_ = std::move(what);
+      offset_ = offset;
+    }
+    return false;
   }
 
-  void expect_literal(std::string_view word) {
-    if (s_.substr(pos_, word.size()) != word) error("invalid literal (expected '" + std::string(word) + "')");
-    pos_ += word.size();
+  Json* place(Json value) {
+    if (stack_.empty()) {
+      root_ = std::move(value);
+      return &root_;
+    }
+    Json& parent = *stack_.back();
+    if (parent.is_array()) {
+      parent.push_back(std::move(value));
+      return &parent[parent.size() - 1];
+    }
+    return &parent.set(std::move(key_), std::move(value));
   }
 
-  Json parse_value(int depth) {
-    if (at_end()) error("unexpected end of input (expected a value)");
-    switch (peek()) {
-      case '{':
-        return parse_object(depth + 1);
-      case '[':
-        return parse_array(depth + 1);
-      case '"':
-        return Json(parse_string());
-      case 't':
-        expect_literal("true");
-        return Json(true);
-      case 'f':
-        expect_literal("false");
-        return Json(false);
-      case 'n':
-        expect_literal("null");
-        return Json();
-      default:
-        if (peek() == '-' || (peek() >= '0' && peek() <= '9')) return Json(parse_number());
-        error(std::string("unexpected character '") + peek() + "'");
-    }
+  bool add(Json value) {
+    place(std::move(value));
+    return true;
   }
 
-  void check_depth(int depth) const {
-    if (depth > kMaxDepth) error("nesting deeper than " + std::to_string(kMaxDepth));
+  bool open(Json container) {
+    if (static_cast<int>(stack_.size()) >= kMaxDepth)
+      return stop("nesting deeper than " + std::to_string(kMaxDepth), read_offset() - 1);
+    stack_.push_back(place(std::move(container)));
+    return true;
   }
 
-  Json parse_object(int depth) {
-    check_depth(depth);
-    ++pos_;  // '{'
-    Json object = Json::object();
-    skip_whitespace();
-    if (peek() == '}') {
-      ++pos_;
-      return object;
-    }
-    for (;;) {
-      skip_whitespace();
-      if (peek() != '"') error("expected a member name in double quotes");
-      const std::size_t key_offset = pos_;
-      std::string key = parse_string();
-      if (object.contains(key)) error_at("duplicate member name \"" + key + "\"", key_offset);
-      skip_whitespace();
-      if (peek() != ':') error("expected ':' after a member name");
-      ++pos_;
-      skip_whitespace();
-      object.set(std::move(key), parse_value(depth));
-      skip_whitespace();
-      if (peek() == ',') {
-        ++pos_;
-        continue;
-      }
-      if (peek() == '}') {
-        ++pos_;
-        return object;
-      }
-      error(at_end() ? "unexpected end of input in an object" : "expected ',' or '}' in an object");
-    }
+  bool close() {
+    stack_.pop_back();
+    return true;
   }
 
-  Json parse_array(int depth) {
-    check_depth(depth);
-    ++pos_;  // '['
-    Json array = Json::array();
-    skip_whitespace();
-    if (peek() == ']') {
-      ++pos_;
-      return array;
-    }
-    for (;;) {
-      skip_whitespace();
-      array.push_back(parse_value(depth));
-      skip_whitespace();
-      if (peek() == ',') {
-        ++pos_;
-        continue;
-      }
-      if (peek() == ']') {
-        ++pos_;
-        return array;
-      }
-      error(at_end() ? "unexpected end of input in an array" : "expected ',' or ']' in an array");
-    }
-  }
-
-  std::uint32_t parse_hex4() {
-    if (pos_ + 4 > s_.size()) error("truncated \\u escape");
-    std::uint32_t code = 0;
-    for (int k = 0; k < 4; ++k) {
-      const char c = s_[pos_ + k];
-      code <<= 4;
-      if (c >= '0' && c <= '9') code |= static_cast<std::uint32_t>(c - '0');
-      else if (c >= 'a' && c <= 'f') code |= static_cast<std::uint32_t>(c - 'a' + 10);
-      else if (c >= 'A' && c <= 'F') code |= static_cast<std::uint32_t>(c - 'A' + 10);
-      else error_at("invalid hex digit in \\u escape", pos_ + k);
-    }
-    pos_ += 4;
-    return code;
-  }
-
-  std::string parse_string() {
-    const std::size_t start = pos_;
-    ++pos_;  // opening quote
-    std::string out;
-    for (;;) {
-      if (at_end()) error_at("unterminated string", start);
-      const char c = s_[pos_];
-      if (c == '"') {
-        ++pos_;
-        return out;
-      }
-      if (static_cast<unsigned char>(c) < 0x20) error("unescaped control character in a string");
-      if (c != '\\') {
-        const std::size_t n = utf8_sequence_length(s_, pos_);
-        if (n == 0) error("invalid UTF-8 in a string");
-        out.append(s_.substr(pos_, n));
-        pos_ += n;
-        continue;
-      }
-      const std::size_t escape_offset = pos_;
-      ++pos_;
-      if (at_end()) error_at("unterminated string", start);
-      const char e = s_[pos_++];
-      switch (e) {
-        case '"': out += '"'; break;
-        case '\\': out += '\\'; break;
-        case '/': out += '/'; break;
-        case 'b': out += '\b'; break;
-        case 'f': out += '\f'; break;
-        case 'n': out += '\n'; break;
-        case 'r': out += '\r'; break;
-        case 't': out += '\t'; break;
-        case 'u': {
-          std::uint32_t code = parse_hex4();
-          if (code >= 0xDC00 && code <= 0xDFFF) error_at("lone low surrogate in \\u escape", escape_offset);
-          if (code >= 0xD800 && code <= 0xDBFF) {
-            if (s_.substr(pos_, 2) != "\\u") error_at("high surrogate without a low surrogate", escape_offset);
-            pos_ += 2;
-            const std::uint32_t low = parse_hex4();
-            if (low < 0xDC00 || low > 0xDFFF) error_at("high surrogate without a low surrogate", escape_offset);
-            code = 0x10000 + ((code - 0xD800) << 10) + (low - 0xDC00);
-          }
-          append_utf8(out, code);
-          break;
-        }
-        default:
-          error_at(std::string("invalid escape '\\") + e + "'", escape_offset);
-      }
-    }
-  }
-
-  double parse_number() {
-    const std::size_t start = pos_;
-    const auto digit = [&] { return !at_end() && s_[pos_] >= '0' && s_[pos_] <= '9'; };
-    if (peek() == '-') ++pos_;
-    if (!digit()) error("expected a digit");
-    if (s_[pos_] == '0') {
-      ++pos_;
-      if (digit()) error_at("leading zero in a number", start);
-    } else {
-      while (digit()) ++pos_;
-    }
-    if (peek() == '.') {
-      ++pos_;
-      if (!digit()) error("expected a digit after the decimal point");
-      while (digit()) ++pos_;
-    }
-    if (peek() == 'e' || peek() == 'E') {
-      ++pos_;
-      if (peek() == '+' || peek() == '-') ++pos_;
-      if (!digit()) error("expected a digit in the exponent");
-      while (digit()) ++pos_;
-    }
-    double value = 0.0;
-    const char* first = s_.data() + start;
-    const char* last = s_.data() + pos_;
-    const auto result = std::from_chars(first, last, value);
-    if (result.ec == std::errc::result_out_of_range) {
-      // Underflow to zero is harmless; overflow is not representable.
-      bool nonzero_digit = false;
-      bool in_exponent = false;
-      bool negative_exponent = false;
-      for (const char* p = first; p != last; ++p) {
-        if (*p == 'e' || *p == 'E') in_exponent = true;
-        else if (in_exponent && *p == '-') negative_exponent = true;
-        else if (!in_exponent && *p >= '1' && *p <= '9') nonzero_digit = true;
-      }
-      if (nonzero_digit && !negative_exponent) error_at("number out of range", start);
-      return *first == '-' ? -0.0 : 0.0;
-    }
-    if (result.ec != std::errc() || result.ptr != last) error_at("invalid number", start);
-    return value;
-  }
-
-  std::string_view s_;
-  std::size_t pos_ = 0;
+  std::string_view text_;
+  const char* const* read_;
+  Json root_;
+  std::vector<Json*> stack_;  // open containers; a parent never moves while a child is open
+  std::string key_;
+  std::string message_;
+  std::size_t offset_ = 0;
 };
 
+// Scalars are written by nlohmann's serializer: strings UTF-8-checked and escaped, doubles in the
+// shortest form that reads back to the same bits. Integral values within 2^53 are written as
+// integers ("3", not "3.0"), as a reader expects counts to look.
 void write_string(std::string& out, const std::string& s) {
-  out += '"';
-  for (std::size_t i = 0; i < s.size();) {
-    const unsigned char c = static_cast<unsigned char>(s[i]);
-    switch (c) {
-      case '"': out += "\\\""; ++i; continue;
-      case '\\': out += "\\\\"; ++i; continue;
-      case '\b': out += "\\b"; ++i; continue;
-      case '\f': out += "\\f"; ++i; continue;
-      case '\n': out += "\\n"; ++i; continue;
-      case '\r': out += "\\r"; ++i; continue;
-      case '\t': out += "\\t"; ++i; continue;
-      default: break;
-    }
-    if (c < 0x20) {
-      static const char hex[] = "0123456789abcdef";
-      out += "\\u00";
-      out += hex[c >> 4];
-      out += hex[c & 15];
-      ++i;
-      continue;
-    }
-    const std::size_t n = utf8_sequence_length(s, i);
-    if (n == 0) type_error("cannot write a string that is not valid UTF-8 (byte " + std::to_string(i) + ")");
-    out.append(s, i, n);
-    i += n;
+  try {
+    out += nlohmann::json(s).dump(-1, ' ', false, nlohmann::json::error_handler_t::strict);
+  } catch (const nlohmann::json::type_error& e) {
+    type_error(std::string("cannot write a string that is not valid UTF-8 (") + e.what() + ")");
   }
-  out += '"';
 }
 
 void write_number(std::string& out, double value) {
   if (!std::isfinite(value)) fail(MCON_ERROR_NON_FINITE, "JSON: cannot write a non-finite number");
-  char buffer[64];
-  // Shortest representation that reads back to the same double.
-  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
-  out.append(buffer, result.ptr);
+  if (value == std::floor(value) && std::fabs(value) <= kMaxExactInteger && !std::signbit(value))
+    out += nlohmann::json(static_cast<std::uint64_t>(value)).dump();
+  else if (value == std::floor(value) && std::fabs(value) <= kMaxExactInteger && value != 0.0)
+    out += nlohmann::json(static_cast<std::int64_t>(value)).dump();
+  else
+    out += nlohmann::json(value).dump();
 }
 
 bool is_container(const Json& v) { return v.is_array() || v.is_object(); }
 
+// The layout is ours: nlohmann's pretty printer puts every array element on its own line, which
+// makes per-class and per-case number lists unreadable; here arrays of plain values stay on one.
 void write_value(std::string& out, const Json& v, bool pretty, int indent) {
   const auto newline = [&](int level) {
     out += '\n';
@@ -505,7 +361,14 @@ bool Json::operator==(const Json& other) const {
   return false;
 }
 
-Json parse_json(std::string_view text) { return Parser(text).parse_document(); }
+Json parse_json(std::string_view text) {
+  const char* read = text.data();
+  JsonBuilder builder(text, &read);
+  const ReadCursor first(text.data(), &read), last(text.data() + text.size(), &read);
+  nlohmann::json::sax_parse(first, last, &builder, nlohmann::json::input_format_t::json, /*strict=*/true,
+                            /*ignore_comments=*/false);
+  return builder.take();
+}
 
 std::string write_json(const Json& value, bool pretty) {
   std::string out;

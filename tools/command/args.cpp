@@ -1,0 +1,165 @@
+#include "command/args.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+
+#include <CLI/CLI.hpp>
+
+namespace mcon::cli {
+namespace {
+
+// CLI11's messages name its own terms ("The following arguments were not expected"); ours name
+// the option and the fix, as the tests and users expect.
+[[noreturn]] void rethrow(const CLI::ParseError& e, const Args& args, const std::set<std::string>& keys,
+                          const std::set<std::string>& flags) {
+  if (dynamic_cast<const CLI::ExtrasError*>(&e) != nullptr) {
+    for (const std::string& a : args) {
+      if (a.rfind("-", 0) != 0) continue;
+      const std::string key = a.rfind("--", 0) == 0 ? a.substr(2, a.find('=') - 2) : std::string();
+      if (key != "help" && !keys.count(key) && !flags.count(key))
+        fail(MCON_ERROR_INVALID_ARGUMENT, "unknown option '" + a + "' (--help lists the options)");
+    }
+    fail(MCON_ERROR_INVALID_ARGUMENT, std::string(e.what()) + " (every value follows its --option)");
+  }
+  if (dynamic_cast<const CLI::ArgumentMismatch*>(&e) != nullptr) {
+    const std::string what = e.what();
+    const std::string option = what.substr(0, what.find(':'));
+    if (what.find("missing") != std::string::npos)
+      fail(MCON_ERROR_INVALID_ARGUMENT, "option '" + option + "' needs a value");
+  }
+  fail(MCON_ERROR_INVALID_ARGUMENT, e.what());
+}
+
+// The value's name in the command's synopsis ("--radius R" -> "R"), for the generated list.
+std::string value_name(const char* usage, const std::string& key) {
+  const std::string text = usage != nullptr ? usage : "";
+  const std::string option = "--" + key + " ";
+  for (std::size_t at = text.find(option); at != std::string::npos; at = text.find(option, at + 1)) {
+    std::size_t b = at + option.size(), e = b;
+    while (e < text.size() && text[e] != ' ' && text[e] != ']' && text[e] != '\n' && text[e] != ')') ++e;
+    const std::string word = text.substr(b, e - b);
+    if (!word.empty() && word[0] >= 'A' && word[0] <= 'Z') return word;
+  }
+  return "VALUE";
+}
+
+// The command's own usage text (its synopsis and prose) replaces CLI11's one-line "Usage:"; the
+// option list below it is generated.
+class HelpFormatter : public CLI::Formatter {
+ public:
+  std::string make_usage(const CLI::App*, std::string) const override { return ""; }
+};
+
+struct Parsed {
+  CLI::App app;
+  std::map<std::string, CLI::Option*> options;  // key -> option
+};
+
+// Declares every key (one value each occurrence, any number of occurrences) and flag, parses,
+// and handles --help. What a command allows more than once is the caller's decision.
+void parse(Parsed& p, const Args& args, const std::set<std::string>& keys, const std::set<std::string>& flags,
+           const char* usage) {
+  CLI::App& app = p.app;
+  app.description(usage != nullptr ? usage : "");
+  app.set_help_flag("-h,--help", "print this help and exit");
+  app.formatter(std::make_shared<HelpFormatter>());
+  app.get_formatter()->column_width(30);
+  for (const std::string& key : keys)
+    p.options[key] =
+        app.add_option("--" + key)->type_name(value_name(usage, key))->expected(1)->take_all()->allow_extra_args(false);
+  for (const std::string& key : flags)
+    p.options[key] = app.add_flag("--" + key)->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 takes them last first
+  try {
+    app.parse(reversed);
+  } catch (const CLI::CallForHelp&) {
+    std::fputs(app.help().c_str(), stdout);
+    throw HelpShown{};
+  } catch (const CLI::ParseError& e) {
+    rethrow(e, args, keys, flags);
+  }
+}
+
+}  // namespace
+
+std::vector<std::string> split_names(const std::string& s) {
+  std::vector<std::string> out;
+  std::size_t begin = 0;
+  while (begin <= s.size()) {
+    const std::size_t end = std::min(s.find(',', begin), s.size());
+    if (end > begin) out.push_back(s.substr(begin, end - begin));
+    begin = end + 1;
+  }
+  return out;
+}
+
+std::vector<ArgOccurrence> parse_in_order(const Args& args, const std::set<std::string>& keys,
+                                          const std::set<std::string>& flags, const char* usage) {
+  Parsed p;
+  parse(p, args, keys, flags, usage);
+  std::map<const CLI::Option*, std::size_t> seen;
+  std::vector<ArgOccurrence> out;
+  for (const CLI::Option* o : p.app.parse_order()) {
+    const std::string key = o->get_name().substr(2);
+    const bool is_flag = flags.count(key) > 0;
+    const std::size_t k = seen[o]++;
+    out.push_back({key, is_flag ? std::string() : o->results().at(k), is_flag});
+  }
+  return out;
+}
+
+ArgParser::ArgParser(const Args& args, const std::set<std::string>& keys, const std::set<std::string>& flags,
+                     const char* usage) {
+  for (const ArgOccurrence& a : parse_in_order(args, keys, flags, usage)) {
+    if (a.flag) {
+      flags_.insert(a.key);
+      continue;
+    }
+    require(values_.count(a.key) == 0, MCON_ERROR_INVALID_ARGUMENT, "option '--" + a.key + "' given twice");
+    values_[a.key] = a.value;
+  }
+}
+
+std::string ArgParser::get(const std::string& key, const std::string& fallback) const {
+  auto it = values_.find(key);
+  return it == values_.end() ? fallback : it->second;
+}
+
+std::string ArgParser::required(const std::string& key) const {
+  require(has(key), MCON_ERROR_INVALID_ARGUMENT, "missing required option --" + key);
+  return get(key);
+}
+
+double ArgParser::number(const std::string& key, double fallback) const {
+  return has(key) ? parse_number(key, get(key)) : fallback;
+}
+
+long ArgParser::integer(const std::string& key, long fallback) const {
+  return has(key) ? parse_integer(key, get(key)) : fallback;
+}
+
+long ArgParser::parse_integer(const std::string& key, const std::string& s) {
+  char* end = nullptr;
+  errno = 0;
+  const long v = std::strtol(s.c_str(), &end, 10);
+  require(end && *end == '\0' && !s.empty(), MCON_ERROR_INVALID_ARGUMENT,
+          "--" + key + " expects an integer, got '" + s + "'");
+  require(errno != ERANGE, MCON_ERROR_INVALID_ARGUMENT, "--" + key + " is out of range: '" + s + "'");
+  return v;
+}
+
+double ArgParser::parse_number(const std::string& key, const std::string& s) {
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(s.c_str(), &end);
+  require(end && *end == '\0' && !s.empty(), MCON_ERROR_INVALID_ARGUMENT,
+          "--" + key + " expects a number, got '" + s + "'");
+  require(std::isfinite(v) && !(errno == ERANGE && v != 0), MCON_ERROR_INVALID_ARGUMENT,
+          "--" + key + " is out of range: '" + s + "'");
+  return v;
+}
+
+}  // namespace mcon::cli
