@@ -174,6 +174,42 @@ foreach(command embed patch query library)
   endif()
 endforeach()
 
+# Arguments (CLI11): `help CMD [SUB]` equals `CMD [SUB] --help` and ends with the generated option
+# list; the command list goes to stdout on --help / help; --opt=value is --opt value; an option twice,
+# a value that is missing (the next word is an option) or an unknown option is refused by name.
+run_checked(OUTPUT_VARIABLE help_patch COMMAND ${CLI} help patch)
+run_checked(OUTPUT_VARIABLE dash_help_patch COMMAND ${CLI} patch --mesh x.obj --help)
+if(NOT help_patch STREQUAL dash_help_patch OR NOT help_patch MATCHES "Options:\n(.*\n)*  --radius R +\n"
+   OR NOT help_patch MATCHES "  --no-fill")
+  message(FATAL_ERROR "macrocon help patch lacks the generated option list, or differs from patch --help:\n${help_patch}")
+endif()
+run_checked(OUTPUT_VARIABLE help_build COMMAND ${CLI} help library build)
+if(NOT help_build MATCHES "  --max-snap-distance " OR NOT help_build MATCHES "  --center-vertex N")
+  message(FATAL_ERROR "macrocon help library build lacks its entry options:\n${help_build}")
+endif()
+foreach(form "--help" "help")
+  run_checked(OUTPUT_VARIABLE top_help COMMAND ${CLI} ${form})
+  if(NOT top_help MATCHES "  embed +re-embed" OR NOT top_help MATCHES "  help +")
+    message(FATAL_ERROR "macrocon ${form} does not list the commands on stdout:\n${top_help}")
+  endif()
+endforeach()
+run_checked(WHAT "--opt=value" OUTPUT_VARIABLE eq_out
+  COMMAND ${CLI} patch --mesh=${MESH} --center-vertex=297 --radius=0.3 --json)
+string(JSON eq_vertices GET "${eq_out}" vertices)
+run_checked(OUTPUT_VARIABLE space_out COMMAND ${CLI} patch --mesh ${MESH} --center-vertex 297 --radius 0.3 --json)
+string(JSON space_vertices GET "${space_out}" vertices)
+if(NOT eq_vertices EQUAL space_vertices OR eq_vertices LESS 10)
+  message(FATAL_ERROR "--opt=value gave ${eq_vertices} vertices, --opt value ${space_vertices}")
+endif()
+run_checked(WHAT "an option twice" EXPECT_FAILURE "option '--radius' given twice"
+  COMMAND ${CLI} patch --mesh ${MESH} --center-vertex 297 --radius 0.3 --radius 0.4)
+run_checked(WHAT "a missing value" EXPECT_FAILURE "option '--center-vertex' needs a value"
+  COMMAND ${CLI} patch --mesh ${MESH} --center-vertex --radius 0.3)
+run_checked(WHAT "an unknown option" EXPECT_FAILURE "unknown option '--radious' \\(--help lists the options\\)"
+  COMMAND ${CLI} patch --mesh ${MESH} --center-vertex 297 --radious 0.3)
+run_checked(WHAT "a stray word" EXPECT_FAILURE "not expected: stray"
+  COMMAND ${CLI} patch --mesh ${MESH} stray --center-vertex 297 --radius 0.3)
+
 # Up hints: both meshes +y up (the file's axes); the summary says so and the map stays flip-free.
 # A zero vector, a malformed one and a lone --source-up are refused by name.
 run_checked(WHAT "macrocon embed --up" OUTPUT_VARIABLE up_out

@@ -72,6 +72,12 @@ void parse(Parsed& p, const Args& args, const std::set<std::string>& keys, const
         app.add_option("--" + key)->type_name(value_name(usage, key))->expected(1)->take_all()->allow_extra_args(false);
   for (const std::string& key : flags)
     p.options[key] = app.add_flag("--" + key)->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  // CLI11 gives an option its value even when the next word is another option; a forgotten value
+  // would then swallow the option after it. A value starting with "--" needs --key=--value.
+  for (std::size_t i = 0; i + 1 < args.size(); ++i)
+    if (args[i].rfind("--", 0) == 0 && keys.count(args[i].substr(2)) && args[i + 1].rfind("--", 0) == 0)
+      fail(MCON_ERROR_INVALID_ARGUMENT, "option '" + args[i] + "' needs a value (the next word is '" + args[i + 1] +
+                                            "'; write " + args[i] + "=VALUE for a value starting with --)");
   std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 takes them last first
   try {
     app.parse(reversed);
