@@ -19,6 +19,7 @@
 #include "command/progress_bar.h"
 #include "io/mesh_io.h"
 #include "macrocon/macrocon.hpp"
+#include "sdk_arrays.h"
 
 namespace mcon::cli {
 namespace {
@@ -260,14 +261,7 @@ bool run_region(const macrocon::Context& ctx, const macrocon::Mesh& body, mcon_l
                                        rinfo.triangle_count));
 
   // The region in host units: host = center + radius * p.
-  TriMesh mesh;
-  const std::vector<double> p = region.positions();
-  const std::vector<std::uint32_t> t = region.triangles();
-  for (std::size_t v = 0; v < nr; ++v)
-    mesh.positions.emplace_back(rinfo.center[0] + rinfo.radius * p[3 * v], rinfo.center[1] + rinfo.radius * p[3 * v + 1],
-                                rinfo.center[2] + rinfo.radius * p[3 * v + 2]);
-  for (std::size_t i = 0; i < rinfo.triangle_count; ++i)
-    mesh.triangles.push_back({static_cast<int>(t[3 * i]), static_cast<int>(t[3 * i + 1]), static_cast<int>(t[3 * i + 2])});
+  const TriMesh mesh = file_mesh(region, rinfo.radius, rinfo.center);
   const std::string base = out_dir + "/" + r.name;
   io::write_ply(base + ".ply", mesh, attributes);
   io::write_obj(base + ".obj", mesh);
@@ -320,13 +314,8 @@ int run_demo(const Args& args) {
   int failures = 0;
   {
     const io::LoadedMesh body_file = io::read_mesh(data + "/makehuman-body.obj.gz");
-    std::vector<double> xyz;
-    std::vector<std::uint32_t> tris;
-    for (const Vec3& q : body_file.mesh.positions) xyz.insert(xyz.end(), {q.x(), q.y(), q.z()});
-    for (const Tri& tri : body_file.mesh.triangles)
-      for (int k = 0; k < 3; ++k) tris.push_back(static_cast<std::uint32_t>(tri[k]));
     const macrocon::Context ctx;
-    const macrocon::Mesh body = macrocon::Mesh::from_arrays(ctx, xyz, tris);
+    const macrocon::Mesh body = sdk_mesh(ctx, body_file.mesh);
     mcon_library raw = nullptr;
     check(mcon_library_open(ctx.get(), library_path.c_str(), &raw));
     const LibraryRef lib(raw);
