@@ -80,14 +80,6 @@ const char* kUsage =
     "draws it anyway (e.g. into a log).\n"
     MACROCON_HELP_NUMBERING;
 
-void parse_range(const std::string& key, const std::string& s, long& begin, long& end) {
-  const auto colon = s.find(':');
-  require(colon != std::string::npos, MCON_ERROR_INVALID_ARGUMENT, "--" + key + " expects BEGIN:END, got '" + s + "'");
-  begin = static_cast<long>(ArgParser::parse_number(key, s.substr(0, colon)));
-  end = static_cast<long>(ArgParser::parse_number(key, s.substr(colon + 1)));
-  require(begin >= 0 && end > begin, MCON_ERROR_INVALID_ARGUMENT, "--" + key + " needs 0 <= BEGIN < END");
-}
-
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }

@@ -112,7 +112,7 @@ Parsed parse(const Args& args, const std::set<std::string>& globals) {
       mesh = value;
     } else if (key == "face-range") {
       long b = 0, e = 0;
-      parse_face_range(value, b, e);
+      parse_range("face-range", value, b, e);
       face_range = value;
     } else if (key == "center-vertex") {
       EntrySpec s;

@@ -22,14 +22,6 @@ const char* kUsage =
     "with uv, mean curvature (sigma 0.1), host vertex and a per-face 'filled' flag.\n"
     MACROCON_HELP_NUMBERING;
 
-void parse_range(const std::string& s, long& begin, long& end) {
-  const auto colon = s.find(':');
-  require(colon != std::string::npos, MCON_ERROR_INVALID_ARGUMENT, "--face-range expects BEGIN:END, got '" + s + "'");
-  begin = static_cast<long>(ArgParser::parse_number("face-range", s.substr(0, colon)));
-  end = static_cast<long>(ArgParser::parse_number("face-range", s.substr(colon + 1)));
-  require(begin >= 0 && end > begin, MCON_ERROR_INVALID_ARGUMENT, "--face-range needs 0 <= BEGIN < END");
-}
-
 // The summary on stdout: one JSON object with --json, else two or three lines.
 void print_summary(const mcon_patch_info& patch, const OrientationReport& o, double seconds, bool json) {
   if (json) {
@@ -101,7 +93,7 @@ int run_patch(const Args& args) {
                            "group", "snap"},
                     {"json", "no-fill"}, kUsage);
   io::MeshFileOptions file_options;
-  if (p.has("face-range")) parse_range(p.get("face-range"), file_options.face_begin, file_options.face_end);
+  if (p.has("face-range")) parse_range("face-range", p.get("face-range"), file_options.face_begin, file_options.face_end);
   file_options.obj_group = p.get("group");
   const io::LoadedMesh loaded = io::read_mesh(p.required("mesh"), file_options);
 

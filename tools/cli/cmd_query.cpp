@@ -7,9 +7,10 @@
 #include "base/text.h"
 #include "command/args.h"
 #include "command/progress_bar.h"
-#include "library_cli.h"
-#include "library/library_file.h"
-#include "library/library_retrieval.h"
+#include "io/mesh_io.h"
+#include "json/json.h"
+#include "macrocon/macrocon.hpp"
+#include "sdk_arrays.h"
 
 namespace mcon::cli {
 namespace {
@@ -28,31 +29,31 @@ int run_query(const Args& args) {
   const ArgParser p(args, {"library", "mesh", "center-vertex", "radius", "top", "face-range"},
                     {"json", "quiet", "progress"}, kUsage);
   const std::string path = p.required("library");
-  EntrySpec spec;
-  spec.mesh = p.required("mesh");
-  spec.face_range = p.get("face-range");
-  spec.center_vertex = parse_integer("center-vertex", p.required("center-vertex"));
-  spec.radius = parse_real("radius", p.required("radius"));
+  const std::string mesh_path = p.required("mesh");
+  const long center_vertex = ArgParser::parse_integer("center-vertex", p.required("center-vertex"));
+  const double radius = ArgParser::parse_number("radius", p.required("radius"));
   const long top = p.integer("top", 5);
   require(top >= 1, MCON_ERROR_INVALID_ARGUMENT, "--top must be >= 1");
+  require(radius > 0, MCON_ERROR_INVALID_ARGUMENT, "--radius must be > 0 (got " + std::to_string(radius) + ")");
 
   // A bar over the stages, not inside them (loading and the scan take no callback): reading and
   // verifying the file grows with the library, so it gets the largest share.
   ProgressBar bar("query", progress_wanted(p));
   bar.update(0.0);
-  const ConstraintLibrary lib = load_library_from_file(path);
+  const macrocon::Context context;
+  const macrocon::Library lib = macrocon::Library::open(context, path);
   bar.update(0.6);
-  require(lib.retrieval().vocabulary_size > 0, MCON_ERROR_INVALID_ARGUMENT,
+  require(lib.info().vocabulary_size > 0, MCON_ERROR_INVALID_ARGUMENT,
           "'" + path + "' has no vocabulary yet: run macrocon library build");
-  MeshCache meshes;
-  const Patch patch = cut_patch(meshes, spec);
+  io::MeshFileOptions file_options;
+  if (p.has("face-range")) parse_range("face-range", p.get("face-range"), file_options.face_begin, file_options.face_end);
+  const io::LoadedMesh loaded = io::read_mesh(mesh_path, file_options);
+  const int center = io::mesh_vertex_of_file_vertex(loaded, center_vertex, "--center-vertex", mesh_path);
+  const macrocon::Patch patch = macrocon::Patch::extract(
+      sdk_mesh(context, loaded.mesh), macrocon::PatchOptions::at_vertex(static_cast<std::uint32_t>(center), radius));
   bar.update(0.7);
-  const std::vector<float> flat = flat_histograms(lib);
-  bar.update(0.8);
   const auto t0 = std::chrono::steady_clock::now();
-  const std::vector<float> histogram = query_histogram(lib.retrieval(), patch);
-  bar.update(0.85);
-  const std::vector<RetrievalHit> hits = query_top_n(lib.retrieval(), flat, histogram, static_cast<std::size_t>(top));
+  const std::vector<macrocon::QueryHit> hits = lib.query(patch, static_cast<std::size_t>(top));
   bar.update(1.0);
   bar.finish();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -60,18 +61,17 @@ int run_query(const Args& args) {
   if (p.flag("json")) {
     tools::Json j = tools::Json::object();
     j.set("library", path);
-    j.set("patch_vertices", static_cast<unsigned long>(patch.mesh.positions.size()));
+    j.set("patch_vertices", static_cast<unsigned long>(patch.vertex_count()));
     j.set("query_seconds", seconds);
     tools::Json list = tools::Json::array();
     for (std::size_t r = 0; r < hits.size(); ++r) {
-      const MacroConstraint& e = lib.entries()[hits[r].entry];
       tools::Json h = tools::Json::object();
       h.set("rank", static_cast<unsigned long>(r + 1));
-      h.set("id", std::to_string(e.id));
-      h.set("index", static_cast<unsigned long>(hits[r].entry));
-      h.set("name", e.name);
-      h.set("class", e.class_label);
-      h.set("distance", static_cast<double>(hits[r].distance));
+      h.set("id", std::to_string(hits[r].id));
+      h.set("index", static_cast<unsigned long>(hits[r].index));
+      h.set("name", lib.entry_string(hits[r].index, MCON_ENTRY_NAME, 0));
+      h.set("class", lib.entry_string(hits[r].index, MCON_ENTRY_CLASS_LABEL, 0));
+      h.set("distance", hits[r].distance);
       list.push_back(h);
     }
     j.set("hits", list);
@@ -79,11 +79,11 @@ int run_query(const Args& args) {
   } else {
     std::printf("%4s %8s  %-24s %-16s %10s\n", "rank", "id", "name", "class", "distance");
     for (std::size_t r = 0; r < hits.size(); ++r) {
-      const MacroConstraint& e = lib.entries()[hits[r].entry];
       // Names come from the library file: escaped, so they cannot drive the terminal.
-      std::printf("%4zu %8llu  %-24s %-16s %10.6f\n", r + 1, static_cast<unsigned long long>(e.id),
-                  printable_text(e.name).c_str(), printable_text(e.class_label).c_str(),
-                  static_cast<double>(hits[r].distance));
+      std::printf("%4zu %8llu  %-24s %-16s %10.6f\n", r + 1, static_cast<unsigned long long>(hits[r].id),
+                  printable_text(lib.entry_string(hits[r].index, MCON_ENTRY_NAME, 0)).c_str(),
+                  printable_text(lib.entry_string(hits[r].index, MCON_ENTRY_CLASS_LABEL, 0)).c_str(),
+                  hits[r].distance);
     }
   }
   return 0;

@@ -30,14 +30,6 @@ struct EntrySpec {
   AuthoringSpec authoring;  // constraints from DCC files (guides, features, singularities, fields)
 };
 
-inline void parse_face_range(const std::string& s, long& begin, long& end) {
-  const auto colon = s.find(':');
-  require(colon != std::string::npos, MCON_ERROR_INVALID_ARGUMENT, "--face-range expects BEGIN:END, got '" + s + "'");
-  begin = ArgParser::parse_integer("face-range", s.substr(0, colon));
-  end = ArgParser::parse_integer("face-range", s.substr(colon + 1));
-  require(begin >= 0 && end > begin, MCON_ERROR_INVALID_ARGUMENT, "--face-range needs 0 <= BEGIN < END");
-}
-
 inline long parse_integer(const std::string& option, const std::string& s) { return ArgParser::parse_integer(option, s); }
 inline double parse_real(const std::string& option, const std::string& s) { return ArgParser::parse_number(option, s); }
 
@@ -49,7 +41,7 @@ class MeshCache {
     auto it = meshes_.find(key);
     if (it != meshes_.end()) return it->second;
     io::MeshFileOptions options;
-    if (!face_range.empty()) parse_face_range(face_range, options.face_begin, options.face_end);
+    if (!face_range.empty()) parse_range("face-range", face_range, options.face_begin, options.face_end);
     return meshes_.emplace(key, io::read_mesh(path, options)).first->second;
   }
 

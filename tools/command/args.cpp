@@ -102,6 +102,14 @@ std::vector<std::string> split_names(const std::string& s) {
   return out;
 }
 
+void parse_range(const std::string& key, const std::string& s, long& begin, long& end) {
+  const auto colon = s.find(':');
+  require(colon != std::string::npos, MCON_ERROR_INVALID_ARGUMENT, "--" + key + " expects BEGIN:END, got '" + s + "'");
+  begin = ArgParser::parse_integer(key, s.substr(0, colon));
+  end = ArgParser::parse_integer(key, s.substr(colon + 1));
+  require(begin >= 0 && end > begin, MCON_ERROR_INVALID_ARGUMENT, "--" + key + " needs 0 <= BEGIN < END");
+}
+
 std::vector<ArgOccurrence> parse_in_order(const Args& args, const std::set<std::string>& keys,
                                           const std::set<std::string>& flags, const char* usage) {
   Parsed p;

@@ -22,6 +22,10 @@ namespace mcon::cli {
 // "a,b,,c" -> {"a", "b", "c"}: a comma-separated list of names (empty items dropped).
 std::vector<std::string> split_names(const std::string& s);
 
+// "BEGIN:END" of --face-range / --source-face-range (file faces [BEGIN, END), integers, 0 <= BEGIN <
+// END), named by `key` in errors.
+void parse_range(const std::string& key, const std::string& s, long& begin, long& end);
+
 // Thrown after a command's help was printed; run_commands ends the program with status 0.
 struct HelpShown {};
 

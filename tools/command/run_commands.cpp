@@ -7,7 +7,7 @@
 #include "base/error.h"
 #include "command/args.h"
 #include "command/command.h"
-#include "macrocon/macrocon.h"
+#include "macrocon/macrocon.hpp"
 
 namespace mcon::cli {
 
@@ -56,6 +56,10 @@ int run_commands(const char* program, int argc, char** argv) {
     } catch (const HelpShown&) {
       return 0;
     } catch (const Error& e) {
+      const char* status = status_name(e.status());
+      std::fprintf(stderr, "%s %s: error (%s): %s\n", program, name.c_str(), status ? status : "?", e.what());
+      return 1;
+    } catch (const macrocon::Error& e) {  // the public API's calls, which the product commands use
       const char* status = status_name(e.status());
       std::fprintf(stderr, "%s %s: error (%s): %s\n", program, name.c_str(), status ? status : "?", e.what());
       return 1;
