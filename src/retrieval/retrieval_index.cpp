@@ -13,6 +13,8 @@ namespace {
 
 // Entries per parallel chunk: ~1 MB of 128-float histograms.
 constexpr std::size_t kEntryChunk = 2048;
+// Up to this n a chunk keeps its best list by insertion; beyond, by selection over every hit.
+constexpr std::size_t kInsertionLimit = 64;
 
 bool closer(const RetrievalHit& a, const RetrievalHit& b) {
   return a.distance < b.distance || (a.distance == b.distance && a.entry < b.entry);
@@ -60,12 +62,25 @@ std::vector<RetrievalHit> top_n_l1(const float* entries, std::size_t count, std:
   std::vector<std::vector<RetrievalHit>> best(chunks);
   for_each_block(count, kEntryChunk, [&](std::size_t begin, std::size_t end, std::size_t) {
     std::vector<RetrievalHit>& hits = best[begin / kEntryChunk];
-    hits.resize(end - begin);
-    for (std::size_t e = begin; e < end; ++e) {
+    const auto hit = [&](std::size_t e) {
       const float dist = l1_distance(entries + e * length, query, length);
-      hits[e - begin] = {e, std::isnan(dist) ? std::numeric_limits<float>::infinity() : dist};
+      return RetrievalHit{e, std::isnan(dist) ? std::numeric_limits<float>::infinity() : dist};
+    };
+    if (n > kInsertionLimit) {
+      hits.resize(end - begin);
+      for (std::size_t e = begin; e < end; ++e) hits[e - begin] = hit(e);
+      keep_best(hits, n);
+      return;
     }
-    keep_best(hits, n);
+    // A short top-n list: keep the chunk's best n sorted as they come (the same n, in the same
+    // order, as keep_best of all of them), instead of writing every hit and selecting.
+    hits.reserve(n + 1);
+    for (std::size_t e = begin; e < end; ++e) {
+      const RetrievalHit h = hit(e);
+      if (hits.size() == n && !closer(h, hits.back())) continue;
+      hits.insert(std::upper_bound(hits.begin(), hits.end(), h, closer), h);
+      if (hits.size() > n) hits.pop_back();
+    }
   });
   std::vector<RetrievalHit> merged;
   merged.reserve(std::min(count, chunks * n));

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <vector>
 
@@ -125,4 +126,26 @@ TEST(RetrievalIndex, NaNEntriesRankLastAndBadInputIsRejected) {
   EXPECT_EQ(status_of([&] { top_n_l1(entries.data(), 3, 4, nullptr, 1); }), MCON_ERROR_NULL_POINTER);
   EXPECT_EQ(status_of([] { RetrievalIndex bad(0); }), MCON_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(index.query({1, 2, 3, 5}, 4).front().distance, 1.0f);
+}
+
+TEST(RetrievalIndex, ShortListsByInsertionEqualTheSelection) {
+  // Up to 64 hits a chunk keeps its list by insertion, beyond by selection over every hit: the two
+  // must give the same entries and distance bits, ties included (each histogram repeated 3 times).
+  const std::size_t length = 128, distinct = 2500;
+  const std::vector<float> base = random_histograms(distinct, length, 9);
+  std::vector<float> entries;
+  for (int copy = 0; copy < 3; ++copy) entries.insert(entries.end(), base.begin(), base.end());
+  const std::size_t count = entries.size() / length;
+  for (std::uint64_t q = 0; q < 3; ++q) {
+    const std::vector<float> query = random_histograms(1, length, 300 + q);
+    const std::vector<RetrievalHit> wide = top_n_l1(entries.data(), count, length, query.data(), 65);
+    for (std::size_t n : {1u, 3u, 10u, 64u}) {
+      const std::vector<RetrievalHit> shortlist = top_n_l1(entries.data(), count, length, query.data(), n);
+      ASSERT_EQ(shortlist.size(), n);
+      for (std::size_t i = 0; i < n; ++i) {
+        EXPECT_EQ(shortlist[i].entry, wide[i].entry) << "n " << n << " rank " << i;
+        EXPECT_EQ(std::memcmp(&shortlist[i].distance, &wide[i].distance, sizeof(float)), 0);
+      }
+    }
+  }
 }
