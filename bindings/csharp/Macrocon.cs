@@ -276,6 +276,8 @@ namespace Macrocon
         [DllImport(Lib)] internal static extern Status mcon_mesh_get_orientation(MeshHandle mesh, ref MeshOrientationInfo info);
         [DllImport(Lib)] internal static extern Status mcon_mesh_get_reoriented_triangles(MeshHandle mesh, [Out] byte[] flags, UIntPtr capacity);
         [DllImport(Lib)] internal static extern Status mcon_mesh_get_triangles(MeshHandle mesh, [Out] uint[] indices, UIntPtr capacity);
+        [DllImport(Lib)] internal static extern Status mcon_mesh_closest_points(MeshHandle mesh, double[] xyz, UIntPtr count,
+            [Out] uint[] triangles, [Out] double[] barycentric, [Out] double[] distances);
         [DllImport(Lib)] internal static extern Status mcon_patch_options_init(ref PatchOptions options);
         [DllImport(Lib)] internal static extern Status mcon_patch_extract(MeshHandle mesh, ref PatchOptions options, out PatchHandle patch);
         [DllImport(Lib)] internal static extern Status mcon_patch_release(IntPtr patch);
@@ -288,6 +290,8 @@ namespace Macrocon
         [DllImport(Lib)] internal static extern Status mcon_patch_get_uv(PatchHandle patch, [Out] double[] uv, UIntPtr capacity);
         [DllImport(Lib)] internal static extern Status mcon_patch_get_host_vertices(PatchHandle patch, [Out] uint[] v0, [Out] uint[] v1, [Out] double[] t, UIntPtr capacity);
         [DllImport(Lib)] internal static extern Status mcon_patch_get_host_triangles(PatchHandle patch, [Out] uint[] hostTriangles, UIntPtr capacity);
+        [DllImport(Lib)] internal static extern Status mcon_patch_closest_points(PatchHandle patch, double[] xyz, UIntPtr count,
+            [Out] uint[] triangles, [Out] double[] barycentric, [Out] double[] distances);
         [DllImport(Lib)] internal static extern Status mcon_descriptor_get_dimension(Descriptor descriptor, out uint dimension);
         [DllImport(Lib)] internal static extern Status mcon_patch_compute_descriptors(PatchHandle patch, Descriptor descriptor, [Out] double[] values, UIntPtr capacity);
 
@@ -991,7 +995,35 @@ namespace Macrocon
             return indices;
         }
 
+        /// <summary>The closest surface point to each of the points (x0 y0 z0 x1 ...).</summary>
+        public ClosestPoints ClosestPoints(double[] xyz)
+        {
+            var c = ClosestPointsResult.Allocate(xyz, "xyz");
+            Native.Check(Native.mcon_mesh_closest_points(Handle, xyz, (UIntPtr)c.Triangles.Length, c.Triangles, c.Barycentric, c.Distances));
+            return c;
+        }
+
         public void Dispose() => Handle.Dispose();
+    }
+
+    /// <summary>Closest surface points, one per query point: triangle, 3 barycentric weights (the
+    /// triangle's corner order) and distance.</summary>
+    public sealed class ClosestPoints
+    {
+        public uint[] Triangles;
+        public double[] Barycentric;
+        public double[] Distances;
+    }
+
+    static class ClosestPointsResult
+    {
+        internal static ClosestPoints Allocate(double[] xyz, string name)
+        {
+            if (xyz == null) throw new ArgumentNullException(name);
+            if (xyz.Length % 3 != 0) throw new ArgumentException(name + " has " + xyz.Length + " values, not 3 per point", name);
+            int n = xyz.Length / 3;
+            return new ClosestPoints { Triangles = new uint[n], Barycentric = new double[3 * n], Distances = new double[n] };
+        }
     }
 
     /// <summary>What Patch.Extract(..., repair: true) changed (mcon_patch_repair_info).</summary>
@@ -1241,6 +1273,14 @@ namespace Macrocon
             var a = new uint[TriangleCount];
             Native.Check(Native.mcon_patch_get_host_triangles(Handle, a, (UIntPtr)a.Length));
             return a;
+        }
+
+        /// <summary>As Mesh.ClosestPoints on this patch, with the points and distances in host units.</summary>
+        public ClosestPoints ClosestPoints(double[] xyz)
+        {
+            var c = ClosestPointsResult.Allocate(xyz, "xyz");
+            Native.Check(Native.mcon_patch_closest_points(Handle, xyz, (UIntPtr)c.Triangles.Length, c.Triangles, c.Barycentric, c.Distances));
+            return c;
         }
 
         /// <summary>Vertex-major descriptor values (9 per vertex for Curv9, 1 for MeanCurvature).</summary>

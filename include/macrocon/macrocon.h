@@ -207,6 +207,10 @@ MCON_API mcon_status mcon_mesh_get_reoriented_triangles(mcon_mesh mesh, uint8_t*
 /** The oriented triangles, 3 indices each (the input with reoriented triangles' corners 1 and 2
  * swapped). capacity in indices. */
 MCON_API mcon_status mcon_mesh_get_triangles(mcon_mesh mesh, uint32_t* out_indices, size_t capacity);
+/** Closest surface points to count query points (3 doubles each): per point its triangle, 3
+ * barycentric weights (the triangle's corner order) and distance; any output may be NULL. */
+MCON_API mcon_status mcon_mesh_closest_points(mcon_mesh mesh, const double* xyz, size_t count, uint32_t* out_triangles,
+                                              double* out_barycentric, double* out_distances);
 
 /* ---------------------------------------------------------------------------------------------
  * Patches: geodesic disks cut out of a host mesh, normalized to geodesic radius 1.
@@ -304,6 +308,9 @@ MCON_API mcon_status mcon_patch_get_host_vertices(mcon_patch patch, uint32_t* ou
 /** Per patch triangle: the host triangle it lies in (a cut triangle keeps its host triangle), or
  * MCON_INVALID_INDEX for a triangle made to fill a hole. capacity in triangles. */
 MCON_API mcon_status mcon_patch_get_host_triangles(mcon_patch patch, uint32_t* out_host_triangle, size_t capacity);
+/** As mcon_mesh_closest_points on the patch, with the query points and distances in host units. */
+MCON_API mcon_status mcon_patch_closest_points(mcon_patch patch, const double* xyz, size_t count,
+                                               uint32_t* out_triangles, double* out_barycentric, double* out_distances);
 
 /* ---------------------------------------------------------------------------------------------
  * Descriptors: per-vertex shape descriptors of a patch (thesis §3.1).

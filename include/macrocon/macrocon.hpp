@@ -173,6 +173,30 @@ class Context {
   Ref ref_;
 };
 
+/// Closest surface points (Mesh::closest_points, Patch::closest_points), one per query point.
+struct ClosestPoints {
+  std::vector<std::uint32_t> triangles;
+  std::vector<double> barycentric;  ///< 3 per point, in the triangle's corner order
+  std::vector<double> distances;    ///< host units
+  std::size_t size() const { return triangles.size(); }
+};
+
+namespace detail {
+template <typename Handle, typename Call>
+ClosestPoints closest_points(Handle handle, const std::vector<double>& xyz, const Call& call) {
+  if (xyz.size() % 3 != 0)
+    throw Error(MCON_ERROR_INVALID_ARGUMENT,
+                "closest_points: " + std::to_string(xyz.size()) + " coordinates are not a multiple of 3");
+  const std::size_t n = xyz.size() / 3;
+  ClosestPoints c;
+  c.triangles.resize(n);
+  c.barycentric.resize(3 * n);
+  c.distances.resize(n);
+  check(call(handle, xyz.data(), n, c.triangles.data(), c.barycentric.data(), c.distances.data()));
+  return c;
+}
+}  // namespace detail
+
 /// A validated, manifold triangle mesh (the library keeps its own copy of the arrays).
 class Mesh {
  public:
@@ -243,6 +267,10 @@ class Mesh {
     std::vector<std::uint32_t> out(3 * triangle_count());
     check(mcon_mesh_get_triangles(detail::require(get(), "Mesh"), out.data(), out.size()));
     return out;
+  }
+  /// The closest surface point to each of the points (x0 y0 z0 x1 ...).
+  ClosestPoints closest_points(const std::vector<double>& xyz) const {
+    return detail::closest_points(detail::require(get(), "Mesh"), xyz, mcon_mesh_closest_points);
   }
 
   mcon_mesh get() const noexcept { return ref_.get(); }
@@ -416,6 +444,10 @@ class Patch {
     std::vector<std::uint32_t> out(triangle_count());
     check(mcon_patch_get_host_triangles(handle(), out.data(), out.size()));
     return out;
+  }
+  /// The closest point of the patch to each of the points, given in host units (x0 y0 z0 x1 ...).
+  ClosestPoints closest_points(const std::vector<double>& xyz) const {
+    return detail::closest_points(handle(), xyz, mcon_patch_closest_points);
   }
   /// vertex_count * descriptor_dimension(d) values, vertex-major.
   std::vector<double> compute_descriptors(mcon_descriptor descriptor) const {

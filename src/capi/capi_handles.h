@@ -3,13 +3,42 @@
 #pragma once
 
 #include <memory>
+#include <mutex>
 
 #include <oneapi/tbb/task_arena.h>
 
 #include "capi/capi_common.h"
 #include "patch/geodesic_disk_patch.h"
+#include "mesh/closest_point_3d.h"
 #include "mesh/mesh.h"
 #include "mesh/orientation.h"
+
+namespace mcon::capi {
+
+// A closest-point tree over a mesh made on first use, once, whichever thread asks first.
+class LazyTree {
+ public:
+  // `make` returns the mesh the tree is built over (kept here, as the tree refers to it).
+  template <typename Make>
+  const TriangleTree3D& get(const Make& make) {
+    std::call_once(once_, [&] {
+      mesh_ = make();
+      tree_ = std::make_unique<TriangleTree3D>(mesh_);
+    });
+    return *tree_;
+  }
+
+ private:
+  std::once_flag once_;
+  TriMesh mesh_;
+  std::unique_ptr<TriangleTree3D> tree_;
+};
+
+// mcon_mesh_closest_points / mcon_patch_closest_points on a tree (capi_mesh.cpp).
+void write_closest_points(mcon_context context, const TriangleTree3D& tree, const double* xyz, std::size_t count,
+                          std::uint32_t* out_triangles, double* out_barycentric, double* out_distances);
+
+}  // namespace mcon::capi
 
 struct mcon_context_t {
   static constexpr std::uint32_t kMagic = 0x4d43430a;  // "MCC"
@@ -29,6 +58,8 @@ struct mcon_mesh_t {
   mcon::TriMesh mesh;
   mcon::OrientationReport orientation;  // what the input needed to be consistent and outward
   bool validated_locally = false;       // MCON_MESH_VALIDATE_LOCALLY: operations validate what they read
+  // Built on the first mcon_mesh_closest_points (the mesh never changes), shared by every caller.
+  mcon::capi::LazyTree closest_tree;
   ~mcon_mesh_t();
 };
 
@@ -45,6 +76,8 @@ struct mcon_patch_t {
   std::uint32_t host_outward_turned_components = 0;
   std::uint32_t host_inconsistent_components = 0;
   std::size_t reoriented_triangles = 0;
+  // The patch in host units and its tree, built on the first mcon_patch_closest_points.
+  mcon::capi::LazyTree closest_tree;
   ~mcon_patch_t();
 };
 

@@ -1,8 +1,12 @@
 // Meshes: strided caller arrays -> a copied, oriented, validated mcon::TriMesh (orient_and_validate).
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <limits>
+#include <string>
+#include <vector>
 
+#include "base/parallel_blocks.h"
 #include "capi/capi_handles.h"
 
 using namespace mcon;
@@ -137,4 +141,40 @@ mcon_status mcon_mesh_get_triangles(mcon_mesh mesh, uint32_t* out_indices, size_
   });
 }
 
+mcon_status mcon_mesh_closest_points(mcon_mesh mesh, const double* xyz, size_t count, uint32_t* out_triangles,
+                                     double* out_barycentric, double* out_distances) {
+  return guard_object("mcon_mesh_closest_points", mesh, "mesh", [&] {
+    const TriangleTree3D& tree = mesh->closest_tree.get([&] { return mesh->mesh; });
+    write_closest_points(mesh->context, tree, xyz, count, out_triangles, out_barycentric, out_distances);
+  });
+}
+
 }  // extern "C"
+
+namespace mcon::capi {
+
+void write_closest_points(mcon_context context, const TriangleTree3D& tree, const double* xyz, std::size_t count,
+                          std::uint32_t* out_triangles, double* out_barycentric, double* out_distances) {
+  if (count == 0) return;
+  require_pointer(xyz, "xyz");
+  for (std::size_t i = 0; i < 3 * count; ++i)
+    require(std::isfinite(xyz[i]), MCON_ERROR_NON_FINITE,
+            "xyz: coordinate " + std::to_string(i % 3) + " of point " + std::to_string(i / 3) + " is not finite");
+  std::vector<ClosestSurfacePoint> found(count);
+  // Each point on its own: the same answers on any thread count (the tree's ties go to the lowest
+  // triangle). Written out only once every point is found.
+  run_in_arena(context, [&] {
+    for_each_block(count, std::size_t{256}, [&](std::size_t begin, std::size_t end, std::size_t) {
+      for (std::size_t i = begin; i < end; ++i)
+        found[i] = tree.closest(Vec3(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]));
+    });
+  });
+  for (std::size_t i = 0; i < count; ++i) {
+    if (out_triangles) out_triangles[i] = static_cast<std::uint32_t>(found[i].point.triangle);
+    if (out_barycentric)
+      for (int k = 0; k < 3; ++k) out_barycentric[3 * i + k] = found[i].point.barycentric[k];
+    if (out_distances) out_distances[i] = std::sqrt(found[i].squared_distance);
+  }
+}
+
+}  // namespace mcon::capi

@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "capi/capi_handles.h"
+#include "map/similarity_icp.h"
 #include "mesh/mesh_topology.h"
 
 using namespace mcon;
@@ -229,6 +230,14 @@ mcon_status mcon_patch_get_host_triangles(mcon_patch patch, uint32_t* out_host_t
     const auto& host = patch->patch.host_triangle;
     require_capacity(capacity, host.size(), "out_host_triangle (capacity in triangles)");
     for (std::size_t t = 0; t < host.size(); ++t) out_host_triangle[t] = to_index(host[t]);
+  });
+}
+
+mcon_status mcon_patch_closest_points(mcon_patch patch, const double* xyz, size_t count, uint32_t* out_triangles,
+                                      double* out_barycentric, double* out_distances) {
+  return guard_object("mcon_patch_closest_points", patch, "patch", [&] {
+    const TriangleTree3D& tree = patch->closest_tree.get([&] { return host_mesh(patch->patch); });
+    write_closest_points(patch->context, tree, xyz, count, out_triangles, out_barycentric, out_distances);
   });
 }
 

@@ -550,3 +550,79 @@ TEST(CapiPatchOrientation, ReversedHostGivesTheSamePatchAndReportsTheRepair) {
   EXPECT_GT(db.info.reoriented_triangles, 0u);
   EXPECT_LT(db.info.reoriented_triangles, db.info.triangle_count);
 }
+
+// mcon_mesh_closest_points / mcon_patch_closest_points: the exact closest surface point of each
+// query (triangle, weights that reproduce it, distance), in host units for a patch too; the same
+// bits on 1 and 2 threads; bad input refused.
+namespace {
+
+V3 point_on(const mcon::TriMesh& m, uint32_t t, const double* w) {
+  const auto& tri = m.triangles[t];
+  return w[0] * m.positions[tri[0]] + w[1] * m.positions[tri[1]] + w[2] * m.positions[tri[2]];
+}
+
+}  // namespace
+
+TEST_F(CapiPatch, ClosestPointsOnTheMeshAndOnAPatch) {
+  // Above the grid at height 0.3 (the foot is the closest point), beyond its corner (0, 0), and
+  // below a point inside it.
+  const std::vector<double> q = {0.37, 1.21, 0.3, -0.3, -0.4, 0.0, 1.5, 0.52, -0.05};
+  const V3 expected[3] = {V3(0.37, 1.21, 0), V3(0, 0, 0), V3(1.5, 0.52, 0)};
+  const double distance[3] = {0.3, 0.5, 0.05};
+  std::vector<uint32_t> tris(3);
+  std::vector<double> w(9), d(3);
+  ASSERT_EQ(mcon_mesh_closest_points(grid_mesh_.get(), q.data(), 3, tris.data(), w.data(), d.data()), MCON_OK)
+      << last_message();
+  for (int i = 0; i < 3; ++i) {
+    ASSERT_LT(tris[i], grid_.triangles.size());
+    EXPECT_NEAR(d[i], distance[i], 1e-12) << i;
+    EXPECT_LT((point_on(grid_, tris[i], &w[3 * i]) - expected[i]).norm(), 1e-12) << i;
+    EXPECT_NEAR(w[3 * i] + w[3 * i + 1] + w[3 * i + 2], 1.0, 1e-12);
+  }
+
+  // The patch of radius 0.5 around (1, 1): a point inside lands on it at the same place (its own
+  // triangle numbering), one outside on the patch's rim, farther than from the whole grid.
+  PatchPtr patch;
+  ASSERT_EQ(extract(grid_mesh_.get(), at_vertex(kGridCenter, 0.5), patch), MCON_OK) << last_message();
+  const PatchData pd = read_patch(patch.get());
+  mcon::TriMesh host_units;
+  for (size_t v = 0; v < pd.info.vertex_count; ++v)
+    host_units.positions.push_back(V3(pd.info.center[0], pd.info.center[1], pd.info.center[2]) +
+                                   pd.info.radius * pd.position(v));
+  for (size_t t = 0; t < pd.info.triangle_count; ++t)
+    host_units.triangles.push_back({static_cast<int>(pd.tris[3 * t]), static_cast<int>(pd.tris[3 * t + 1]),
+                                    static_cast<int>(pd.tris[3 * t + 2])});
+  const std::vector<double> pq = {1.1, 0.9, 0.2, 0.37, 1.21, 0.0};
+  std::vector<uint32_t> pt(2);
+  std::vector<double> pw(6), pdist(2);
+  ASSERT_EQ(mcon_patch_closest_points(patch.get(), pq.data(), 2, pt.data(), pw.data(), pdist.data()), MCON_OK)
+      << last_message();
+  EXPECT_NEAR(pdist[0], 0.2, 1e-9);
+  EXPECT_LT((point_on(host_units, pt[0], &pw[0]) - V3(1.1, 0.9, 0)).norm(), 1e-9);
+  EXPECT_GT(pdist[1], 0.1);  // (0.37, 1.21) is about 0.66 from (1, 1): outside the disk
+  EXPECT_NEAR((point_on(host_units, pt[1], &pw[3]) - V3(1, 1, 0)).norm(), 0.5, 0.06);
+
+  // Outputs may be NULL; no points is no work; the same bits on one and two threads.
+  EXPECT_EQ(mcon_mesh_closest_points(grid_mesh_.get(), q.data(), 3, nullptr, nullptr, d.data()), MCON_OK);
+  EXPECT_EQ(mcon_mesh_closest_points(grid_mesh_.get(), nullptr, 0, nullptr, nullptr, nullptr), MCON_OK);
+  std::vector<double> many(3 * 2000);
+  for (size_t i = 0; i < many.size(); ++i) many[i] = std::fmod(0.6180339887 * static_cast<double>(i), 2.4) - 0.2;
+  std::vector<double> w1(3 * 2000), w2(3 * 2000);
+  for (uint32_t threads : {1u, 2u}) {
+    const ContextPtr ctx = make_context(threads);
+    const MeshPtr mesh = make_mesh(ctx.get(), arrays_of(grid_));
+    double* out = (threads == 1 ? w1 : w2).data();
+    ASSERT_EQ(mcon_mesh_closest_points(mesh.get(), many.data(), 2000, nullptr, out, nullptr), MCON_OK);
+  }
+  EXPECT_EQ(std::memcmp(w1.data(), w2.data(), w1.size() * sizeof(double)), 0);
+
+  // Bad input: no points array, a non-finite coordinate (named), a missing handle.
+  EXPECT_EQ(mcon_mesh_closest_points(grid_mesh_.get(), nullptr, 1, nullptr, nullptr, d.data()),
+            MCON_ERROR_NULL_POINTER);
+  std::vector<double> bad = q;
+  bad[4] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(mcon_patch_closest_points(patch.get(), bad.data(), 3, nullptr, nullptr, d.data()), MCON_ERROR_NON_FINITE);
+  EXPECT_NE(last_message().find("coordinate 1 of point 1 is not finite"), std::string::npos) << last_message();
+  EXPECT_EQ(mcon_mesh_closest_points(nullptr, q.data(), 3, nullptr, nullptr, d.data()), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_patch_closest_points(nullptr, q.data(), 3, nullptr, nullptr, d.data()), MCON_ERROR_NULL_POINTER);
+}

@@ -132,6 +132,22 @@ TEST(CppWrapper, PatchOptionsRepairRegion) {
   EXPECT_EQ(p.repairs().triangles_split, 1u);
 }
 
+TEST(CppWrapper, ClosestPoints) {
+  macrocon::Context ctx;
+  const Flat g = flat(mcon::test_meshes::make_grid(11, 2.0));
+  const macrocon::Mesh m = macrocon::Mesh::from_arrays(ctx, g.xyz, g.tris);
+  const macrocon::ClosestPoints c = m.closest_points({0.5, 0.7, 0.25, 3.0, 1.0, 0.0});
+  ASSERT_EQ(c.size(), 2u);
+  EXPECT_NEAR(c.distances[0], 0.25, 1e-12);
+  EXPECT_NEAR(c.distances[1], 1.0, 1e-12);  // beyond the edge x = 2
+  EXPECT_NEAR(c.barycentric[0] + c.barycentric[1] + c.barycentric[2], 1.0, 1e-12);
+  const macrocon::Patch p = macrocon::Patch::extract(m, macrocon::PatchOptions::at_vertex(60, 0.5));  // (1, 1)
+  const macrocon::ClosestPoints on_patch = p.closest_points({1.1, 0.95, -0.5});
+  EXPECT_NEAR(on_patch.distances[0], 0.5, 1e-9);  // host units, below the patch
+  EXPECT_LT(on_patch.triangles[0], p.triangle_count());
+  EXPECT_EQ(error_of([&] { m.closest_points({1.0, 2.0}); }).status(), MCON_ERROR_INVALID_ARGUMENT);
+}
+
 TEST(CppWrapper, ErrorsCarryStatusAndLibraryMessage) {
   macrocon::Context ctx;
   Flat g = flat(mcon::test_meshes::make_grid(4));

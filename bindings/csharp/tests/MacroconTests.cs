@@ -1021,7 +1021,32 @@ static class Tests
     // No tuple deconstruction (`var (a, b) = ...`) anywhere here: mcs 6.8 silently drops a lambda that
     // contains one (which hid most of this runner's tests before) or crashes when a lambda captures
     // a deconstructed variable. The runner also checks how many tests ran.
-    const int ExpectedTests = 24;
+    const int ExpectedTests = 25;
+
+    // Mesh.ClosestPoints / Patch.ClosestPoints: distances and feet of points above a grid; host
+    // units on a patch; a ragged array and a NaN are refused.
+    static void TestClosestPoints()
+    {
+        var g = Grid(11);  // [0, 1]^2, spacing 0.1
+        using (var ctx = new Context(2))
+        using (var m = new Mesh(ctx, g.Item1, g.Item2))
+        {
+            var c = m.ClosestPoints(new double[] { 0.25, 0.35, 0.2, 1.4, 0.5, 0.0 });
+            Check(c.Triangles.Length == 2, "two points");
+            Check(Math.Abs(c.Distances[0] - 0.2) < 1e-12 && Math.Abs(c.Distances[1] - 0.4) < 1e-12,
+                  "distances " + c.Distances[0] + ", " + c.Distances[1]);
+            Check(Math.Abs(c.Barycentric[0] + c.Barycentric[1] + c.Barycentric[2] - 1) < 1e-12, "weights sum to 1");
+            using (var patch = Patch.Extract(m, 60, 0.3))
+            {
+                var p = patch.ClosestPoints(new double[] { 0.5, 0.55, -0.25 });
+                Check(Math.Abs(p.Distances[0] - 0.25) < 1e-9, "host units on the patch: " + p.Distances[0]);
+                Check(p.Triangles[0] < patch.TriangleCount, "a patch triangle");
+            }
+            Expect<ArgumentException>(() => m.ClosestPoints(new double[] { 1, 2 }));
+            var e = Expect<MacroconException>(() => m.ClosestPoints(new double[] { 0, double.NaN, 0 }));
+            Check(e.Status == Status.NonFinite && e.Message.Contains("coordinate 1 of point 0"), "NaN named: " + e.Message);
+        }
+    }
 
     // The log callback receives the status and the message of the exception (mesh and patch
     // errors of the context); other contexts do not log; a disposed context drops late messages.
@@ -1353,6 +1378,7 @@ static class Tests
         Run("MeshFlags.ValidateLocally: defects away from the patch", TestValidateLocally);
         Run("Patch.Extract(repair: true): zero-area triangles and pinched vertices repaired", TestRepair);
         Run("patch extraction", Test3);
+        Run("closest points on a mesh and a patch", TestClosestPoints);
         Run("patch extraction at a triangle + barycentric, Python's arguments", TestExtractAtTriangle);
         Run("progress cancels and callback exceptions propagate", Test4);
         Run("library: entries round trip through every getter", Test5);

@@ -428,6 +428,8 @@ _SIGNATURES = {
     "mcon_mesh_get_orientation": [ctypes.c_void_p, ctypes.POINTER(MeshOrientationInfo)],
     "mcon_mesh_get_reoriented_triangles": [ctypes.c_void_p, ctypes.POINTER(ctypes.c_uint8), c_size],
     "mcon_mesh_get_triangles": [ctypes.c_void_p, c_uint32_p, c_size],
+    "mcon_mesh_closest_points": [ctypes.c_void_p, ctypes.c_void_p, c_size, ctypes.c_void_p, ctypes.c_void_p,
+                                 ctypes.c_void_p],
     "mcon_patch_options_init": [ctypes.POINTER(PatchOptions)],
     "mcon_patch_extract": [ctypes.c_void_p, ctypes.POINTER(PatchOptions), ctypes.POINTER(ctypes.c_void_p)],
     "mcon_patch_retain": [ctypes.c_void_p],
@@ -441,6 +443,8 @@ _SIGNATURES = {
     "mcon_patch_get_uv": [ctypes.c_void_p, c_double_p, c_size],
     "mcon_patch_get_host_vertices": [ctypes.c_void_p, c_uint32_p, c_uint32_p, c_double_p, c_size],
     "mcon_patch_get_host_triangles": [ctypes.c_void_p, c_uint32_p, c_size],
+    "mcon_patch_closest_points": [ctypes.c_void_p, ctypes.c_void_p, c_size, ctypes.c_void_p, ctypes.c_void_p,
+                                  ctypes.c_void_p],
     "mcon_descriptor_get_dimension": [ctypes.c_int32, ctypes.POINTER(ctypes.c_uint32)],
     "mcon_patch_compute_descriptors": [ctypes.c_void_p, ctypes.c_int32, c_double_p, c_size],
     # constraint libraries and retrieval; array pointers are c_void_p (numpy .ctypes.data or None)

@@ -13,7 +13,7 @@ from typing import Callable, Optional
 import numpy as np
 
 from . import _native
-from ._arrays import strided_rows
+from ._arrays import checked, ptr, strided_rows
 from .errors import CancelledError, Error, InvalidArgumentError, check, check_path
 
 ProgressCallback = Callable[[float], bool]
@@ -65,6 +65,14 @@ def _exit_hook() -> None:
 
 
 atexit.register(_exit_hook)
+
+
+def _closest_points(function, handle, points) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    p = checked("points", points, np.float64, (None, 3))
+    n = p.shape[0]
+    t, b, d = np.empty(n, np.uint32), np.empty((n, 3)), np.empty(n)
+    check(function(handle, ptr(p), n, ptr(t), ptr(b), ptr(d)))
+    return t, b, d
 
 
 def require_type(value, cls, name: str) -> None:
@@ -353,6 +361,11 @@ class Mesh(_Handle):
         out = np.zeros((self.counts[1], 3), dtype=np.uint32)
         check(_native.lib.mcon_mesh_get_triangles(self.handle, out.ctypes.data_as(_native.c_uint32_p), out.size))
         return out
+
+    def closest_points(self, points) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The closest surface point to each of ``points`` ((n, 3) float64): (triangles (n,) uint32,
+        barycentric (n, 3) in the triangle's corner order, distances (n,))."""
+        return _closest_points(_native.lib.mcon_mesh_closest_points, self.handle, points)
 
     def cut_guides(self, guide_sets, snap_fraction: Optional[float] = None,
                    simplify_fraction: Optional[float] = None):
@@ -658,6 +671,11 @@ class Patch(_Handle):
         out = np.empty(self.triangle_count, np.uint32)
         check(_native.lib.mcon_patch_get_host_triangles(self.handle, out.ctypes.data_as(_native.c_uint32_p), out.size))
         return out
+
+    def closest_points(self, points) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """As :meth:`Mesh.closest_points` on this patch, with ``points`` and the distances in host
+        units; triangles are the patch's own."""
+        return _closest_points(_native.lib.mcon_patch_closest_points, self.handle, points)
 
     def descriptors(self, kind: str = "curv9") -> np.ndarray:
         """(n, d) per-vertex descriptors: 'curv9' (d = 9) or 'mean_curvature' (d = 1)."""

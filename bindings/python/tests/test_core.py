@@ -263,3 +263,27 @@ def test_repair_removes_zero_area_triangles_and_splits_pinched_vertices(context)
             assert reference.repairs == macrocon.PatchRepairs(0, 0, 0, 0)
         with pytest.raises(macrocon.InvalidArgumentError):
             macrocon.Patch.extract(clean, 0.5, center_vertex=30, repair=True)  # nothing deferred to repair
+
+
+def test_closest_points_on_the_mesh_and_a_patch(context):
+    p, t = grid(41)
+    with macrocon.Mesh(context, p, t) as mesh:
+        q = np.array([[0.3, 0.6, 0.2], [1.3, 0.5, 0.0]])
+        tri, bary, dist = mesh.closest_points(q)
+        assert tri.dtype == np.uint32 and bary.shape == (2, 3)
+        np.testing.assert_allclose(dist, [0.2, 0.3], atol=1e-12)
+        corners = mesh.triangles[tri]
+        foot = np.einsum("ik,ikj->ij", bary, p[corners])
+        np.testing.assert_allclose(foot, [[0.3, 0.6, 0.0], [1.0, 0.5, 0.0]], atol=1e-12)
+        patch = macrocon.Patch.extract(mesh, radius=0.3, center_vertex=20 * 41 + 20)
+        ptri, _, pdist = patch.closest_points(np.array([[0.55, 0.5, -0.1]]))  # host units
+        assert ptri[0] < patch.triangle_count
+        assert abs(pdist[0] - 0.1) < 1e-9
+        with pytest.raises(TypeError, match="points must have dtype float64"):
+            mesh.closest_points(q.astype(np.float32))
+        with pytest.raises(ValueError, match=r"points must have shape \(n, 3\)"):
+            mesh.closest_points(q[:, :2])
+        bad = q.copy()
+        bad[1, 2] = np.nan
+        with pytest.raises(macrocon.Error, match="coordinate 2 of point 1 is not finite"):
+            mesh.closest_points(bad)
