@@ -2,7 +2,8 @@
 // bytes build a small mesh (a perturbed grid, or raw vertex and index arrays), in float32 or
 // float64, with fuzzed strides and counts inside the buffers, then mcon_mesh_create, two
 // mcon_patch_extract calls with fuzzed options (center, radius, flags, snap_fraction) and, when
-// both succeed, a cheap mcon_map_compute between them (few alignment samples and iterations).
+// both succeed, a cheap mcon_map_compute between them (few alignment samples and iterations), then
+// closest points of fuzzed query points on the mesh and the patch.
 // Every call must return a documented mcon_status (the enum's values, never UNKNOWN, and never
 // NULL_POINTER or STRUCT_SIZE for the valid pointers and sizes passed here) with a message when it
 // fails; a crash or sanitizer report is a finding.
@@ -140,6 +141,22 @@ void map(FuzzedDataProvider& in, mcon_patch source, mcon_patch target) {
   check("mcon_map_release", mcon_map_release(result));
 }
 
+// A few fuzzed query points (any doubles, NaN and infinities included) against the mesh and, if
+// one was cut, the patch.
+void closest_points(FuzzedDataProvider& in, mcon_mesh mesh, mcon_patch patch) {
+  const std::size_t n = in.ConsumeIntegralInRange<std::size_t>(0, 4);
+  std::vector<double> xyz(3 * n);
+  for (double& x : xyz)
+    x = in.ConsumeBool() ? in.ConsumeFloatingPoint<double>() : in.ConsumeIntegralInRange(-16, 16) / 4.0;
+  std::vector<std::uint32_t> triangles(n);
+  std::vector<double> barycentric(3 * n), distances(n);
+  check("mcon_mesh_closest_points", mcon_mesh_closest_points(mesh, xyz.data(), n, triangles.data(),
+                                                             barycentric.data(), distances.data()));
+  if (patch != nullptr)
+    check("mcon_patch_closest_points",
+          mcon_patch_closest_points(patch, xyz.data(), n, triangles.data(), barycentric.data(), distances.data()));
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -159,6 +176,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   mcon_patch source = extract(in, mesh, b.desc.vertex_count, b.desc.triangle_count);
   mcon_patch target = source != nullptr ? extract(in, mesh, b.desc.vertex_count, b.desc.triangle_count) : nullptr;
   if (source != nullptr && target != nullptr) map(in, source, target);
+  closest_points(in, mesh, source);
   check("mcon_patch_release", mcon_patch_release(target));
   check("mcon_patch_release", mcon_patch_release(source));
   check("mcon_mesh_release", mcon_mesh_release(mesh));
