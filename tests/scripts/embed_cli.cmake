@@ -209,6 +209,8 @@ run_checked(WHAT "an unknown option" EXPECT_FAILURE "unknown option '--radious' 
   COMMAND ${CLI} patch --mesh ${MESH} --center-vertex 297 --radious 0.3)
 run_checked(WHAT "a stray word" EXPECT_FAILURE "not expected: stray"
   COMMAND ${CLI} patch --mesh ${MESH} stray --center-vertex 297 --radius 0.3)
+run_checked(WHAT "a stray word after a negative value" EXPECT_FAILURE "not expected: stray"
+  COMMAND ${CLI} patch --mesh ${MESH} --center-vertex 297 --radius 0.3 --snap -0.1 stray)
 
 # Up hints: both meshes +y up (the file's axes); the summary says so and the map stays flip-free.
 # A zero vector, a malformed one and a lone --source-up are refused by name.

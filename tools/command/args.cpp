@@ -17,7 +17,8 @@ namespace {
                           const std::set<std::string>& flags) {
   if (dynamic_cast<const CLI::ExtrasError*>(&e) != nullptr) {
     for (const std::string& a : args) {
-      if (a.rfind("-", 0) != 0) continue;
+      // Values may be negative numbers ("--seed -5"): only words that look like options count.
+      if (a.size() < 2 || a[0] != '-' || (a[1] >= '0' && a[1] <= '9') || a[1] == '.') continue;
       const std::string key = a.rfind("--", 0) == 0 ? a.substr(2, a.find('=') - 2) : std::string();
       if (key != "help" && !keys.count(key) && !flags.count(key))
         fail(MCON_ERROR_INVALID_ARGUMENT, "unknown option '" + a + "' (--help lists the options)");
