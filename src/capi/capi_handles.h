@@ -15,22 +15,27 @@
 
 namespace mcon::capi {
 
-// A closest-point tree over a mesh made on first use, once, whichever thread asks first.
+// A closest-point tree made on first use, once, whichever thread asks first.
 class LazyTree {
  public:
-  // `make` returns the mesh the tree is built over (kept here, as the tree refers to it).
+  // Over `mesh`, which outlives this object and never changes (the handle's own mesh): no copy.
+  const TriangleTree3D& over(const TriMesh& mesh) {
+    std::call_once(once_, [&] { tree_ = std::make_unique<TriangleTree3D>(mesh); });
+    return *tree_;
+  }
+  // Over the mesh `make` returns (derived from the handle's data), kept here for the tree.
   template <typename Make>
-  const TriangleTree3D& get(const Make& make) {
+  const TriangleTree3D& over_made(const Make& make) {
     std::call_once(once_, [&] {
-      mesh_ = make();
-      tree_ = std::make_unique<TriangleTree3D>(mesh_);
+      made_ = make();
+      tree_ = std::make_unique<TriangleTree3D>(made_);
     });
     return *tree_;
   }
 
  private:
   std::once_flag once_;
-  TriMesh mesh_;
+  TriMesh made_;
   std::unique_ptr<TriangleTree3D> tree_;
 };
 

@@ -144,7 +144,7 @@ mcon_status mcon_mesh_get_triangles(mcon_mesh mesh, uint32_t* out_indices, size_
 mcon_status mcon_mesh_closest_points(mcon_mesh mesh, const double* xyz, size_t count, uint32_t* out_triangles,
                                      double* out_barycentric, double* out_distances) {
   return guard_object("mcon_mesh_closest_points", mesh, "mesh", [&] {
-    const TriangleTree3D& tree = mesh->closest_tree.get([&] { return mesh->mesh; });
+    const TriangleTree3D& tree = mesh->closest_tree.over(mesh->mesh);
     write_closest_points(mesh->context, tree, xyz, count, out_triangles, out_barycentric, out_distances);
   });
 }

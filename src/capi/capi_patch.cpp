@@ -236,7 +236,7 @@ mcon_status mcon_patch_get_host_triangles(mcon_patch patch, uint32_t* out_host_t
 mcon_status mcon_patch_closest_points(mcon_patch patch, const double* xyz, size_t count, uint32_t* out_triangles,
                                       double* out_barycentric, double* out_distances) {
   return guard_object("mcon_patch_closest_points", patch, "patch", [&] {
-    const TriangleTree3D& tree = patch->closest_tree.get([&] { return host_mesh(patch->patch); });
+    const TriangleTree3D& tree = patch->closest_tree.over_made([&] { return host_mesh(patch->patch); });
     write_closest_points(patch->context, tree, xyz, count, out_triangles, out_barycentric, out_distances);
   });
 }
