@@ -54,25 +54,17 @@ class HelpFormatter : public CLI::Formatter {
   std::string make_usage(const CLI::App*, std::string) const override { return ""; }
 };
 
-struct Parsed {
-  CLI::App app;
-  std::map<std::string, CLI::Option*> options;  // key -> option
-};
-
 // Declares every key (one value each occurrence, any number of occurrences) and flag, parses,
 // and handles --help. What a command allows more than once is the caller's decision.
-void parse(Parsed& p, const Args& args, const std::set<std::string>& keys, const std::set<std::string>& flags,
+void parse(CLI::App& app, const Args& args, const std::set<std::string>& keys, const std::set<std::string>& flags,
            const char* usage) {
-  CLI::App& app = p.app;
   app.description(usage != nullptr ? usage : "");
   app.set_help_flag("-h,--help", "print this help and exit");
   app.formatter(std::make_shared<HelpFormatter>());
   app.get_formatter()->column_width(30);
   for (const std::string& key : keys)
-    p.options[key] =
-        app.add_option("--" + key)->type_name(value_name(usage, key))->expected(1)->take_all()->allow_extra_args(false);
-  for (const std::string& key : flags)
-    p.options[key] = app.add_flag("--" + key)->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+    app.add_option("--" + key)->type_name(value_name(usage, key))->expected(1)->take_all()->allow_extra_args(false);
+  for (const std::string& key : flags) app.add_flag("--" + key)->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   // CLI11 gives an option its value even when the next word is another option; a forgotten value
   // would then swallow the option after it. A value starting with "--" needs --key=--value.
   for (std::size_t i = 0; i + 1 < args.size(); ++i)
@@ -113,11 +105,11 @@ void parse_range(const std::string& key, const std::string& s, long& begin, long
 
 std::vector<ArgOccurrence> parse_in_order(const Args& args, const std::set<std::string>& keys,
                                           const std::set<std::string>& flags, const char* usage) {
-  Parsed p;
-  parse(p, args, keys, flags, usage);
+  CLI::App app;
+  parse(app, args, keys, flags, usage);
   std::map<const CLI::Option*, std::size_t> seen;
   std::vector<ArgOccurrence> out;
-  for (const CLI::Option* o : p.app.parse_order()) {
+  for (const CLI::Option* o : app.parse_order()) {
     const std::string key = o->get_name().substr(2);
     const bool is_flag = flags.count(key) > 0;
     const std::size_t k = seen[o]++;

@@ -49,6 +49,11 @@ int run_commands(const char* program, int argc, char** argv) {
   const std::string name = help ? argv[2] : first;
   Args args(argv + (help ? 3 : 2), argv + argc);
   if (help) args.push_back("--help");
+  const auto report = [&](mcon_status s, const char* what) {
+    const char* status = status_name(s);
+    std::fprintf(stderr, "%s %s: error (%s): %s\n", program, name.c_str(), status ? status : "?", what);
+    return 1;
+  };
   for (const auto& c : commands()) {
     if (c.name != name) continue;
     try {
@@ -56,13 +61,9 @@ int run_commands(const char* program, int argc, char** argv) {
     } catch (const HelpShown&) {
       return 0;
     } catch (const Error& e) {
-      const char* status = status_name(e.status());
-      std::fprintf(stderr, "%s %s: error (%s): %s\n", program, name.c_str(), status ? status : "?", e.what());
-      return 1;
+      return report(e.status(), e.what());
     } catch (const macrocon::Error& e) {  // the public API's calls, which the product commands use
-      const char* status = status_name(e.status());
-      std::fprintf(stderr, "%s %s: error (%s): %s\n", program, name.c_str(), status ? status : "?", e.what());
-      return 1;
+      return report(e.status(), e.what());
     } catch (const std::bad_alloc&) {
       std::fprintf(stderr, "%s %s: error (MCON_ERROR_OUT_OF_MEMORY): out of memory\n", program, name.c_str());
       return 1;
