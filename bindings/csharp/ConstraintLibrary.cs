@@ -99,12 +99,41 @@ namespace Macrocon
 
         private ConstraintLibrary(LibraryHandle handle) { Handle = handle; }
 
-        /// <summary>An empty library (descriptor Curv9, no vocabulary yet).</summary>
-        public ConstraintLibrary(Context context)
+        /// <summary>An empty library (no vocabulary yet) whose entries are described by `descriptor`.</summary>
+        public ConstraintLibrary(Context context, RetrievalDescriptor descriptor = RetrievalDescriptor.Curv9)
         {
             if (context == null) throw new ArgumentNullException(nameof(context));
             Native.Check(Native.mcon_library_create(context.Handle, out Handle));
+            if (descriptor != RetrievalDescriptor.Curv9) SetDescriptor(descriptor);
         }
+
+        /// <summary>The built-in descriptor of an empty library (one with entries changes it by BuildRetrieval).</summary>
+        public void SetDescriptor(RetrievalDescriptor descriptor) =>
+            Native.Check(Native.mcon_library_set_descriptor(Handle, descriptor));
+
+        public string GetString(LibraryString which)
+        {
+            Native.Check(Native.mcon_library_get_string(Handle, which, null, UIntPtr.Zero, out UIntPtr size));
+            var buf = new byte[(int)size];
+            Native.Check(Native.mcon_library_get_string(Handle, which, buf, size, out size));
+            return System.Text.Encoding.UTF8.GetString(buf, 0, Math.Max(0, (int)size - 1));
+        }
+
+        /// <summary>The library's name, kept by Save and Open.</summary>
+        public string Name
+        {
+            get => GetString(LibraryString.Name);
+            set => Native.Check(Native.mcon_library_set_string(Handle, LibraryString.Name, Native.Utf8(value)));
+        }
+
+        public string Description
+        {
+            get => GetString(LibraryString.Description);
+            set => Native.Check(Native.mcon_library_set_string(Handle, LibraryString.Description, Native.Utf8(value)));
+        }
+
+        /// <summary>The stored descriptor name: "curv9", "hks", "wks" or a custom library's own.</summary>
+        public string DescriptorName => GetString(LibraryString.Descriptor);
 
         /// <summary>Validates and opens a file: System.IO.FileNotFoundException (FileName = path, the
         /// MacroconException with Status.IO as InnerException) if there is none, else a

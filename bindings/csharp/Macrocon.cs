@@ -30,6 +30,7 @@ namespace Macrocon
     /// <summary>mcon_map_orientation: the descriptors decide, or one orientation is forced (a "flip").</summary>
     public enum MapOrientation { Automatic = 0, Preserve = 1, Reverse = 2 }
     public enum EntryString { Name = 1, ClassLabel = 2, Author = 3, Licence = 4, Tag = 5, FieldName = 6 }
+    public enum LibraryString { Name = 1, Description = 2, Descriptor = 3 }
 
     /// <summary>mcon_surface_point: triangle `Face` of a patch and the weights of its corners.</summary>
     [StructLayout(LayoutKind.Sequential)]
@@ -329,6 +330,10 @@ namespace Macrocon
         [DllImport(Lib)] internal static extern Status mcon_library_info_init(ref LibraryInfo info);
         [DllImport(Lib)] internal static extern Status mcon_library_get_info(LibraryHandle library, ref LibraryInfo info);
         [DllImport(Lib)] internal static extern Status mcon_library_get_count(LibraryHandle library, out UIntPtr count);
+        [DllImport(Lib)] internal static extern Status mcon_library_get_string(LibraryHandle library, LibraryString which,
+            [Out] byte[] text, UIntPtr capacity, out UIntPtr size);
+        [DllImport(Lib)] internal static extern Status mcon_library_set_string(LibraryHandle library, LibraryString which, byte[] text);
+        [DllImport(Lib)] internal static extern Status mcon_library_set_descriptor(LibraryHandle library, RetrievalDescriptor descriptor);
         [DllImport(Lib)] internal static extern Status mcon_library_add_entry(LibraryHandle library, ref EntryDesc desc, out ulong id);
         [DllImport(Lib)] internal static extern Status mcon_library_remove_entry(LibraryHandle library, ulong id);
         [DllImport(Lib)] internal static extern Status mcon_library_find_entry(LibraryHandle library, ulong id, out UIntPtr index);

@@ -463,6 +463,23 @@ MCON_API mcon_status mcon_library_info_init(mcon_library_info* info);
 MCON_API mcon_status mcon_library_get_info(mcon_library library, mcon_library_info* info);
 MCON_API mcon_status mcon_library_get_count(mcon_library library, size_t* out_count);
 
+typedef enum mcon_library_string {
+  MCON_LIBRARY_NAME = 1,
+  MCON_LIBRARY_DESCRIPTION = 2,
+  MCON_LIBRARY_DESCRIPTOR = 3 /**< the stored descriptor name: "curv9", "hks", "wks" or a custom one's */
+} mcon_library_string;
+
+/** A library string as UTF-8 with a terminating NUL; sizes as in mcon_library_get_entry_string. */
+MCON_API mcon_status mcon_library_get_string(mcon_library library, mcon_library_string which, char* out_text,
+                                             size_t capacity, size_t* out_size);
+/** Sets the name or the description (UTF-8; NULL = ""); the descriptor is not a settable string. */
+MCON_API mcon_status mcon_library_set_string(mcon_library library, mcon_library_string which, const char* text);
+/** The built-in descriptor an empty library computes for its entries (default CURV9); a library with
+ * entries changes descriptor through mcon_library_build_retrieval. */
+MCON_API mcon_status mcon_library_set_descriptor(mcon_library library, uint32_t descriptor);
+/** The mcon_retrieval_descriptor of a built-in descriptor's stored name ("curv9", "hks", "wks"). */
+MCON_API mcon_status mcon_retrieval_descriptor_from_name(const char* name, uint32_t* out_descriptor);
+
 /** Validates everything (constraint points on patch faces, barycentric weights, field sizes and
  * finite values...) and appends one entry; *out_id (may be NULL) receives its id. Computes the
  * entry's descriptors (or takes the caller's, see mcon_library_entry_desc) and, if the library
@@ -578,8 +595,6 @@ MCON_API mcon_status mcon_library_get_entry_field(mcon_library library, size_t i
 MCON_API mcon_status mcon_library_get_entry_retrieval(mcon_library library, size_t index, double* out_descriptors,
                                                       size_t descriptor_capacity, float* out_histogram,
                                                       size_t histogram_capacity);
-
-/* @@library-api@@ (insertion point; keep this line) */
 
 /* ---------------------------------------------------------------------------------------------
  * Re-embedding maps and constraint transfer (mcon_map_*)
@@ -931,8 +946,6 @@ MCON_API mcon_status mcon_cut_mesh_compute_cross_field(mcon_cut_mesh cut, double
  * edges; convex/concave from the dihedral angle), and `<path_prefix>.quadwild.json` (face count,
  * the OBJ's FNV-1a 64 hash, QuadWild's command lines). IO on failure. */
 MCON_API mcon_status mcon_cut_mesh_write_quadwild(mcon_cut_mesh cut, const char* path_prefix);
-
-/* @@map-api@@ (insertion point; keep this line) */
 
 #ifdef __cplusplus
 }

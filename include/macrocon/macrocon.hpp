@@ -195,6 +195,22 @@ ClosestPoints closest_points(Handle handle, const std::vector<double>& xyz, cons
   check(call(handle, xyz.data(), n, c.triangles.data(), c.barycentric.data(), c.distances.data()));
   return c;
 }
+
+/// Carries a std::function through a C progress callback; an exception becomes "cancel" and is
+/// rethrown by the call that took the callback (no exception may cross the C boundary).
+struct ProgressForward {
+  const std::function<bool(double)>* function;
+  std::exception_ptr exception;
+  static std::int32_t call(void* user, double fraction) {
+    auto* self = static_cast<ProgressForward*>(user);
+    try {
+      return (*self->function)(fraction) ? 1 : 0;
+    } catch (...) {
+      self->exception = std::current_exception();
+      return 0;
+    }
+  }
+};
 }  // namespace detail
 
 /// A validated, manifold triangle mesh (the library keeps its own copy of the arrays).
@@ -370,9 +386,9 @@ class Patch {
     c.flags = (options.fill_holes ? static_cast<std::uint32_t>(MCON_PATCH_FILL_HOLES) : 0u) |
               (options.repair_region ? static_cast<std::uint32_t>(MCON_PATCH_REPAIR_REGION) : 0u);
     c.snap_fraction = options.snap_fraction;
-    ProgressForward forward{&options.progress, nullptr};
+    detail::ProgressForward forward{&options.progress, nullptr};
     if (options.progress) {
-      c.progress = &ProgressForward::call;
+      c.progress = &detail::ProgressForward::call;
       c.progress_user_data = &forward;
     }
     mcon_patch handle = nullptr;
@@ -466,22 +482,6 @@ class Patch {
   explicit operator bool() const noexcept { return ref_.get() != nullptr; }
 
  private:
-  /// Carries a std::function through the C callback; an exception becomes "cancel" and is
-  /// rethrown by extract() (no exception may cross the C boundary).
-  struct ProgressForward {
-    const std::function<bool(double)>* function;
-    std::exception_ptr exception;
-    static std::int32_t call(void* user, double fraction) {
-      auto* self = static_cast<ProgressForward*>(user);
-      try {
-        return (*self->function)(fraction) ? 1 : 0;
-      } catch (...) {
-        self->exception = std::current_exception();
-        return 0;
-      }
-    }
-  };
-
   mcon_patch handle() const { return detail::require(get(), "Patch"); }
 
   detail::Ref<mcon_patch, mcon_patch_retain, mcon_patch_release> ref_;
@@ -523,6 +523,13 @@ struct QueryHit {
   std::uint32_t index = 0;
   double distance = 0;
 };
+
+/// The mcon_retrieval_descriptor of a built-in descriptor's stored name ("curv9", "hks", "wks").
+inline std::uint32_t retrieval_descriptor_from_name(const std::string& name) {
+  std::uint32_t code = 0;
+  check(mcon_retrieval_descriptor_from_name(name.c_str(), &code));
+  return code;
+}
 
 /// A constraint library (mcon_library_*): copy = retain (the same library), move = steal.
 class Library {
@@ -622,6 +629,34 @@ class Library {
   }
   void build_retrieval() { build_retrieval(default_retrieval_options()); }
   void build_retrieval(const mcon_retrieval_options& options) { check(mcon_library_build_retrieval(handle(), &options)); }
+  /// With a progress function (fraction in [0, 1]; false cancels); its exceptions are rethrown.
+  void build_retrieval(mcon_retrieval_options options, const std::function<bool(double)>& progress) {
+    detail::ProgressForward forward{&progress, nullptr};
+    if (progress) {
+      options.progress = &detail::ProgressForward::call;
+      options.progress_user_data = &forward;
+    }
+    const mcon_status status = mcon_library_build_retrieval(handle(), &options);
+    if (forward.exception) std::rethrow_exception(forward.exception);
+    check(status);
+  }
+
+  /// An empty library's built-in descriptor (mcon_retrieval_descriptor).
+  void set_descriptor(std::uint32_t descriptor) { check(mcon_library_set_descriptor(handle(), descriptor)); }
+  /// MCON_LIBRARY_NAME, MCON_LIBRARY_DESCRIPTION or MCON_LIBRARY_DESCRIPTOR (its stored name).
+  std::string string(mcon_library_string which) const {
+    std::size_t size = 0;
+    check(mcon_library_get_string(handle(), which, nullptr, 0, &size));
+    std::string s(size, '\0');
+    check(mcon_library_get_string(handle(), which, &s[0], s.size(), &size));
+    s.resize(size > 0 ? size - 1 : 0);
+    return s;
+  }
+  void set_string(mcon_library_string which, const std::string& text) {
+    if (text.find('\0') != std::string::npos)
+      throw Error(MCON_ERROR_INVALID_ARGUMENT, "Library::set_string: the text contains a NUL byte");
+    check(mcon_library_set_string(handle(), which, text.c_str()));
+  }
 
   std::vector<QueryHit> query(const Patch& patch, std::size_t n) const {
     return run_query(n, [&](std::uint64_t* ids, std::uint32_t* indices, double* distances, std::size_t cap,
@@ -733,8 +768,6 @@ class Library {
 
   Ref ref_;
 };
-
-// @@library-api@@ (insertion point; keep this line)
 
 // ---- Re-embedding maps and constraint transfer ----
 
@@ -871,9 +904,9 @@ class Map {
          options.target_guidance.size() != target.vertex_count() * options.guidance_dimension))
       throw Error(MCON_ERROR_INVALID_ARGUMENT,
                   "MapOptions: guidance needs guidance_dimension values per source and per target vertex");
-    Forward forward{&options.progress, nullptr};
+    detail::ProgressForward forward{&options.progress, nullptr};
     if (options.progress) {
-      c.progress = &Forward::call;
+      c.progress = &detail::ProgressForward::call;
       c.progress_user_data = &forward;
     }
     mcon_map handle = nullptr;
@@ -982,19 +1015,6 @@ class Map {
 
  private:
   using Ref = detail::Ref<mcon_map, mcon_map_retain, mcon_map_release>;
-  struct Forward {
-    const std::function<bool(double)>* function;
-    std::exception_ptr exception;
-    static std::int32_t call(void* user, double fraction) {
-      auto* self = static_cast<Forward*>(user);
-      try {
-        return (*self->function)(fraction) ? 1 : 0;
-      } catch (...) {
-        self->exception = std::current_exception();
-        return 0;
-      }
-    }
-  };
   mcon_map handle() const { return detail::require(get(), "Map"); }
   Ref ref_;
 };
@@ -1130,8 +1150,6 @@ class CutMesh {
   mcon_cut_mesh handle() const { return detail::require(get(), "CutMesh"); }
   Ref ref_;
 };
-
-// @@map-api@@ (insertion point; keep this line)
 
 }  // namespace macrocon
 

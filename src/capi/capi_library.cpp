@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "base/text.h"
 #include "capi/capi_library.h"
 #include "library/library_file.h"
 #include "retrieval/retrieval_descriptors.h"
@@ -34,6 +35,22 @@ Eigen::MatrixXd read_rows(const double* values, std::size_t rows, std::uint32_t 
       out(static_cast<Eigen::Index>(v), static_cast<Eigen::Index>(j)) = x;
     }
   return out;
+}
+
+
+std::string caller_text(const char* s, const std::string& what) {
+  if (s == nullptr) return std::string();
+  std::string out(s);
+  const std::string problem = text_problem(out);
+  require(problem.empty(), MCON_ERROR_INVALID_ARGUMENT, what + " " + problem);
+  return out;
+}
+
+void copy_string(const std::string& s, char* out_text, std::size_t capacity, std::size_t* out_size) {
+  if (out_size) *out_size = s.size() + 1;
+  if (out_text == nullptr) return;
+  require_capacity(capacity, s.size() + 1, "out_text (capacity in bytes)");
+  std::memcpy(out_text, s.c_str(), s.size() + 1);
 }
 
 }  // namespace mcon::capi
@@ -161,6 +178,63 @@ mcon_status mcon_library_get_count(mcon_library library, size_t* out_count) {
   return guard_object("mcon_library_get_count", library, "library", [&] {
     require_pointer(out_count, "out_count");
     *out_count = library->library.size();
+  });
+}
+
+mcon_status mcon_library_get_string(mcon_library library, mcon_library_string which, char* out_text, size_t capacity,
+                                    size_t* out_size) {
+  return guard_object("mcon_library_get_string", library, "library", [&] {
+    const ConstraintLibrary& l = library->library;
+    switch (enum_bits(which)) {
+      case MCON_LIBRARY_NAME: return copy_string(l.name(), out_text, capacity, out_size);
+      case MCON_LIBRARY_DESCRIPTION: return copy_string(l.description(), out_text, capacity, out_size);
+      case MCON_LIBRARY_DESCRIPTOR: return copy_string(l.retrieval().descriptor, out_text, capacity, out_size);
+      default:
+        fail(MCON_ERROR_INVALID_ARGUMENT, "which " + std::to_string(enum_bits(which)) + " is not an mcon_library_string");
+    }
+  });
+}
+
+mcon_status mcon_library_set_string(mcon_library library, mcon_library_string which, const char* text) {
+  return guard_object("mcon_library_set_string", library, "library", [&] {
+    switch (enum_bits(which)) {
+      case MCON_LIBRARY_NAME: return library->library.set_name(caller_text(text, "text"));
+      case MCON_LIBRARY_DESCRIPTION: return library->library.set_description(caller_text(text, "text"));
+      case MCON_LIBRARY_DESCRIPTOR:
+        fail(MCON_ERROR_INVALID_ARGUMENT,
+             "the descriptor is set by mcon_library_set_descriptor (empty library) or mcon_library_build_retrieval");
+      default:
+        fail(MCON_ERROR_INVALID_ARGUMENT, "which " + std::to_string(enum_bits(which)) + " is not an mcon_library_string");
+    }
+  });
+}
+
+mcon_status mcon_library_set_descriptor(mcon_library library, uint32_t descriptor) {
+  return guard_object("mcon_library_set_descriptor", library, "library", [&] {
+    const ConstraintLibrary& l = library->library;
+    require(l.size() == 0, MCON_ERROR_INVALID_ARGUMENT,
+            "the library has " + std::to_string(l.size()) +
+                " entries: change its descriptor with mcon_library_build_retrieval (it recomputes them)");
+    require(descriptor != MCON_RETRIEVAL_DESCRIPTOR_CUSTOM, MCON_ERROR_INVALID_ARGUMENT,
+            "a CUSTOM library takes its descriptor from the first entry added with caller-supplied descriptors");
+    // A fresh configuration: without entries there is no vocabulary or normalization to keep.
+    RetrievalConfig config;
+    config.descriptor = descriptor_name(descriptor, l.retrieval().descriptor);
+    ConstraintLibrary next(config);
+    next.set_name(l.name());
+    next.set_description(l.description());
+    library->replace(std::move(next));
+  });
+}
+
+mcon_status mcon_retrieval_descriptor_from_name(const char* name, uint32_t* out_descriptor) {
+  return guard("mcon_retrieval_descriptor_from_name", [&] {
+    require_pointer(name, "name");
+    require_pointer(out_descriptor, "out_descriptor");
+    const BuiltinDescriptor* d = find_builtin_descriptor(name);
+    require(d != nullptr, MCON_ERROR_INVALID_ARGUMENT,
+            "unknown retrieval descriptor '" + printable_text(name) + "' (" + builtin_descriptor_names() + ")");
+    *out_descriptor = d->code;
   });
 }
 

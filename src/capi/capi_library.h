@@ -55,4 +55,12 @@ inline std::uint32_t descriptor_code(const std::string& name) {
 Eigen::MatrixXd read_rows(const double* values, std::size_t rows, std::uint32_t dimension, std::size_t stride,
                           const std::string& what);
 
+// A caller's string (NULL = ""): stored strings are UTF-8 (base/text.h), and a C string cannot
+// hold a NUL, so only the encoding needs checking. `what` names it in the error.
+std::string caller_text(const char* s, const std::string& what);
+
+// A stored string out through the C convention: *out_size (may be NULL) = bytes with the NUL;
+// with out_text non-NULL, capacity must hold them.
+void copy_string(const std::string& s, char* out_text, std::size_t capacity, std::size_t* out_size);
+
 }  // namespace mcon::capi

@@ -17,16 +17,6 @@ mcon_library_entry_desc default_entry_desc() {
   return d;
 }
 
-// A caller's string (NULL = ""): stored strings are UTF-8 (base/text.h), and a C string cannot
-// hold a NUL, so only the encoding needs checking here.
-std::string text(const char* s, const std::string& what) {
-  if (s == nullptr) return std::string();
-  std::string out(s);
-  const std::string problem = text_problem(out);
-  require(problem.empty(), MCON_ERROR_INVALID_ARGUMENT, what + " " + problem);
-  return out;
-}
-
 // A caller's surface point: the face must be a patch triangle, the weights finite, >= 0, sum 1.
 SurfacePoint read_point(const mcon_surface_point& p, std::size_t triangle_count, const std::string& what) {
   require(p.face < triangle_count, MCON_ERROR_INVALID_ARGUMENT,
@@ -52,7 +42,7 @@ SurfacePoint read_point(const mcon_surface_point& p, std::size_t triangle_count,
 VertexField read_field(const mcon_vertex_field& f, std::size_t n, const std::string& what) {
   VertexField out;
   require(f.name != nullptr && f.name[0] != '\0', MCON_ERROR_INVALID_ARGUMENT, what + ": name is NULL or empty");
-  out.name = text(f.name, what + ".name");
+  out.name = caller_text(f.name, what + ".name");
   const std::string where = what + " '" + printable_text(out.name) + "'";
   require(f.kind >= MCON_FIELD_SCALAR && f.kind <= MCON_FIELD_UV, MCON_ERROR_INVALID_ARGUMENT,
           where + ": kind " + std::to_string(f.kind) + " is not an mcon_field_kind");
@@ -93,13 +83,13 @@ MacroConstraint read_content(const mcon_library_entry_desc& d, const Patch& patc
   const std::size_t n = patch.mesh.positions.size(), m = patch.mesh.triangles.size();
   MacroConstraint e;
   e.id = d.id;
-  e.name = text(d.name, "desc.name");
-  e.class_label = text(d.class_label, "desc.class_label");
-  e.author = text(d.author, "desc.author");
-  e.licence = text(d.licence, "desc.licence");
+  e.name = caller_text(d.name, "desc.name");
+  e.class_label = caller_text(d.class_label, "desc.class_label");
+  e.author = caller_text(d.author, "desc.author");
+  e.licence = caller_text(d.licence, "desc.licence");
   require(d.tags != nullptr || d.tag_count == 0, MCON_ERROR_NULL_POINTER, "tags is NULL but tag_count > 0");
   for (std::size_t i = 0; i < d.tag_count; ++i)
-    e.tags.push_back(text(d.tags[i], "desc.tags[" + std::to_string(i) + "]"));
+    e.tags.push_back(caller_text(d.tags[i], "desc.tags[" + std::to_string(i) + "]"));
 
   require(d.polylines != nullptr || d.polyline_count == 0, MCON_ERROR_NULL_POINTER,
           "polylines is NULL but polyline_count > 0");
@@ -133,13 +123,6 @@ MacroConstraint read_content(const mcon_library_entry_desc& d, const Patch& patc
   for (std::size_t i = 0; i < d.field_count; ++i)
     e.fields.push_back(read_field(d.fields[i], n, "fields[" + std::to_string(i) + "]"));
   return e;
-}
-
-void copy_string(const std::string& s, char* out_text, std::size_t capacity, std::size_t* out_size) {
-  if (out_size) *out_size = s.size() + 1;
-  if (out_text == nullptr) return;
-  require_capacity(capacity, s.size() + 1, "out_text (capacity in bytes)");
-  std::memcpy(out_text, s.c_str(), s.size() + 1);
 }
 
 mcon_surface_point to_c(const SurfacePoint& p) {

@@ -521,6 +521,79 @@ TEST_F(LibraryTest, ChangingTheDescriptorRecomputesDescriptors) {
   EXPECT_EQ(r.distances[0], 0.0);
 }
 
+// Choosing the descriptor of an empty library computes it from the first entry on; the file is
+// the same as when the descriptor is changed by a build afterwards.
+TEST_F(LibraryTest, SetDescriptorOnAnEmptyLibraryMatchesAChangeByBuild) {
+  mcon_retrieval_options o = small_options();
+  o.descriptor = MCON_RETRIEVAL_DESCRIPTOR_WKS;
+  LibraryPtr chosen = make_library(ctx_.get());
+  ASSERT_EQ(mcon_library_set_descriptor(chosen.get(), MCON_RETRIEVAL_DESCRIPTOR_WKS), MCON_OK) << last_message();
+  add_all(chosen.get(), false);
+  const mcon_library_info before_build = library_info(chosen.get());
+  EXPECT_EQ(before_build.descriptor, static_cast<uint32_t>(MCON_RETRIEVAL_DESCRIPTOR_WKS));
+  EXPECT_EQ(before_build.descriptor_dimension, 100u);
+  ASSERT_EQ(mcon_library_build_retrieval(chosen.get(), &o), MCON_OK) << last_message();
+  LibraryPtr changed = make_library(ctx_.get());
+  add_all(changed.get(), false);
+  ASSERT_EQ(mcon_library_build_retrieval(changed.get(), &o), MCON_OK) << last_message();
+  EXPECT_EQ(save_bytes(chosen.get()), save_bytes(changed.get()));
+
+  EXPECT_EQ(mcon_library_set_descriptor(chosen.get(), MCON_RETRIEVAL_DESCRIPTOR_HKS), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(last_message().find("mcon_library_build_retrieval"), std::string::npos) << last_message();
+  LibraryPtr empty = make_library(ctx_.get());
+  EXPECT_EQ(mcon_library_set_descriptor(empty.get(), MCON_RETRIEVAL_DESCRIPTOR_CUSTOM), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(mcon_library_set_descriptor(empty.get(), 2), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(library_info(empty.get()).descriptor, static_cast<uint32_t>(MCON_RETRIEVAL_DESCRIPTOR_CURV9));
+}
+
+std::string library_string(mcon_library l, mcon_library_string which) {
+  size_t size = 0;
+  EXPECT_EQ(mcon_library_get_string(l, which, nullptr, 0, &size), MCON_OK) << last_message();
+  std::string s(size, '\0');
+  EXPECT_EQ(mcon_library_get_string(l, which, &s[0], s.size(), &size), MCON_OK) << last_message();
+  s.resize(size - 1);
+  return s;
+}
+
+TEST_F(LibraryTest, NameDescriptionAndDescriptorNameSurviveSaveAndOpen) {
+  LibraryPtr lib = make_library(ctx_.get());
+  EXPECT_EQ(library_string(lib.get(), MCON_LIBRARY_NAME), "");
+  EXPECT_EQ(library_string(lib.get(), MCON_LIBRARY_DESCRIPTOR), "curv9");
+  ASSERT_EQ(mcon_library_set_descriptor(lib.get(), MCON_RETRIEVAL_DESCRIPTOR_HKS), MCON_OK) << last_message();
+  ASSERT_EQ(mcon_library_set_string(lib.get(), MCON_LIBRARY_NAME, "faces \xc3\xa9t\xc3\xa9"), MCON_OK);
+  ASSERT_EQ(mcon_library_set_string(lib.get(), MCON_LIBRARY_DESCRIPTION, "noses and ears"), MCON_OK);
+  add_all(lib.get(), false);
+  const std::vector<uint8_t> bytes = save_bytes(lib.get());
+  mcon_library opened = nullptr;
+  ASSERT_EQ(mcon_library_open_memory(ctx_.get(), bytes.data(), bytes.size(), &opened), MCON_OK) << last_message();
+  LibraryPtr reopened(opened);
+  EXPECT_EQ(library_string(opened, MCON_LIBRARY_NAME), "faces \xc3\xa9t\xc3\xa9");
+  EXPECT_EQ(library_string(opened, MCON_LIBRARY_DESCRIPTION), "noses and ears");
+  EXPECT_EQ(library_string(opened, MCON_LIBRARY_DESCRIPTOR), "hks");
+
+  EXPECT_EQ(mcon_library_set_string(lib.get(), MCON_LIBRARY_NAME, "bad \xff"), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(last_message().find("UTF-8"), std::string::npos) << last_message();
+  EXPECT_EQ(library_string(lib.get(), MCON_LIBRARY_NAME), "faces \xc3\xa9t\xc3\xa9");
+  EXPECT_EQ(mcon_library_set_string(lib.get(), MCON_LIBRARY_DESCRIPTOR, "wks"), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(mcon_library_set_string(lib.get(), static_cast<mcon_library_string>(9), "x"), MCON_ERROR_INVALID_ARGUMENT);
+  char small[2];
+  EXPECT_NE(mcon_library_get_string(lib.get(), MCON_LIBRARY_NAME, small, sizeof small, nullptr), MCON_OK);
+}
+
+TEST(RetrievalDescriptorNames, EveryBuiltInNameGivesItsCode) {
+  uint32_t code = 0;
+  ASSERT_EQ(mcon_retrieval_descriptor_from_name("curv9", &code), MCON_OK);
+  EXPECT_EQ(code, static_cast<uint32_t>(MCON_RETRIEVAL_DESCRIPTOR_CURV9));
+  ASSERT_EQ(mcon_retrieval_descriptor_from_name("hks", &code), MCON_OK);
+  EXPECT_EQ(code, static_cast<uint32_t>(MCON_RETRIEVAL_DESCRIPTOR_HKS));
+  ASSERT_EQ(mcon_retrieval_descriptor_from_name("wks", &code), MCON_OK);
+  EXPECT_EQ(code, static_cast<uint32_t>(MCON_RETRIEVAL_DESCRIPTOR_WKS));
+  EXPECT_EQ(mcon_retrieval_descriptor_from_name("HKS", &code), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(last_message().find("curv9, hks or wks"), std::string::npos) << last_message();
+  EXPECT_EQ(mcon_retrieval_descriptor_from_name(nullptr, &code), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_retrieval_descriptor_from_name("wks", nullptr), MCON_ERROR_NULL_POINTER);
+}
+
 TEST_F(LibraryTest, ResultsDoNotDependOnTheThreadCount) {
   std::vector<std::vector<uint8_t>> bytes;
   std::vector<std::vector<QueryResult>> results;

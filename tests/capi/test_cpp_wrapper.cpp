@@ -381,6 +381,38 @@ TEST(CppWrapper, LibraryAddBuildQuerySaveOpenMergeAndEntries) {
   EXPECT_EQ(moved.size(), 4u);
 }
 
+TEST(CppWrapper, LibraryDescriptorStringsAndBuildProgress) {
+  macrocon::Context ctx;
+  const Flat g = flat(mcon::test_meshes::make_bumpy_grid(31));
+  const macrocon::Mesh mesh = macrocon::Mesh::from_arrays(ctx, g.xyz, g.tris);
+  macrocon::Library lib = macrocon::Library::create(ctx);
+  lib.set_descriptor(macrocon::retrieval_descriptor_from_name("hks"));
+  lib.set_string(MCON_LIBRARY_NAME, "grid regions");
+  EXPECT_EQ(lib.string(MCON_LIBRARY_DESCRIPTOR), "hks");
+  EXPECT_EQ(lib.string(MCON_LIBRARY_NAME), "grid regions");
+  EXPECT_EQ(error_of([&] { lib.set_string(MCON_LIBRARY_NAME, std::string("a\0b", 3)); }).status(),
+            MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(error_of([&] { macrocon::retrieval_descriptor_from_name("sift"); }).status(), MCON_ERROR_INVALID_ARGUMENT);
+  for (std::uint32_t v : {15u * 31 + 15, 8u * 31 + 8})
+    lib.add(macrocon::Patch::extract(mesh, macrocon::PatchOptions::at_vertex(v, 0.3)), macrocon::EntryData{});
+  EXPECT_EQ(lib.info().descriptor_dimension, 100u);
+
+  mcon_retrieval_options o = macrocon::Library::default_retrieval_options();
+  o.descriptor = MCON_RETRIEVAL_DESCRIPTOR_HKS;
+  o.vocabulary_size = 4;
+  double last = -1;
+  lib.build_retrieval(o, [&](double f) {
+    last = f;
+    return true;
+  });
+  EXPECT_EQ(last, 1.0);
+  EXPECT_EQ(lib.info().vocabulary_size, 4u);
+  // A callback's exception cancels the build and comes back out; the library is unchanged.
+  o.vocabulary_size = 2;
+  EXPECT_THROW(lib.build_retrieval(o, [](double) -> bool { throw std::runtime_error("stop"); }), std::runtime_error);
+  EXPECT_EQ(lib.info().vocabulary_size, 4u);
+}
+
 TEST(CppWrapper, ShutdownRefusesWhileAContextLivesThenSucceeds) {
   {
     macrocon::Context ctx;

@@ -294,6 +294,32 @@ static class Tests
     }
 
     // library: save, open, bytes, remove, find, merge
+    // A descriptor chosen at creation; name and description survive the bytes; an empty library
+    // only changes descriptor, and a NUL in a name is refused before the call.
+    static void TestLibraryStrings()
+    {
+        var r = Bumpy(41); var p = r.Item1; var t = r.Item2;
+        using (var ctx = new Context())
+        using (var m = new Mesh(ctx, p, t))
+        using (var lib = new ConstraintLibrary(ctx, RetrievalDescriptor.Hks))
+        {
+            Check(lib.DescriptorName == "hks", "descriptor name " + lib.DescriptorName);
+            lib.Name = "bumps \u00e9t\u00e9";
+            lib.Description = "two bumps";
+            var ps = Patches(m);
+            lib.AddEntry(ps[0]);
+            Check(lib.Info.DescriptorDimension == 100, "HKS from the first entry: " + lib.Info.DescriptorDimension);
+            using (var again = ConstraintLibrary.OpenMemory(ctx, lib.SaveMemory()))
+                Check(again.Name == "bumps \u00e9t\u00e9" && again.Description == "two bumps" && again.DescriptorName == "hks",
+                      "strings survive: " + again.Name);
+            var e = Expect<MacroconException>(() => lib.SetDescriptor(RetrievalDescriptor.Wks));
+            Check(e.Status == Status.InvalidArgument && e.Message.Contains("build_retrieval"),
+                  "a library with entries: " + e.Message);
+            Expect<ArgumentException>(() => lib.Name = "a\0b");
+            foreach (var q in ps) q.Dispose();
+        }
+    }
+
     static void Test6()
     {
         var r10 = Bumpy(41); var p = r10.Item1; var t = r10.Item2;
@@ -1021,7 +1047,7 @@ static class Tests
     // No tuple deconstruction (`var (a, b) = ...`) anywhere here: mcs 6.8 silently drops a lambda that
     // contains one (which hid most of this runner's tests before) or crashes when a lambda captures
     // a deconstructed variable. The runner also checks how many tests ran.
-    const int ExpectedTests = 25;
+    const int ExpectedTests = 26;
 
     // Mesh.ClosestPoints / Patch.ClosestPoints: distances and feet of points above a grid; host
     // units on a patch; a ragged array and a NaN are refused.
@@ -1383,6 +1409,7 @@ static class Tests
         Run("progress cancels and callback exceptions propagate", Test4);
         Run("library: entries round trip through every getter", Test5);
         Run("library: save, open, bytes, remove, find, merge", Test6);
+        Run("library: descriptor at creation, name, description", TestLibraryStrings);
         Run("library: retrieval finds each entry itself; cancel leaves it unchanged", Test7);
         Run("library: bad input, forged bytes, disposed handles", Test8);
         Run("map: from arrays, compute, correspondences, transfer, cross field", Test9);

@@ -287,13 +287,53 @@ class Library(_Handle):
 
     _release = _native.lib.mcon_library_release
 
-    def __init__(self, context: Context, _handle: Optional[ctypes.c_void_p] = None):
+    def __init__(self, context: Context, _handle: Optional[ctypes.c_void_p] = None, *,
+                 descriptor: Optional[RetrievalDescriptor] = None):
+        """An empty library; ``descriptor`` (default CURV9) is what its entries are described by."""
         require_type(context, Context, "context")
         if _handle is None:
             _handle = ctypes.c_void_p()
             check(_native.lib.mcon_library_create(context.handle, ctypes.byref(_handle)))
         super().__init__(_handle)
         self.context = context
+        if descriptor is not None:
+            self.set_descriptor(descriptor)
+
+    def set_descriptor(self, descriptor: RetrievalDescriptor) -> None:
+        """The built-in descriptor of an empty library (one with entries changes it through
+        ``build_retrieval``)."""
+        _native.check_value("descriptor", descriptor, ctypes.c_uint32)
+        check(_native.lib.mcon_library_set_descriptor(self.handle, int(descriptor)))
+
+    def _string(self, which: int) -> str:
+        size = _native.c_size()
+        check(_native.lib.mcon_library_get_string(self.handle, which, None, 0, ctypes.byref(size)))
+        buf = ctypes.create_string_buffer(size.value)
+        check(_native.lib.mcon_library_get_string(self.handle, which, buf, size.value, ctypes.byref(size)))
+        return buf.value.decode("utf-8")
+
+    @property
+    def name(self) -> str:
+        """The library's name ('' if none), kept by save/open."""
+        return self._string(1)
+
+    @name.setter
+    def name(self, text: str) -> None:
+        check(_native.lib.mcon_library_set_string(self.handle, 1, _utf8("name", text)))
+
+    @property
+    def description(self) -> str:
+        """The library's description ('' if none), kept by save/open."""
+        return self._string(2)
+
+    @description.setter
+    def description(self, text: str) -> None:
+        check(_native.lib.mcon_library_set_string(self.handle, 2, _utf8("description", text)))
+
+    @property
+    def descriptor_name(self) -> str:
+        """The stored name of the library's descriptor: 'curv9', 'hks', 'wks' or a custom one's."""
+        return self._string(3)
 
     @classmethod
     def open(cls, context: Context, path: Union[str, os.PathLike]) -> "Library":

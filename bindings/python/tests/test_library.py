@@ -316,3 +316,25 @@ def test_distinct_suggestions_group_one_class(context, patches):
         assert s[0].confidence >= s[1].confidence >= s[2].confidence
         with pytest.raises(macrocon.InvalidArgumentError):
             lib.query_distinct(patches[0], 0)
+
+
+def test_descriptor_chosen_at_creation_name_and_description(context, patches):
+    lib = macrocon.Library(context, descriptor=macrocon.RetrievalDescriptor.WKS)
+    assert lib.descriptor_name == "wks"
+    lib.name = "bumps \u00e9t\u00e9"
+    lib.description = "five bumps"
+    for patch in patches[:2]:
+        lib.add_entry(patch, name="b")
+    assert lib.info.descriptor == macrocon.RetrievalDescriptor.WKS
+    assert lib.info.descriptor_dimension == 100
+    again = macrocon.Library.open_memory(context, lib.to_bytes())
+    assert (again.name, again.description, again.descriptor_name) == ("bumps \u00e9t\u00e9", "five bumps", "wks")
+    with pytest.raises(macrocon.InvalidArgumentError, match="build_retrieval"):
+        lib.set_descriptor(macrocon.RetrievalDescriptor.HKS)  # it has entries now
+    with pytest.raises(macrocon.InvalidArgumentError, match="NUL"):
+        lib.name = "a\0b"
+    with pytest.raises(macrocon.InvalidArgumentError):
+        macrocon.Library(context, descriptor=2**32 + 1)
+    assert lib.name == "bumps \u00e9t\u00e9"
+    again.close()
+    lib.close()
