@@ -9,12 +9,9 @@
 #include <string>
 
 #include "base/parallel_blocks.h"
-#include "command/progress_bar.h"
 #include "base/text.h"
+#include "command/progress_bar.h"
 #include "library_cli.h"
-#include "library/library_file.h"
-#include "library/library_retrieval.h"
-#include "retrieval/retrieval_descriptors.h"
 
 namespace mcon::cli {
 namespace {
@@ -219,59 +216,108 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// A failure of one entry, from either error type (the CLI's own checks and the SDK's).
+struct EntryFailure {
+  mcon_status status;
+  std::string message;
+};
+
 // Cuts the entries' patches in parallel, a chunk at a time (each entry on its own; meshes are
 // loaded first, then only read), and adds them in the given order, so the file does not depend
 // on the thread count and at most one chunk of patches is held at once. A failing entry is named.
 // Returns what each entry's constraint files gave (entry_authoring.h).
-std::vector<AuthoringReport> add_entries(ConstraintLibrary& lib, MeshCache& meshes, const std::vector<EntrySpec>& entries,
+std::vector<AuthoringReport> add_entries(macrocon::Library& lib, MeshCache& meshes, const std::vector<EntrySpec>& entries,
                                          ProgressBar& bar) {
-  auto entry_error = [&](std::size_t i, const Error& e) {
+  auto entry_error = [&](std::size_t i, const EntryFailure& e) {
     const EntrySpec& s = entries[i];
-    fail(e.status(), "entry " + std::to_string(i) + (s.name.empty() ? "" : " '" + printable_text(s.name) + "'") +
-                         " (center vertex " + std::to_string(s.center_vertex) + ", radius " + number_text(s.radius) +
-                         "): " + e.what());
+    fail(e.status, "entry " + std::to_string(i) + (s.name.empty() ? "" : " '" + printable_text(s.name) + "'") +
+                       " (center vertex " + std::to_string(s.center_vertex) + ", radius " + number_text(s.radius) +
+                       "): " + e.message);
   };
-  for (std::size_t i = 0; i < entries.size(); ++i) {
+  // Runs f, turning what it throws into the entry's failure.
+  auto attempt = [](const auto& f) -> std::optional<EntryFailure> {
     try {
-      if (!entries[i].mesh.empty()) meshes.get(entries[i].mesh, entries[i].face_range);
+      f();
     } catch (const Error& e) {
-      entry_error(i, e);
+      return EntryFailure{e.status(), e.what()};
+    } catch (const macrocon::Error& e) {
+      return EntryFailure{e.status(), e.what()};
+    } catch (const std::bad_alloc&) {
+      return EntryFailure{MCON_ERROR_OUT_OF_MEMORY, "out of memory cutting the patch"};
     }
-  }
+    return std::nullopt;
+  };
+  for (std::size_t i = 0; i < entries.size(); ++i)
+    if (auto failure = attempt([&] {
+          if (!entries[i].mesh.empty()) meshes.of(entries[i]);
+        }))
+      entry_error(i, *failure);
   constexpr std::size_t kChunk = 64;
   std::atomic<std::size_t> done{0};
   std::vector<AuthoringReport> reports(entries.size());
   for (std::size_t first = 0; first < entries.size(); first += kChunk) {
     const std::size_t count = std::min(kChunk, entries.size() - first);
-    std::vector<std::optional<Patch>> patches(count);
-    std::vector<MacroConstraint> contents(count);
-    std::vector<std::optional<Error>> errors(count);
+    std::vector<macrocon::Patch> patches(count);
+    std::vector<macrocon::EntryData> contents(count);
+    std::vector<std::optional<EntryFailure>> errors(count);
     for_each_block(count, 1, [&](std::size_t begin, std::size_t end, std::size_t) {
       for (std::size_t k = begin; k < end; ++k) {
-        try {
+        errors[k] = attempt([&] {
           const EntrySpec& spec = entries[first + k];
-          patches[k] = cut_patch(meshes, spec);
+          const HostMesh& host = meshes.of(spec);
+          patches[k] = cut_patch(host, spec);
           contents[k] = entry_content(spec);
-          reports[first + k] = author_constraints(meshes.get(spec.mesh, spec.face_range), *patches[k], spec.authoring,
-                                                  contents[k]);
-        } catch (const Error& e) {
-          errors[k] = e;
-        } catch (const std::bad_alloc&) {
-          errors[k] = Error(MCON_ERROR_OUT_OF_MEMORY, "out of memory cutting the patch");
-        }
+          reports[first + k] = author_constraints(host, patches[k], spec.authoring, contents[k]);
+        });
         bar.update(static_cast<double>(++done) / static_cast<double>(entries.size()));
       }
     });
     for (std::size_t k = 0; k < count; ++k) {
       if (errors[k]) entry_error(first + k, *errors[k]);
-      try {
-        add_library_entry(lib, *patches[k], std::move(contents[k]));
-      } catch (const Error& e) {
-        entry_error(first + k, e);
-      }
+      if (auto failure = attempt([&] { lib.add(patches[k], contents[k]); })) entry_error(first + k, *failure);
     }
   }
   return reports;
+}
+
+// The retrieval options of `library build`, from mcon_retrieval_options_init's defaults.
+mcon_retrieval_options retrieval_options(const Parsed& p) {
+  mcon_retrieval_options o = macrocon::Library::default_retrieval_options();
+  const std::string descriptor = get(p, "descriptor", "curv9");
+  try {
+    o.descriptor = macrocon::retrieval_descriptor_from_name(descriptor);
+  } catch (const macrocon::Error& e) {
+    fail(e.status(), std::string("--descriptor: ") + e.what());
+  }
+  const long rings = parse_integer("rings", get(p, "rings", std::to_string(o.rings)));
+  const long k = parse_integer("vocabulary", get(p, "vocabulary", std::to_string(o.vocabulary_size)));
+  const long seed = parse_integer("seed", get(p, "seed", std::to_string(o.seed)));
+  require(rings >= 1 && rings <= 64, MCON_ERROR_INVALID_ARGUMENT, "--rings must be 1..64");
+  require(k >= 1 && k <= 65536, MCON_ERROR_INVALID_ARGUMENT, "--vocabulary must be 1..65536");
+  require(seed >= 0, MCON_ERROR_INVALID_ARGUMENT, "--seed must be >= 0");
+  o.rings = static_cast<std::uint32_t>(rings);
+  o.vocabulary_size = static_cast<std::uint32_t>(k);
+  o.seed = static_cast<std::uint64_t>(seed);
+  o.sigma_bof = parse_real("sigma", get(p, "sigma", number_text(o.sigma_bof)));
+  return o;
+}
+
+// `library build --json`: the summary, the timings and what each entry's constraint files gave.
+tools::Json build_report(const macrocon::Library& lib, const std::string& out, const Parsed& p,
+                         const std::vector<AuthoringReport>& reports, double patch_seconds, double build_seconds) {
+  tools::Json j = library_summary(lib);
+  j.set("library", out);
+  j.set("entry_seconds", patch_seconds);
+  j.set("build_seconds", build_seconds);
+  tools::Json authoring = tools::Json::array();
+  for (std::size_t i = 0; i < reports.size(); ++i)
+    if (!p.entries[i].authoring.empty()) {
+      tools::Json r = reports[i].json();
+      r.set("entry", static_cast<unsigned long>(i));
+      authoring.push_back(r);
+    }
+  j.set("authoring", authoring);
+  return j;
 }
 
 int run_build(const Args& args) {
@@ -283,28 +329,13 @@ int run_build(const Args& args) {
   }
   require(!p.entries.empty(), MCON_ERROR_INVALID_ARGUMENT, "no entries: give --center-vertex ... or --spec FILE");
   for (std::size_t i = 0; i < p.entries.size(); ++i) check_entry(p.entries[i], i);
-
-  LibraryRetrievalOptions options;
-  options.descriptor = get(p, "descriptor", "curv9");
-  require(is_builtin_descriptor(options.descriptor), MCON_ERROR_INVALID_ARGUMENT,
-          "--descriptor must be " + builtin_descriptor_names() + " (got '" + options.descriptor + "')");
-  const long rings = parse_integer("rings", get(p, "rings", std::to_string(kDefaultRetrievalRings)));
-  const long k = parse_integer("vocabulary", get(p, "vocabulary", std::to_string(kDefaultVocabularySize)));
-  const long seed = parse_integer("seed", get(p, "seed", "0"));
-  require(rings >= 1 && rings <= 64, MCON_ERROR_INVALID_ARGUMENT, "--rings must be 1..64");
-  require(k >= 1 && k <= 65536, MCON_ERROR_INVALID_ARGUMENT, "--vocabulary must be 1..65536");
-  require(seed >= 0, MCON_ERROR_INVALID_ARGUMENT, "--seed must be >= 0");
-  options.rings = static_cast<std::uint32_t>(rings);
-  options.vocabulary_size = static_cast<std::uint32_t>(k);
-  options.seed = static_cast<std::uint64_t>(seed);
-  options.sigma_bof = parse_real("sigma", get(p, "sigma", "0"));
+  const mcon_retrieval_options options = retrieval_options(p);
 
   const auto t0 = std::chrono::steady_clock::now();
-  MeshCache meshes;
-  // Entries are computed with the chosen descriptor from the start (no CURV9 first).
-  RetrievalConfig start;
-  start.descriptor = options.descriptor;
-  ConstraintLibrary lib{start};
+  const macrocon::Context context;
+  MeshCache meshes(context);
+  macrocon::Library lib = macrocon::Library::create(context);
+  lib.set_descriptor(options.descriptor);  // entries get the chosen descriptor from the start
   std::vector<AuthoringReport> reports;
   const bool bars = progress_wanted(p.quiet, p.progress);
   {
@@ -314,31 +345,18 @@ int run_build(const Args& args) {
   const double patch_seconds = seconds_since(t0);
   const auto t1 = std::chrono::steady_clock::now();
   ProgressBar bar("retrieval", bars);
-  options.progress = bar.callback();
-  lib = build_library_retrieval(lib, options);
+  lib.build_retrieval(options, bar.callback());
   bar.finish();
   const double build_seconds = seconds_since(t1);
-  save_library_atomic(lib, out);
+  lib.save(out);
 
   if (p.json) {
-    tools::Json j = library_summary(lib);
-    j.set("library", out);
-    j.set("entry_seconds", patch_seconds);
-    j.set("build_seconds", build_seconds);
-    tools::Json authoring = tools::Json::array();
-    for (std::size_t i = 0; i < reports.size(); ++i)
-      if (!p.entries[i].authoring.empty()) {
-        tools::Json r = reports[i].json();
-        r.set("entry", static_cast<unsigned long>(i));
-        authoring.push_back(r);
-      }
-    j.set("authoring", authoring);
-    std::printf("%s\n", tools::write_json(j, false).c_str());
+    std::printf("%s\n", tools::write_json(build_report(lib, out, p, reports, patch_seconds, build_seconds), false).c_str());
   } else {
-    const RetrievalConfig& c = lib.retrieval();
+    const mcon_library_info c = lib.info();
     std::printf("%s: %zu entries, descriptor %s, %u words x %u rings, sigma %.4g (patches %.2f s, retrieval %.2f s)\n",
-                printable_text(out).c_str(), lib.size(), printable_text(c.descriptor).c_str(), c.vocabulary_size,
-                c.rings, c.sigma_bof, patch_seconds, build_seconds);
+                printable_text(out).c_str(), c.entry_count, printable_text(lib.string(MCON_LIBRARY_DESCRIPTOR)).c_str(),
+                c.vocabulary_size, c.rings, c.sigma_bof, patch_seconds, build_seconds);
   }
   return 0;
 }
@@ -349,87 +367,124 @@ int run_add(const Args& args) {
   require(p.entries.size() == 1, MCON_ERROR_INVALID_ARGUMENT,
           "library add takes exactly one --center-vertex (got " + std::to_string(p.entries.size()) + ")");
   check_entry(p.entries[0], 0);
-  ConstraintLibrary lib = load_library_from_file(path);
-  MacroConstraint content = entry_content(p.entries[0]);
+  const macrocon::Context context;
+  macrocon::Library lib = macrocon::Library::open(context, path);
+  macrocon::EntryData content = entry_content(p.entries[0]);
   const long id = parse_integer("id", get(p, "id", "0"));
   require(id >= 0, MCON_ERROR_INVALID_ARGUMENT, "--id must be >= 0 (0 = assign)");
   content.id = static_cast<std::uint64_t>(id);
-  MeshCache meshes;
+  MeshCache meshes(context);
   const EntrySpec& spec = p.entries[0];
-  const Patch patch = cut_patch(meshes, spec);
-  const AuthoringReport report = author_constraints(meshes.get(spec.mesh, spec.face_range), patch, spec.authoring, content);
-  const std::uint64_t assigned = add_library_entry(lib, patch, std::move(content));
-  save_library_atomic(lib, path);
+  const HostMesh& host = meshes.of(spec);
+  const macrocon::Patch patch = cut_patch(host, spec);
+  const AuthoringReport report = author_constraints(host, patch, spec.authoring, content);
+  const std::uint64_t assigned = lib.add(patch, content);
+  lib.save(path);
+  const mcon_library_info info = lib.info();
   if (p.json) {
     tools::Json j = tools::Json::object();
     j.set("library", path);
     j.set("id", std::to_string(assigned));
-    j.set("index", static_cast<unsigned long>(lib.size() - 1));
-    j.set("entries", static_cast<unsigned long>(lib.size()));
-    j.set("has_histogram", !lib.entries().back().histogram.empty());
+    j.set("index", static_cast<unsigned long>(info.entry_count - 1));
+    j.set("entries", static_cast<unsigned long>(info.entry_count));
+    j.set("has_histogram", info.vocabulary_size > 0);  // an entry gets one when the library has words
     j.set("authoring", report.json());
     std::printf("%s\n", tools::write_json(j, false).c_str());
   } else {
-    std::printf("%s: added entry id %llu (index %zu)%s\n", printable_text(path).c_str(), static_cast<unsigned long long>(assigned),
-                lib.size() - 1,
-                lib.retrieval().vocabulary_size > 0 ? "" : "; no vocabulary yet: run library build to query");
+    std::printf("%s: added entry id %llu (index %zu)%s\n", printable_text(path).c_str(),
+                static_cast<unsigned long long>(assigned), info.entry_count - 1,
+                info.vocabulary_size > 0 ? "" : "; no vocabulary yet: run library build to query");
   }
   return 0;
+}
+
+// What `library info` lists of one entry (strings as stored; the callers escape them).
+struct EntrySummary {
+  mcon_library_entry_info info;
+  std::string name, class_label;
+  std::size_t guides = 0, features = 0;
+  std::vector<std::string> field_names;
+  std::vector<std::uint32_t> field_kinds, field_dimensions;
+};
+
+EntrySummary entry_summary(const macrocon::Library& lib, std::size_t index) {
+  EntrySummary s;
+  s.info = lib.entry_info(index);
+  s.name = lib.entry_string(index, MCON_ENTRY_NAME, 0);
+  s.class_label = lib.entry_string(index, MCON_ENTRY_CLASS_LABEL, 0);
+  for (std::size_t l = 0; l < s.info.polyline_count; ++l) {
+    std::uint32_t kind = 0;
+    macrocon::check(mcon_library_get_entry_polyline(lib.get(), index, l, &kind, nullptr, nullptr, nullptr, 0));
+    ++(kind == MCON_POLYLINE_GUIDE ? s.guides : s.features);
+  }
+  for (std::size_t f = 0; f < s.info.field_count; ++f) {
+    std::uint32_t kind = 0, dimension = 0;
+    macrocon::check(mcon_library_get_entry_field(lib.get(), index, f, &kind, &dimension, nullptr, nullptr, 0));
+    s.field_names.push_back(lib.entry_string(index, MCON_ENTRY_FIELD_NAME, f));
+    s.field_kinds.push_back(kind);
+    s.field_dimensions.push_back(dimension);
+  }
+  return s;
+}
+
+tools::Json entry_json(const EntrySummary& e) {
+  tools::Json o = tools::Json::object();
+  o.set("id", std::to_string(e.info.id));
+  o.set("name", e.name);
+  o.set("class", e.class_label);
+  o.set("vertices", static_cast<unsigned long>(e.info.vertex_count));
+  o.set("triangles", static_cast<unsigned long>(e.info.triangle_count));
+  o.set("guides", static_cast<unsigned long>(e.guides));
+  o.set("features", static_cast<unsigned long>(e.features));
+  o.set("singularities", static_cast<unsigned long>(e.info.singularity_count));
+  tools::Json fields = tools::Json::array(), kinds = tools::Json::array();
+  for (std::size_t f = 0; f < e.field_names.size(); ++f) {
+    fields.push_back(e.field_names[f]);
+    tools::Json k = tools::Json::object();
+    k.set("name", e.field_names[f]);
+    k.set("kind", field_kind_name(e.field_kinds[f]));
+    k.set("dimension", static_cast<unsigned long>(e.field_dimensions[f]));
+    kinds.push_back(k);
+  }
+  o.set("fields", fields);
+  o.set("field_kinds", kinds);
+  o.set("source_scale", e.info.source_scale);
+  return o;
 }
 
 int run_info(const Args& args) {
   Parsed p = parse(args, {"library"});
   require(p.entries.empty(), MCON_ERROR_INVALID_ARGUMENT, "library info takes no entries");
   const std::string path = required(p, "library");
-  const ConstraintLibrary lib = load_library_from_file(path);
+  const macrocon::Context context;
+  const macrocon::Library lib = macrocon::Library::open(context, path);
+  const mcon_library_info c = lib.info();
   if (p.json) {
     tools::Json j = library_summary(lib);
     j.set("library", path);
-    j.set("name", lib.name());
-    j.set("format_version", static_cast<unsigned long>(lib.origin().format_version));
-    j.set("checksum_verified", lib.origin().checksum_verified);
+    j.set("name", lib.string(MCON_LIBRARY_NAME));
+    j.set("format_version", static_cast<unsigned long>(c.format_version));
+    j.set("checksum_verified", c.checksum_verified != 0);
     tools::Json entries = tools::Json::array();
-    for (const MacroConstraint& e : lib.entries()) {
-      tools::Json o = tools::Json::object();
-      o.set("id", std::to_string(e.id));
-      o.set("name", e.name);
-      o.set("class", e.class_label);
-      o.set("vertices", static_cast<unsigned long>(e.vertex_count()));
-      o.set("triangles", static_cast<unsigned long>(e.triangle_count()));
-      o.set("guides", static_cast<unsigned long>(e.guides.size()));
-      o.set("features", static_cast<unsigned long>(e.features.size()));
-      o.set("singularities", static_cast<unsigned long>(e.singularities.size()));
-      tools::Json fields = tools::Json::array(), kinds = tools::Json::array();
-      for (const VertexField& f : e.fields) {
-        fields.push_back(f.name);
-        tools::Json k = tools::Json::object();
-        k.set("name", f.name);
-        k.set("kind", field_kind_name(f.kind));
-        k.set("dimension", static_cast<unsigned long>(f.dimension));
-        kinds.push_back(k);
-      }
-      o.set("fields", fields);
-      o.set("field_kinds", kinds);
-      o.set("source_scale", e.source_scale);
-      entries.push_back(o);
-    }
+    for (std::size_t i = 0; i < c.entry_count; ++i) entries.push_back(entry_json(entry_summary(lib, i)));
     j.set("entry_list", entries);
     std::printf("%s\n", tools::write_json(j, true).c_str());
     return 0;
   }
-  const RetrievalConfig& c = lib.retrieval();
   // Human-readable output escapes what comes from the file: an entry name must not be able to
   // move the cursor or clear the screen (the JSON output escapes it its own way).
   std::printf("%s: %zu entries; descriptor %s (d = %u), %u words x %u rings, sigma %.4g, seed %llu\n",
-              printable_text(path).c_str(), lib.size(), printable_text(c.descriptor).c_str(), c.dimension,
-              c.vocabulary_size, c.rings, c.sigma_bof, static_cast<unsigned long long>(c.seed));
-  std::printf("format %u, %s\n", lib.origin().format_version,
-              lib.origin().checksum_verified ? "content checksum verified" : "no content checksum (format 1)");
+              printable_text(path).c_str(), c.entry_count, printable_text(lib.string(MCON_LIBRARY_DESCRIPTOR)).c_str(),
+              c.descriptor_dimension, c.vocabulary_size, c.rings, c.sigma_bof, static_cast<unsigned long long>(c.seed));
+  std::printf("format %u, %s\n", c.format_version,
+              c.checksum_verified ? "content checksum verified" : "no content checksum (format 1)");
   std::printf("%8s  %-24s %-16s %8s %6s %6s %6s\n", "id", "name", "class", "vertices", "lines", "sing", "fields");
-  for (const MacroConstraint& e : lib.entries())
-    std::printf("%8llu  %-24s %-16s %8zu %6zu %6zu %6zu\n", static_cast<unsigned long long>(e.id),
-                printable_text(e.name).c_str(), printable_text(e.class_label).c_str(), e.vertex_count(),
-                e.guides.size() + e.features.size(), e.singularities.size(), e.fields.size());
+  for (std::size_t i = 0; i < c.entry_count; ++i) {
+    const EntrySummary e = entry_summary(lib, i);
+    std::printf("%8llu  %-24s %-16s %8zu %6zu %6zu %6zu\n", static_cast<unsigned long long>(e.info.id),
+                printable_text(e.name).c_str(), printable_text(e.class_label).c_str(), e.info.vertex_count,
+                e.guides + e.features, e.info.singularity_count, e.info.field_count);
+  }
   return 0;
 }
 

@@ -10,61 +10,92 @@
 
 #include "base/error.h"
 #include "base/text.h"
-#include "map/similarity_icp.h"
-#include "mesh/closest_point_3d.h"
 
 namespace mcon::cli {
 namespace {
 
-// The patch in host units (file coordinates) and closest-point trees over it and the host.
+// A file point snapped onto the patch: the patch point, where it lies (host units) and how far.
+struct Snap {
+  mcon_surface_point point;
+  Vec3 position;
+  double distance;
+};
+
+// Snaps file points onto the patch through the SDK's closest-point queries on the host and on
+// the patch (host units), a batch of points at a time.
 class PatchSnapper {
  public:
-  PatchSnapper(const io::LoadedMesh& host, const Patch& patch, double max_distance)
-      : patch_host_units_(host_mesh(patch)),
-        host_tree_(host.mesh),
-        patch_tree_(patch_host_units_),
-        max_distance_(max_distance),
-        tolerance_(1e-3 * patch.radius) {}
+  PatchSnapper(const HostMesh& host, const macrocon::Patch& patch, double max_distance)
+      : host_(host.sdk), patch_(patch), info_(patch.info()), positions_(patch.positions()),
+        triangles_(patch.triangles()), max_distance_(max_distance), tolerance_(1e-3 * info_.radius) {}
 
-  // The patch point nearest to p, or nothing when p lies beside the host outside the patch.
-  // Throws when p is farther than the limit from the host surface.
-  std::optional<ClosestSurfacePoint> snap(const Vec3& p, const std::function<std::string()>& what) const {
-    const double to_host = std::sqrt(host_tree_.closest(p).squared_distance);
-    require(to_host <= max_distance_, MCON_ERROR_INVALID_ARGUMENT,
-            what() + " is " + number_text(to_host) + " from the mesh surface, more than the limit " +
-                number_text(max_distance_) + " (--max-snap-distance, mesh units): is it drawn on this mesh?");
-    ClosestSurfacePoint q = patch_tree_.closest(p);
-    if (std::sqrt(q.squared_distance) > to_host + tolerance_) return std::nullopt;
-    return q;
+  // Per point, the patch point nearest to it, or nothing when it lies beside the host outside the
+  // patch. Throws for the first point farther than the limit from the host surface (what(i)
+  // names it).
+  template <typename What>
+  std::vector<std::optional<Snap>> snap(const std::vector<Vec3>& points, const What& what) const {
+    std::vector<double> xyz;
+    xyz.reserve(3 * points.size());
+    for (const Vec3& p : points) xyz.insert(xyz.end(), {p.x(), p.y(), p.z()});
+    const macrocon::ClosestPoints on_host = host_.closest_points(xyz);
+    const macrocon::ClosestPoints on_patch = patch_.closest_points(xyz);
+    std::vector<std::optional<Snap>> out(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const double to_host = on_host.distances[i];
+      require(to_host <= max_distance_, MCON_ERROR_INVALID_ARGUMENT,
+              what(i) + " is " + number_text(to_host) + " from the mesh surface, more than the limit " +
+                  number_text(max_distance_) + " (--max-snap-distance, mesh units): is it drawn on this mesh?");
+      if (on_patch.distances[i] > to_host + tolerance_) continue;
+      Snap s{{on_patch.triangles[i], {on_patch.barycentric[3 * i], on_patch.barycentric[3 * i + 1],
+                                      on_patch.barycentric[3 * i + 2]}},
+             position(on_patch.triangles[i], &on_patch.barycentric[3 * i]), on_patch.distances[i]};
+      out[i] = s;
+    }
+    return out;
   }
 
  private:
-  TriMesh patch_host_units_;  // before the trees, which keep a reference to it
-  TriangleTree3D host_tree_, patch_tree_;
+  // host = center + radius * p, as the patch's closest-point tree places it.
+  Vec3 position(std::uint32_t triangle, const double* weights) const {
+    Vec3 q = Vec3::Zero();
+    for (int k = 0; k < 3; ++k) {
+      const std::size_t v = triangles_[3 * triangle + static_cast<std::size_t>(k)];
+      const Vec3 p(info_.center[0] + info_.radius * positions_[3 * v], info_.center[1] + info_.radius * positions_[3 * v + 1],
+                   info_.center[2] + info_.radius * positions_[3 * v + 2]);
+      q += weights[k] * p;
+    }
+    return q;
+  }
+
+  const macrocon::Mesh& host_;
+  const macrocon::Patch& patch_;
+  mcon_patch_info info_;
+  std::vector<double> positions_;
+  std::vector<std::uint32_t> triangles_;
   double max_distance_, tolerance_;
 };
 
 // The pieces of a file polyline that lie on the patch: runs of consecutive points on it (a closed
 // line cut open where it leaves the patch, so a piece never jumps across the outside).
 void add_polyline_pieces(const PatchSnapper& snapper, const io::FilePolyline& line, const std::string& file,
-                         std::vector<ConstraintPolyline>& out, AuthoringReport& report, std::vector<double>& distances) {
+                         std::uint32_t kind, std::vector<macrocon::Polyline>& out, AuthoringReport& report,
+                         std::vector<double>& distances) {
   const std::size_t n = line.points.size();
-  std::vector<std::optional<ClosestSurfacePoint>> snapped(n);
+  const std::vector<std::optional<Snap>> snapped = snapper.snap(line.points, [&](std::size_t i) {
+    return "'" + file + "' line " + std::to_string(line.line) + ", point " + std::to_string(i);
+  });
   std::size_t first_outside = n;
   for (std::size_t i = 0; i < n; ++i) {
-    snapped[i] = snapper.snap(line.points[i], [&] {
-      return "'" + file + "' line " + std::to_string(line.line) + ", point " + std::to_string(i);
-    });
-    if (!snapped[i]) {
-      ++report.points_outside;
-      if (first_outside == n) first_outside = i;
-    }
+    if (snapped[i]) continue;
+    ++report.points_outside;
+    if (first_outside == n) first_outside = i;
   }
   const bool whole_loop = line.closed && first_outside == n;
   // A closed line starts after an outside point, so a piece crossing its first point stays whole.
   const std::size_t start = line.closed && first_outside < n ? first_outside + 1 : 0;
   std::size_t pieces_before = out.size();
-  ConstraintPolyline piece;
+  macrocon::Polyline piece;
+  piece.kind = kind;
   piece.closed = whole_loop;
   Vec3 position_of_last = Vec3::Zero();
   auto flush = [&] {
@@ -77,19 +108,19 @@ void add_polyline_pieces(const PatchSnapper& snapper, const io::FilePolyline& li
       flush();
       continue;
     }
-    const ClosestSurfacePoint& q = *snapped[i];
+    const Snap& q = *snapped[i];
     // Two points snapped onto the same spot (a line doubling back at the border) add nothing.
     if (!piece.points.empty() && (position_of_last - q.position).norm() <= 1e-12) continue;
     piece.points.push_back(q.point);
     position_of_last = q.position;
-    distances.push_back(std::sqrt(q.squared_distance));
+    distances.push_back(q.distance);
   }
   flush();
   if (out.size() == pieces_before) ++report.lines_outside;
   for (std::size_t i = pieces_before; i < out.size(); ++i) report.points += out[i].points.size();
 }
 
-void add_singularities(const PatchSnapper& snapper, const std::string& file, MacroConstraint& content,
+void add_singularities(const PatchSnapper& snapper, const std::string& file, macrocon::EntryData& content,
                        AuthoringReport& report) {
   const io::ValueTable table = io::read_value_table(file);
   int col[4];
@@ -106,18 +137,22 @@ void add_singularities(const PatchSnapper& snapper, const std::string& file, Mac
             "'" + file + "' row " + std::to_string(r) + ": index " + number_text(index) +
                 " is not a non-zero whole number of quarter turns (+1: valence 3, -1: valence 5)");
     const Vec3 p(table.at(r, col[0]), table.at(r, col[1]), table.at(r, col[2]));
-    const auto q = snapper.snap(p, [&] { return "'" + file + "' row " + std::to_string(r); });
+    const auto q = snapper.snap({p}, [&](std::size_t) { return "'" + file + "' row " + std::to_string(r); })[0];
     if (!q) {
       ++report.singularities_outside;
       continue;
     }
-    content.singularities.push_back({q->point, static_cast<std::int32_t>(index)});
+    content.singularities.push_back(mcon_singularity{q->point, static_cast<std::int32_t>(index)});
   }
   report.singularities = content.singularities.size();
 }
 
-FieldKind kind_of(const std::string& text, const std::string& spec) {
-  for (FieldKind k : kFieldKinds)
+// The --field KINDs, in the order of their names in messages.
+constexpr std::uint32_t kFieldKinds[] = {MCON_FIELD_SCALAR, MCON_FIELD_VECTOR3, MCON_FIELD_TANGENT_VECTOR, MCON_FIELD_UV,
+                                         MCON_FIELD_INTEGER_LABEL};
+
+std::uint32_t kind_of(const std::string& text, const std::string& spec) {
+  for (std::uint32_t k : kFieldKinds)
     if (text == field_kind_name(k)) return k;
   fail(MCON_ERROR_INVALID_ARGUMENT,
        "--field '" + spec + "': unknown kind '" + text + "' (scalar, vector3, tangent, uv or label)");
@@ -131,23 +166,27 @@ struct RowBlend {
   double t = 0;
 };
 
-std::vector<RowBlend> patch_rows(const io::LoadedMesh& host, const Patch& patch) {
-  const int n = patch.mesh.num_vertices();
-  std::vector<RowBlend> rows(static_cast<std::size_t>(n));
-  std::deque<int> queue;
-  for (int w = 0; w < n; ++w) {
-    const HostPoint& h = patch.host_vertex[w];
-    if (h.v0 < 0) continue;
-    rows[w] = {host.mesh_to_file[h.v0], host.mesh_to_file[h.v1], h.t};
+std::vector<RowBlend> patch_rows(const io::LoadedMesh& host, const macrocon::Patch& patch) {
+  const macrocon::HostVertices links = patch.host_vertices();
+  const std::size_t n = links.v0.size();
+  std::vector<RowBlend> rows(n);
+  std::deque<std::size_t> queue;
+  for (std::size_t w = 0; w < n; ++w) {
+    if (links.v0[w] == MCON_INVALID_INDEX) continue;
+    rows[w] = {host.mesh_to_file[links.v0[w]], host.mesh_to_file[links.v1[w]], links.t[w]};
     queue.push_back(w);
   }
-  std::vector<std::vector<int>> neighbours(static_cast<std::size_t>(n));
-  for (const Tri& t : patch.mesh.triangles)
-    for (int k = 0; k < 3; ++k) neighbours[t[k]].push_back(t[(k + 1) % 3]), neighbours[t[(k + 1) % 3]].push_back(t[k]);
+  std::vector<std::vector<std::size_t>> neighbours(n);
+  const std::vector<std::uint32_t> t = patch.triangles();
+  for (std::size_t f = 0; 3 * f < t.size(); ++f)
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::size_t a = t[3 * f + k], b = t[3 * f + (k + 1) % 3];
+      neighbours[a].push_back(b), neighbours[b].push_back(a);
+    }
   while (!queue.empty()) {
-    const int w = queue.front();
+    const std::size_t w = queue.front();
     queue.pop_front();
-    for (int u : neighbours[w])
+    for (std::size_t u : neighbours[w])
       if (rows[u].row0 < 0) {
         rows[u] = rows[w];
         queue.push_back(u);
@@ -156,9 +195,9 @@ std::vector<RowBlend> patch_rows(const io::LoadedMesh& host, const Patch& patch)
   return rows;
 }
 
-VertexField field_from_table(const io::ValueTable& table, const FieldSpec& f, const std::vector<RowBlend>& rows,
-                             const std::string& file) {
-  VertexField field;
+macrocon::VertexField field_from_table(const io::ValueTable& table, const FieldSpec& f,
+                                       const std::vector<RowBlend>& rows, const std::string& file) {
+  macrocon::VertexField field;
   field.name = f.name;
   field.kind = f.kind;
   field.dimension = static_cast<std::uint32_t>(f.columns.size());
@@ -171,8 +210,8 @@ VertexField field_from_table(const io::ValueTable& table, const FieldSpec& f, co
   for (const RowBlend& r : rows)
     for (int c : cols) {
       const double a = table.at(static_cast<std::size_t>(r.row0), c), b = table.at(static_cast<std::size_t>(r.row1), c);
-      if (f.kind != FieldKind::integer_label) {
-        field.values.push_back(static_cast<float>((1 - r.t) * a + r.t * b));
+      if (f.kind != MCON_FIELD_INTEGER_LABEL) {
+        field.values.push_back((1 - r.t) * a + r.t * b);  // the library stores it as float32
         continue;
       }
       const double label = r.t < 0.5 ? a : b;  // labels do not blend: the nearer end's
@@ -184,8 +223,8 @@ VertexField field_from_table(const io::ValueTable& table, const FieldSpec& f, co
   return field;
 }
 
-void add_fields(const io::LoadedMesh& host, const Patch& patch, const AuthoringSpec& spec, MacroConstraint& content,
-                AuthoringReport& report) {
+void add_fields(const io::LoadedMesh& host, const macrocon::Patch& patch, const AuthoringSpec& spec,
+                macrocon::EntryData& content, AuthoringReport& report) {
   const io::ValueTable table = io::read_value_table(spec.field_file);
   require(table.rows() == host.file_to_mesh.size(), MCON_ERROR_INVALID_ARGUMENT,
           "'" + spec.field_file + "' has " + std::to_string(table.rows()) + " rows but the mesh file has " +
@@ -194,7 +233,7 @@ void add_fields(const io::LoadedMesh& host, const Patch& patch, const AuthoringS
   for (const std::string& s : spec.field_specs) fields.push_back(parse_field_spec(s));
   if (fields.empty())  // every column but the coordinates of a PLY
     for (const std::string& c : table.columns)
-      if (c != "x" && c != "y" && c != "z") fields.push_back({c, {c}, FieldKind::scalar});
+      if (c != "x" && c != "y" && c != "z") fields.push_back({c, {c}, MCON_FIELD_SCALAR});
   require(!fields.empty(), MCON_ERROR_INVALID_ARGUMENT,
           "'" + spec.field_file + "' has no column besides x, y, z: export the attributes as vertex properties");
   const std::vector<RowBlend> rows = patch_rows(host, patch);
@@ -206,13 +245,14 @@ void add_fields(const io::LoadedMesh& host, const Patch& patch, const AuthoringS
 
 }  // namespace
 
-const char* field_kind_name(FieldKind kind) {
+const char* field_kind_name(std::uint32_t kind) {
   switch (kind) {
-    case FieldKind::scalar: return "scalar";
-    case FieldKind::vector3: return "vector3";
-    case FieldKind::tangent_vector: return "tangent";
-    case FieldKind::uv: return "uv";
-    case FieldKind::integer_label: return "label";
+    case MCON_FIELD_SCALAR: return "scalar";
+    case MCON_FIELD_VECTOR3: return "vector3";
+    case MCON_FIELD_TANGENT_VECTOR: return "tangent";
+    case MCON_FIELD_UV: return "uv";
+    case MCON_FIELD_INTEGER_LABEL: return "label";
+    default: break;
   }
   return "unknown";
 }
@@ -240,7 +280,8 @@ FieldSpec parse_field_spec(const std::string& text) {
   require(!f.name.empty(), MCON_ERROR_INVALID_ARGUMENT, "--field '" + text + "' has no name (NAME[=COL,...][:KIND])");
   for (const std::string& c : f.columns)
     require(!c.empty(), MCON_ERROR_INVALID_ARGUMENT, "--field '" + text + "' has an empty column name");
-  const std::size_t needed = f.kind == FieldKind::uv ? 2 : (f.kind == FieldKind::vector3 || f.kind == FieldKind::tangent_vector) ? 3 : 0;
+  const std::size_t needed =
+      f.kind == MCON_FIELD_UV ? 2 : (f.kind == MCON_FIELD_VECTOR3 || f.kind == MCON_FIELD_TANGENT_VECTOR) ? 3 : 0;
   require(needed == 0 || f.columns.size() == needed, MCON_ERROR_INVALID_ARGUMENT,
           "--field '" + text + "': this kind takes " + std::to_string(needed) + " columns (NAME=C1,C2" +
               (needed == 3 ? ",C3" : "") + ":KIND), got " + std::to_string(f.columns.size()));
@@ -264,26 +305,27 @@ tools::Json AuthoringReport::json() const {
   return j;
 }
 
-AuthoringReport author_constraints(const io::LoadedMesh& host, const Patch& patch, const AuthoringSpec& spec,
-                                   MacroConstraint& content) {
+AuthoringReport author_constraints(const HostMesh& host, const macrocon::Patch& patch, const AuthoringSpec& spec,
+                                   macrocon::EntryData& content) {
   AuthoringReport report;
   if (spec.empty()) return report;
-  const double limit = spec.max_snap_distance >= 0 ? spec.max_snap_distance : 0.1 * patch.radius;
+  const double limit = spec.max_snap_distance >= 0 ? spec.max_snap_distance : 0.1 * patch.info().radius;
   const PatchSnapper snapper(host, patch, limit);
   std::vector<double> distances;
-  for (const auto& [files, lines] : {std::pair{&spec.guide_files, &content.guides}, {&spec.feature_files, &content.features}})
+  for (const auto& [files, kind] : {std::pair{&spec.guide_files, MCON_POLYLINE_GUIDE}, {&spec.feature_files, MCON_POLYLINE_FEATURE}}) {
+    const std::size_t before = content.polylines.size();
     for (const std::string& file : *files)
       for (const io::FilePolyline& line : io::read_obj_polylines(file))
-        add_polyline_pieces(snapper, line, file, *lines, report, distances);
-  report.guides = content.guides.size();
-  report.features = content.features.size();
+        add_polyline_pieces(snapper, line, file, kind, content.polylines, report, distances);
+    (kind == MCON_POLYLINE_GUIDE ? report.guides : report.features) = content.polylines.size() - before;
+  }
   if (!distances.empty()) {
     std::sort(distances.begin(), distances.end());
     report.max_snap_distance = distances.back();
     report.median_snap_distance = distances[distances.size() / 2];
   }
   if (!spec.singularity_file.empty()) add_singularities(snapper, spec.singularity_file, content, report);
-  if (!spec.field_file.empty()) add_fields(host, patch, spec, content, report);
+  if (!spec.field_file.empty()) add_fields(host.file, patch, spec, content, report);
   require(spec.field_specs.empty() || !spec.field_file.empty(), MCON_ERROR_INVALID_ARGUMENT,
           "--field needs --fields FILE (the table its columns come from)");
   return report;

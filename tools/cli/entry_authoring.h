@@ -8,12 +8,19 @@
 #include <string>
 #include <vector>
 
+#include <cstdint>
+
 #include "io/mesh_io.h"
 #include "json/json.h"
-#include "library/constraint_library.h"
-#include "patch/geodesic_disk_patch.h"
+#include "macrocon/macrocon.hpp"
 
 namespace mcon::cli {
+
+// A mesh file as read (file numbering) and the same mesh in the SDK.
+struct HostMesh {
+  io::LoadedMesh file;
+  macrocon::Mesh sdk;
+};
 
 struct AuthoringSpec {
   std::vector<std::string> guide_files, feature_files;  // OBJ with `l` statements
@@ -45,20 +52,18 @@ struct AuthoringReport {
 struct FieldSpec {
   std::string name;
   std::vector<std::string> columns;
-  FieldKind kind = FieldKind::scalar;
+  std::uint32_t kind = MCON_FIELD_SCALAR;  // mcon_field_kind
 };
 FieldSpec parse_field_spec(const std::string& text);
 
-// The KIND names of --field (and of `library info --json`), one per FieldKind.
-inline constexpr FieldKind kFieldKinds[] = {FieldKind::scalar, FieldKind::vector3, FieldKind::tangent_vector,
-                                            FieldKind::uv, FieldKind::integer_label};
-const char* field_kind_name(FieldKind kind);
+// The KIND name of --field (and of `library info --json`) of an mcon_field_kind.
+const char* field_kind_name(std::uint32_t kind);
 
-// Fills content.guides / features / singularities / fields from the spec's files for the patch
-// cut from `host` (its positions in file coordinates). Throws mcon::Error naming the file and line
-// (MCON_ERROR_IO for unreadable files, MCON_ERROR_INVALID_ARGUMENT for a point too far from the
-// surface, a table of the wrong length, an unknown column).
-AuthoringReport author_constraints(const io::LoadedMesh& host, const Patch& patch, const AuthoringSpec& spec,
-                                   MacroConstraint& content);
+// Fills content.polylines (guides, then features) / singularities / fields from the spec's files
+// for the patch cut from `host` (its positions in file coordinates). Throws mcon::Error naming the
+// file and line (MCON_ERROR_IO for unreadable files, MCON_ERROR_INVALID_ARGUMENT for a point too
+// far from the surface, a table of the wrong length, an unknown column).
+AuthoringReport author_constraints(const HostMesh& host, const macrocon::Patch& patch, const AuthoringSpec& spec,
+                                   macrocon::EntryData& content);
 
 }  // namespace mcon::cli

@@ -1,5 +1,6 @@
-// Shared by `macrocon library` and `macrocon query`: entry specs (mesh file, center vertex in file
-// numbering, radius, metadata), reading meshes once, cutting patches, and the JSON of a library.
+// Shared by the `macrocon library` commands: entry specs (mesh file, center vertex in file
+// numbering, radius, metadata), reading meshes once, cutting patches through the public API, and
+// the JSON of a library.
 #pragma once
 
 #include <cstdlib>
@@ -8,14 +9,14 @@
 #include <string>
 #include <vector>
 
+#include "base/error.h"
 #include "command/args.h"
 #include "command/command.h"
 #include "entry_authoring.h"
-#include "library/constraint_library.h"
-#include "base/error.h"
-#include "patch/geodesic_disk_patch.h"
 #include "io/mesh_io.h"
 #include "json/json_file.h"
+#include "macrocon/macrocon.hpp"
+#include "sdk_arrays.h"
 
 namespace mcon::cli {
 
@@ -33,37 +34,44 @@ struct EntrySpec {
 inline long parse_integer(const std::string& option, const std::string& s) { return ArgParser::parse_integer(option, s); }
 inline double parse_real(const std::string& option, const std::string& s) { return ArgParser::parse_number(option, s); }
 
-// Meshes read once per (file, face range).
+// Meshes read once per (file, face range), each with its SDK mesh.
 class MeshCache {
  public:
-  const io::LoadedMesh& get(const std::string& path, const std::string& face_range) {
+  explicit MeshCache(macrocon::Context context) : context_(std::move(context)) {}
+
+  // The mesh of an entry (one must have been given).
+  const HostMesh& of(const EntrySpec& spec) {
+    require(!spec.mesh.empty(), MCON_ERROR_INVALID_ARGUMENT, "no --mesh given for the entry");
+    return get(spec.mesh, spec.face_range);
+  }
+  // Reads the file on first use; later calls only look it up (safe from several threads then).
+  const HostMesh& get(const std::string& path, const std::string& face_range) {
     const std::string key = path + "\n" + face_range;
     auto it = meshes_.find(key);
     if (it != meshes_.end()) return it->second;
     io::MeshFileOptions options;
     if (!face_range.empty()) parse_range("face-range", face_range, options.face_begin, options.face_end);
-    return meshes_.emplace(key, io::read_mesh(path, options)).first->second;
+    HostMesh host{io::read_mesh(path, options), {}};
+    host.sdk = sdk_mesh(context_, host.file.mesh);
+    return meshes_.emplace(key, std::move(host)).first->second;
   }
 
  private:
-  std::map<std::string, io::LoadedMesh> meshes_;
+  macrocon::Context context_;
+  std::map<std::string, HostMesh> meshes_;
 };
 
 // The geodesic disk of the spec (file vertex -> mesh vertex checked).
-inline Patch cut_patch(MeshCache& cache, const EntrySpec& spec) {
-  require(!spec.mesh.empty(), MCON_ERROR_INVALID_ARGUMENT, "no --mesh given for the entry");
-  const io::LoadedMesh& loaded = cache.get(spec.mesh, spec.face_range);
-  const int center = io::mesh_vertex_of_file_vertex(loaded, spec.center_vertex, "--center-vertex", spec.mesh);
+inline macrocon::Patch cut_patch(const HostMesh& host, const EntrySpec& spec) {
+  const int center = io::mesh_vertex_of_file_vertex(host.file, spec.center_vertex, "--center-vertex", spec.mesh);
   require(spec.radius > 0, MCON_ERROR_INVALID_ARGUMENT, "--radius must be > 0 (got " + std::to_string(spec.radius) + ")");
-  PatchOptions options;
-  options.center.vertex = center;
-  options.radius = spec.radius;
-  return extract_geodesic_disk(loaded.mesh, options);
+  return macrocon::Patch::extract(host.sdk,
+                                  macrocon::PatchOptions::at_vertex(static_cast<std::uint32_t>(center), spec.radius));
 }
 
 // The metadata part of a library entry.
-inline MacroConstraint entry_content(const EntrySpec& spec) {
-  MacroConstraint e;
+inline macrocon::EntryData entry_content(const EntrySpec& spec) {
+  macrocon::EntryData e;
   e.name = spec.name;
   e.class_label = spec.class_label;
   e.author = spec.author;
@@ -73,15 +81,15 @@ inline MacroConstraint entry_content(const EntrySpec& spec) {
 }
 
 // Library-wide summary (counts and retrieval config) for `info` and `build`.
-inline tools::Json library_summary(const ConstraintLibrary& lib) {
-  const RetrievalConfig& c = lib.retrieval();
+inline tools::Json library_summary(const macrocon::Library& lib) {
+  const mcon_library_info c = lib.info();
   tools::Json j = tools::Json::object();
-  j.set("entries", static_cast<unsigned long>(lib.size()));
-  j.set("descriptor", c.descriptor);
-  j.set("descriptor_dimension", static_cast<unsigned long>(c.dimension));
+  j.set("entries", static_cast<unsigned long>(c.entry_count));
+  j.set("descriptor", lib.string(MCON_LIBRARY_DESCRIPTOR));
+  j.set("descriptor_dimension", static_cast<unsigned long>(c.descriptor_dimension));
   j.set("vocabulary_size", static_cast<unsigned long>(c.vocabulary_size));
   j.set("rings", static_cast<unsigned long>(c.rings));
-  j.set("histogram_length", static_cast<unsigned long>(c.histogram_length()));
+  j.set("histogram_length", static_cast<unsigned long>(c.histogram_length));
   j.set("sigma_bof", c.sigma_bof);
   j.set("seed", std::to_string(c.seed));  // a string: 64-bit seeds do not fit a JSON double
   return j;
