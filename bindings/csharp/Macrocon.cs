@@ -291,6 +291,10 @@ namespace Macrocon
         [DllImport(Lib)] internal static extern Status mcon_patch_get_uv(PatchHandle patch, [Out] double[] uv, UIntPtr capacity);
         [DllImport(Lib)] internal static extern Status mcon_patch_get_host_vertices(PatchHandle patch, [Out] uint[] v0, [Out] uint[] v1, [Out] double[] t, UIntPtr capacity);
         [DllImport(Lib)] internal static extern Status mcon_patch_get_host_triangles(PatchHandle patch, [Out] uint[] hostTriangles, UIntPtr capacity);
+        [DllImport(Lib)] internal static extern Status mcon_patch_compute_distance_from_point(PatchHandle patch, ref SurfacePoint point,
+            [Out] double[] distances, UIntPtr capacity);
+        [DllImport(Lib)] internal static extern Status mcon_patch_compute_distance_from_vertices(PatchHandle patch, uint[] vertices,
+            UIntPtr vertexCount, [Out] double[] distances, UIntPtr capacity);
         [DllImport(Lib)] internal static extern Status mcon_patch_closest_points(PatchHandle patch, double[] xyz, UIntPtr count,
             [Out] uint[] triangles, [Out] double[] barycentric, [Out] double[] distances);
         [DllImport(Lib)] internal static extern Status mcon_descriptor_get_dimension(Descriptor descriptor, out uint dimension);
@@ -1286,6 +1290,23 @@ namespace Macrocon
             var c = ClosestPointsResult.Allocate(xyz, "xyz");
             Native.Check(Native.mcon_patch_closest_points(Handle, xyz, (UIntPtr)c.Triangles.Length, c.Triangles, c.Barycentric, c.Distances));
             return c;
+        }
+
+        /// <summary>Geodesic distance (normalized units) of every vertex from a point of the patch.</summary>
+        public double[] DistanceFromPoint(SurfacePoint point)
+        {
+            var d = new double[VertexCount];
+            Native.Check(Native.mcon_patch_compute_distance_from_point(Handle, ref point, d, (UIntPtr)d.Length));
+            return d;
+        }
+
+        /// <summary>The same from the nearest of a set of patch vertices.</summary>
+        public double[] DistanceFromVertices(uint[] vertices)
+        {
+            if (vertices == null) throw new ArgumentNullException(nameof(vertices));
+            var d = new double[VertexCount];
+            Native.Check(Native.mcon_patch_compute_distance_from_vertices(Handle, vertices, (UIntPtr)vertices.Length, d, (UIntPtr)d.Length));
+            return d;
         }
 
         /// <summary>Vertex-major descriptor values (9 per vertex for Curv9, 1 for MeanCurvature).</summary>

@@ -312,6 +312,23 @@ MCON_API mcon_status mcon_patch_get_host_triangles(mcon_patch patch, uint32_t* o
 MCON_API mcon_status mcon_patch_closest_points(mcon_patch patch, const double* xyz, size_t count,
                                                uint32_t* out_triangles, double* out_barycentric, double* out_distances);
 
+/** A point on a patch: triangle `face` and the weights of its three corners (each >= 0, sum 1). */
+typedef struct mcon_surface_point {
+  uint32_t face;
+  double barycentric[3];
+} mcon_surface_point;
+
+/** Geodesic distance (heat method, normalized patch units) of every patch vertex from a point of
+ * the patch; capacity in doubles (>= vertex count). The operators are factored on the first call
+ * and kept with the patch. */
+MCON_API mcon_status mcon_patch_compute_distance_from_point(mcon_patch patch, const mcon_surface_point* point,
+                                                           double* out_distances, size_t capacity);
+/** The same from the nearest of a set of patch vertices (order and repeats ignored), e.g. the
+ * landmarks of map guidance channels. */
+MCON_API mcon_status mcon_patch_compute_distance_from_vertices(mcon_patch patch, const uint32_t* vertices,
+                                                              size_t vertex_count, double* out_distances,
+                                                              size_t capacity);
+
 /* ---------------------------------------------------------------------------------------------
  * Descriptors: per-vertex shape descriptors of a patch (thesis §3.1).
  * ------------------------------------------------------------------------------------------- */
@@ -350,12 +367,6 @@ typedef enum mcon_retrieval_descriptor {
   MCON_RETRIEVAL_DESCRIPTOR_WKS = 4,      /**< wave kernel signature, 100 energies */
   MCON_RETRIEVAL_DESCRIPTOR_CUSTOM = 256  /**< caller-supplied per-vertex values (any dimension) */
 } mcon_retrieval_descriptor;
-
-/** A point on a patch: triangle `face` and the weights of its three corners (each >= 0, sum 1). */
-typedef struct mcon_surface_point {
-  uint32_t face;
-  double barycentric[3];
-} mcon_surface_point;
 
 typedef enum mcon_polyline_kind {
   MCON_POLYLINE_GUIDE = 1,   /**< the quad mesh should follow it */

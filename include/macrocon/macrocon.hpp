@@ -465,6 +465,18 @@ class Patch {
   ClosestPoints closest_points(const std::vector<double>& xyz) const {
     return detail::closest_points(handle(), xyz, mcon_patch_closest_points);
   }
+  /// Geodesic distance (normalized units) of every vertex from a point of the patch.
+  std::vector<double> distance_from_point(const mcon_surface_point& point) const {
+    std::vector<double> out(vertex_count());
+    check(mcon_patch_compute_distance_from_point(handle(), &point, out.data(), out.size()));
+    return out;
+  }
+  /// The same from the nearest of a set of patch vertices.
+  std::vector<double> distance_from_vertices(const std::vector<std::uint32_t>& vertices) const {
+    std::vector<double> out(vertex_count());
+    check(mcon_patch_compute_distance_from_vertices(handle(), vertices.data(), vertices.size(), out.data(), out.size()));
+    return out;
+  }
   /// vertex_count * descriptor_dimension(d) values, vertex-major.
   std::vector<double> compute_descriptors(mcon_descriptor descriptor) const {
     std::vector<double> out(vertex_count() * descriptor_dimension(descriptor));

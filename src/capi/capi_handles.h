@@ -10,6 +10,7 @@
 #include "capi/capi_common.h"
 #include "patch/geodesic_disk_patch.h"
 #include "mesh/closest_point_3d.h"
+#include "operators/heat_geodesics.h"
 #include "mesh/mesh.h"
 #include "mesh/orientation.h"
 
@@ -37,6 +38,20 @@ class LazyTree {
   std::once_flag once_;
   TriMesh made_;
   std::unique_ptr<TriangleTree3D> tree_;
+};
+
+// The heat-method operators of a patch (operators/heat_geodesics.h), factored on the first
+// distance query and then shared by every call, from any thread (solves only read them).
+class LazyHeat {
+ public:
+  const HeatGeodesics& over(const TriMesh& mesh) {
+    std::call_once(once_, [&] { heat_ = std::make_unique<HeatGeodesics>(mesh); });
+    return *heat_;
+  }
+
+ private:
+  std::once_flag once_;
+  std::unique_ptr<HeatGeodesics> heat_;
 };
 
 // mcon_mesh_closest_points / mcon_patch_closest_points on a tree (capi_mesh.cpp).
@@ -83,6 +98,8 @@ struct mcon_patch_t {
   std::size_t reoriented_triangles = 0;
   // The patch in host units and its tree, built on the first mcon_patch_closest_points.
   mcon::capi::LazyTree closest_tree;
+  // The patch's heat-method operators, factored on the first mcon_patch_compute_distance_from_*.
+  mcon::capi::LazyHeat heat;
   ~mcon_patch_t();
 };
 

@@ -468,6 +468,65 @@ TEST_F(CapiPatch, DescriptorsOfASpherePatch) {
   }
 }
 
+// On a plane geodesic distance is Euclidean: from the center point and from a vertex set the heat
+// method must give |p - source| (normalized units) up to its discretization error.
+TEST_F(CapiPatch, GeodesicDistancesFromAPointAndFromVertices) {
+  PatchPtr patch;
+  ASSERT_EQ(extract(grid_mesh_.get(), at_vertex(kGridCenter, 0.5), patch), MCON_OK) << last_message();
+  const PatchData d = read_patch(patch.get());
+  const size_t nv = d.info.vertex_count;
+  mcon_surface_point center{d.info.center_patch_triangle,
+                            {d.info.center_barycentric[0], d.info.center_barycentric[1], d.info.center_barycentric[2]}};
+  std::vector<double> from_center(nv), again(nv);
+  ASSERT_EQ(mcon_patch_compute_distance_from_point(patch.get(), &center, from_center.data(), nv), MCON_OK)
+      << last_message();
+  size_t center_vertex = 0, far_vertex = 0;
+  for (size_t v = 0; v < nv; ++v) {
+    EXPECT_NEAR(from_center[v], d.position(v).norm(), 0.05) << v;
+    if (d.position(v).norm() < d.position(center_vertex).norm()) center_vertex = v;
+    if (d.position(v).norm() > d.position(far_vertex).norm()) far_vertex = v;
+  }
+  // Factored once, the same numbers on every call.
+  ASSERT_EQ(mcon_patch_compute_distance_from_point(patch.get(), &center, again.data(), nv), MCON_OK);
+  EXPECT_EQ(again, from_center);
+
+  const uint32_t set[] = {static_cast<uint32_t>(far_vertex), static_cast<uint32_t>(center_vertex),
+                          static_cast<uint32_t>(far_vertex)};
+  std::vector<double> from_set(nv), from_pair(nv);
+  ASSERT_EQ(mcon_patch_compute_distance_from_vertices(patch.get(), set, 3, from_set.data(), nv), MCON_OK)
+      << last_message();
+  ASSERT_EQ(mcon_patch_compute_distance_from_vertices(patch.get(), set, 2, from_pair.data(), nv), MCON_OK);
+  EXPECT_EQ(from_set, from_pair);  // a set: order and repeats do not change a bit
+  EXPECT_EQ(from_set[center_vertex], 0.0);
+  EXPECT_EQ(from_set[far_vertex], 0.0);
+  for (size_t v = 0; v < nv; ++v) {
+    const double nearest = std::min((d.position(v) - d.position(center_vertex)).norm(),
+                                    (d.position(v) - d.position(far_vertex)).norm());
+    EXPECT_NEAR(from_set[v], nearest, 0.08) << v;
+  }
+
+  // Bad input is refused and nothing is written.
+  std::vector<double> untouched(nv, -7.0);
+  mcon_surface_point bad = center;
+  bad.face = static_cast<uint32_t>(d.info.triangle_count);
+  EXPECT_EQ(mcon_patch_compute_distance_from_point(patch.get(), &bad, untouched.data(), nv), MCON_ERROR_INVALID_ARGUMENT);
+  bad = center;
+  bad.barycentric[0] += 0.5;
+  EXPECT_EQ(mcon_patch_compute_distance_from_point(patch.get(), &bad, untouched.data(), nv), MCON_ERROR_INVALID_ARGUMENT);
+  bad.barycentric[0] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(mcon_patch_compute_distance_from_point(patch.get(), &bad, untouched.data(), nv), MCON_ERROR_NON_FINITE);
+  EXPECT_EQ(mcon_patch_compute_distance_from_point(patch.get(), nullptr, untouched.data(), nv), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_patch_compute_distance_from_point(patch.get(), &center, untouched.data(), nv - 1),
+            MCON_ERROR_BUFFER_TOO_SMALL);
+  const uint32_t outside = static_cast<uint32_t>(nv);
+  EXPECT_EQ(mcon_patch_compute_distance_from_vertices(patch.get(), &outside, 1, untouched.data(), nv),
+            MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(last_message().find("not a vertex of the patch"), std::string::npos) << last_message();
+  EXPECT_EQ(mcon_patch_compute_distance_from_vertices(patch.get(), set, 0, untouched.data(), nv),
+            MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(untouched, std::vector<double>(nv, -7.0));
+}
+
 TEST_F(CapiPatch, ResultsDoNotDependOnMaxThreads) {
   const Arrays a = arrays_of(sphere_);
   std::vector<double> reference_xyz, reference_uv, reference_curv;

@@ -148,6 +148,22 @@ TEST(CppWrapper, ClosestPoints) {
   EXPECT_EQ(error_of([&] { m.closest_points({1.0, 2.0}); }).status(), MCON_ERROR_INVALID_ARGUMENT);
 }
 
+TEST(CppWrapper, GeodesicDistances) {
+  macrocon::Context ctx;
+  const Flat g = flat(mcon::test_meshes::make_grid(21, 2.0));
+  const macrocon::Mesh m = macrocon::Mesh::from_arrays(ctx, g.xyz, g.tris);
+  const macrocon::Patch p = macrocon::Patch::extract(m, macrocon::PatchOptions::at_vertex(220, 0.5));  // (1, 1)
+  const mcon_patch_info info = p.info();
+  const std::vector<double> d = p.distance_from_point(
+      {info.center_patch_triangle, {info.center_barycentric[0], info.center_barycentric[1], info.center_barycentric[2]}});
+  const std::vector<double> x = p.positions();
+  ASSERT_EQ(d.size(), p.vertex_count());
+  for (std::size_t v = 0; v < d.size(); ++v)
+    EXPECT_NEAR(d[v], std::sqrt(x[3 * v] * x[3 * v] + x[3 * v + 1] * x[3 * v + 1]), 0.08) << v;
+  EXPECT_EQ(p.distance_from_vertices({3})[3], 0.0);
+  EXPECT_EQ(error_of([&] { p.distance_from_vertices({}); }).status(), MCON_ERROR_INVALID_ARGUMENT);
+}
+
 TEST(CppWrapper, ErrorsCarryStatusAndLibraryMessage) {
   macrocon::Context ctx;
   Flat g = flat(mcon::test_meshes::make_grid(4));

@@ -1067,6 +1067,27 @@ static class Tests
                 var p = patch.ClosestPoints(new double[] { 0.5, 0.55, -0.25 });
                 Check(Math.Abs(p.Distances[0] - 0.25) < 1e-9, "host units on the patch: " + p.Distances[0]);
                 Check(p.Triangles[0] < patch.TriangleCount, "a patch triangle");
+                // Geodesic distances: on the plane, the normalized distance from the center vertex (up
+                // to the heat method's error on this coarse disk, 3 edges per radius).
+                var xyz = patch.Positions();
+                uint centre = 0;
+                double best = double.MaxValue, worst = 0;
+                for (uint v = 0; v < patch.VertexCount; ++v)
+                {
+                    double r = Math.Sqrt(xyz[3 * v] * xyz[3 * v] + xyz[3 * v + 1] * xyz[3 * v + 1] + xyz[3 * v + 2] * xyz[3 * v + 2]);
+                    if (r < best) { best = r; centre = v; }
+                }
+                var dv = patch.DistanceFromVertices(new uint[] { centre });
+                for (uint v = 0; v < patch.VertexCount; ++v)
+                {
+                    double r = Math.Sqrt(xyz[3 * v] * xyz[3 * v] + xyz[3 * v + 1] * xyz[3 * v + 1] + xyz[3 * v + 2] * xyz[3 * v + 2]);
+                    worst = Math.Max(worst, Math.Abs(dv[v] - r));
+                }
+                Check(dv[centre] == 0 && worst < 0.15, "distance from the center vertex, error " + worst);
+                var onTri = patch.DistanceFromPoint(new SurfacePoint(0, 1.0 / 3, 1.0 / 3, 1.0 / 3));
+                Check(onTri.Length == patch.VertexCount && onTri[0] >= 0, "distance from a point");
+                var bad = Expect<MacroconException>(() => patch.DistanceFromVertices(new uint[] { (uint)patch.VertexCount }));
+                Check(bad.Status == Status.InvalidArgument, "a vertex outside the patch: " + bad.Message);
             }
             Expect<ArgumentException>(() => m.ClosestPoints(new double[] { 1, 2 }));
             var e = Expect<MacroconException>(() => m.ClosestPoints(new double[] { 0, double.NaN, 0 }));
@@ -1404,7 +1425,7 @@ static class Tests
         Run("MeshFlags.ValidateLocally: defects away from the patch", TestValidateLocally);
         Run("Patch.Extract(repair: true): zero-area triangles and pinched vertices repaired", TestRepair);
         Run("patch extraction", Test3);
-        Run("closest points on a mesh and a patch", TestClosestPoints);
+        Run("closest points and geodesic distances on a mesh and a patch", TestClosestPoints);
         Run("patch extraction at a triangle + barycentric, Python's arguments", TestExtractAtTriangle);
         Run("progress cancels and callback exceptions propagate", Test4);
         Run("library: entries round trip through every getter", Test5);

@@ -443,6 +443,8 @@ _SIGNATURES = {
     "mcon_patch_get_uv": [ctypes.c_void_p, c_double_p, c_size],
     "mcon_patch_get_host_vertices": [ctypes.c_void_p, c_uint32_p, c_uint32_p, c_double_p, c_size],
     "mcon_patch_get_host_triangles": [ctypes.c_void_p, c_uint32_p, c_size],
+    "mcon_patch_compute_distance_from_point": [ctypes.c_void_p, ctypes.POINTER(SurfacePoint), ctypes.c_void_p, c_size],
+    "mcon_patch_compute_distance_from_vertices": [ctypes.c_void_p, ctypes.c_void_p, c_size, ctypes.c_void_p, c_size],
     "mcon_patch_closest_points": [ctypes.c_void_p, ctypes.c_void_p, c_size, ctypes.c_void_p, ctypes.c_void_p,
                                   ctypes.c_void_p],
     "mcon_descriptor_get_dimension": [ctypes.c_int32, ctypes.POINTER(ctypes.c_uint32)],

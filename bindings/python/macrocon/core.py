@@ -677,6 +677,33 @@ class Patch(_Handle):
         units; triangles are the patch's own."""
         return _closest_points(_native.lib.mcon_patch_closest_points, self.handle, points)
 
+    def distance_from_point(self, triangle: int, barycentric) -> np.ndarray:
+        """(n,) geodesic distance (heat method, normalized units) of every vertex from the point at
+        ``barycentric`` (3 weights, >= 0, sum 1) in patch triangle ``triangle``."""
+        _native.check_value("triangle", triangle, ctypes.c_uint32)
+        b = np.asarray(barycentric, np.float64).reshape(-1)
+        if b.size != 3:
+            raise ValueError(f"barycentric must hold 3 weights, got {b.size}")
+        point = _native.SurfacePoint(int(triangle), (ctypes.c_double * 3)(*b.tolist()))
+        out = np.empty(self.vertex_count, np.float64)
+        check(_native.lib.mcon_patch_compute_distance_from_point(self.handle, ctypes.byref(point),
+                                                                 out.ctypes.data_as(_native.c_double_p), out.size))
+        return out
+
+    def distance_from_vertices(self, vertices) -> np.ndarray:
+        """(n,) geodesic distance of every vertex from the nearest of ``vertices`` (patch vertex
+        numbers; order and repeats ignored), e.g. landmarks for map guidance channels."""
+        v = np.asarray(vertices)
+        if v.ndim != 1 or v.size == 0 or not np.issubdtype(v.dtype, np.integer):
+            raise ValueError("vertices must be a non-empty 1-D array of vertex numbers")
+        if v.min() < 0 or v.max() > 0xFFFFFFFF:
+            raise ValueError("vertices must be in 0..2**32-1")
+        v = np.ascontiguousarray(v, np.uint32)
+        out = np.empty(self.vertex_count, np.float64)
+        check(_native.lib.mcon_patch_compute_distance_from_vertices(self.handle, v.ctypes.data, v.size,
+                                                                    out.ctypes.data_as(_native.c_double_p), out.size))
+        return out
+
     def descriptors(self, kind: str = "curv9") -> np.ndarray:
         """(n, d) per-vertex descriptors: 'curv9' (d = 9) or 'mean_curvature' (d = 1)."""
         if kind not in _DESCRIPTORS:

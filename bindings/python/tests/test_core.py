@@ -287,3 +287,25 @@ def test_closest_points_on_the_mesh_and_a_patch(context):
         bad[1, 2] = np.nan
         with pytest.raises(macrocon.Error, match="coordinate 2 of point 1 is not finite"):
             mesh.closest_points(bad)
+
+
+def test_geodesic_distances_on_a_flat_patch(context):
+    """On a plane the heat method's distance is Euclidean (normalized units, up to its error)."""
+    p, t = grid(41)
+    with macrocon.Mesh(context, p, t) as mesh:
+        patch = macrocon.Patch.extract(mesh, radius=0.3, center_vertex=20 * 41 + 20)
+        info = patch.info
+        d = patch.distance_from_point(info.center_patch_triangle, info.center_barycentric)
+        r = np.linalg.norm(patch.positions, axis=1)
+        assert np.abs(d - r).max() < 0.06
+        centre = int(np.argmin(r))
+        dv = patch.distance_from_vertices([centre, centre])
+        assert dv[centre] == 0.0 and np.abs(dv - r).max() < 0.06
+        assert np.array_equal(dv, patch.distance_from_vertices(np.array([centre], np.int64)))
+        with pytest.raises(macrocon.InvalidArgumentError, match="not a vertex of the patch"):
+            patch.distance_from_vertices([patch.vertex_count])
+        with pytest.raises(ValueError):
+            patch.distance_from_vertices([])
+        with pytest.raises(macrocon.InvalidArgumentError):
+            patch.distance_from_point(info.center_patch_triangle, [0.5, 0.5, 0.5])
+        patch.close()
