@@ -20,7 +20,8 @@ void write_distances(mcon_patch patch, double* out_distances, std::size_t capaci
   const Eigen::VectorXd d =
       run_in_arena(patch->context, [&] { return distances(patch->heat.over(patch->patch.mesh)); });
   for (Eigen::Index v = 0; v < d.size(); ++v)
-    require(std::isfinite(d[v]), MCON_ERROR_NUMERICAL, "the distance of vertex " + std::to_string(v) + " is not finite");
+    require(std::isfinite(d[v]), MCON_ERROR_NUMERICAL,
+            "the distance of vertex " + std::to_string(v) + " is not finite");
   for (Eigen::Index v = 0; v < d.size(); ++v) out_distances[v] = d[v];
 }
 
@@ -56,8 +57,8 @@ mcon_status mcon_patch_compute_distance_from_vertices(mcon_patch patch, const ui
     sources.reserve(vertex_count);
     for (std::size_t i = 0; i < vertex_count; ++i) {
       require(vertices[i] < n, MCON_ERROR_INVALID_ARGUMENT,
-              "vertices[" + std::to_string(i) + "] = " + std::to_string(vertices[i]) + " is not a vertex of the patch (" +
-                  std::to_string(n) + " vertices)");
+              "vertices[" + std::to_string(i) + "] = " + std::to_string(vertices[i]) +
+                  " is not a vertex of the patch (" + std::to_string(n) + " vertices)");
       sources.push_back(static_cast<int>(vertices[i]));
     }
     write_distances(patch, out_distances, capacity,

@@ -3,7 +3,8 @@
 // float64, with fuzzed strides and counts inside the buffers, then mcon_mesh_create, two
 // mcon_patch_extract calls with fuzzed options (center, radius, flags, snap_fraction) and, when
 // both succeed, a cheap mcon_map_compute between them (few alignment samples and iterations), then
-// closest points of fuzzed query points on the mesh and the patch.
+// closest points of fuzzed query points on the mesh and the patch, and geodesic distances on the
+// patch from a fuzzed point and vertex set.
 // Every call must return a documented mcon_status (the enum's values, never UNKNOWN, and never
 // NULL_POINTER or STRUCT_SIZE for the valid pointers and sizes passed here) with a message when it
 // fails; a crash or sanitizer report is a finding.
@@ -157,6 +158,27 @@ void closest_points(FuzzedDataProvider& in, mcon_mesh mesh, mcon_patch patch) {
           mcon_patch_closest_points(patch, xyz.data(), n, triangles.data(), barycentric.data(), distances.data()));
 }
 
+// Geodesic distances on the patch from a fuzzed surface point (any face number and weights) and
+// from a fuzzed vertex set (numbers in and past the patch).
+void distances(FuzzedDataProvider& in, mcon_patch patch) {
+  mcon_patch_info info;
+  check("mcon_patch_info_init", mcon_patch_info_init(&info));
+  check("mcon_patch_get_info", mcon_patch_get_info(patch, &info));
+  std::vector<double> out(info.vertex_count + 1);
+  const std::size_t capacity = in.ConsumeIntegralInRange<std::size_t>(info.vertex_count - 1, info.vertex_count + 1);
+  mcon_surface_point point{};
+  point.face = in.ConsumeIntegralInRange<std::uint32_t>(0, static_cast<std::uint32_t>(info.triangle_count));
+  for (double& b : point.barycentric)
+    b = in.ConsumeBool() ? in.ConsumeFloatingPoint<double>() : in.ConsumeProbability<double>();
+  check("mcon_patch_compute_distance_from_point",
+        mcon_patch_compute_distance_from_point(patch, &point, out.data(), capacity));
+  std::vector<std::uint32_t> vertices(in.ConsumeIntegralInRange<std::size_t>(0, 3));
+  for (std::uint32_t& v : vertices)
+    v = in.ConsumeIntegralInRange<std::uint32_t>(0, static_cast<std::uint32_t>(info.vertex_count));
+  check("mcon_patch_compute_distance_from_vertices",
+        mcon_patch_compute_distance_from_vertices(patch, vertices.data(), vertices.size(), out.data(), capacity));
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -177,6 +199,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   mcon_patch target = source != nullptr ? extract(in, mesh, b.desc.vertex_count, b.desc.triangle_count) : nullptr;
   if (source != nullptr && target != nullptr) map(in, source, target);
   closest_points(in, mesh, source);
+  if (source != nullptr) distances(in, source);
   check("mcon_patch_release", mcon_patch_release(target));
   check("mcon_patch_release", mcon_patch_release(source));
   check("mcon_mesh_release", mcon_mesh_release(mesh));

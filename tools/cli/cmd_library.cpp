@@ -351,7 +351,8 @@ int run_build(const Args& args) {
   lib.save(out);
 
   if (p.json) {
-    std::printf("%s\n", tools::write_json(build_report(lib, out, p, reports, patch_seconds, build_seconds), false).c_str());
+    const tools::Json report = build_report(lib, out, p, reports, patch_seconds, build_seconds);
+    std::printf("%s\n", tools::write_json(report, false).c_str());
   } else {
     const mcon_library_info c = lib.info();
     std::printf("%s: %zu entries, descriptor %s, %u words x %u rings, sigma %.4g (patches %.2f s, retrieval %.2f s)\n",

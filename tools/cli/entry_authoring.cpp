@@ -60,7 +60,8 @@ class PatchSnapper {
     Vec3 q = Vec3::Zero();
     for (int k = 0; k < 3; ++k) {
       const std::size_t v = triangles_[3 * triangle + static_cast<std::size_t>(k)];
-      const Vec3 p(info_.center[0] + info_.radius * positions_[3 * v], info_.center[1] + info_.radius * positions_[3 * v + 1],
+      const Vec3 p(info_.center[0] + info_.radius * positions_[3 * v],
+                   info_.center[1] + info_.radius * positions_[3 * v + 1],
                    info_.center[2] + info_.radius * positions_[3 * v + 2]);
       q += weights[k] * p;
     }
@@ -312,7 +313,8 @@ AuthoringReport author_constraints(const HostMesh& host, const macrocon::Patch& 
   const double limit = spec.max_snap_distance >= 0 ? spec.max_snap_distance : 0.1 * patch.info().radius;
   const PatchSnapper snapper(host, patch, limit);
   std::vector<double> distances;
-  for (const auto& [files, kind] : {std::pair{&spec.guide_files, MCON_POLYLINE_GUIDE}, {&spec.feature_files, MCON_POLYLINE_FEATURE}}) {
+  for (const auto& [files, kind] :
+       {std::pair{&spec.guide_files, MCON_POLYLINE_GUIDE}, {&spec.feature_files, MCON_POLYLINE_FEATURE}}) {
     const std::size_t before = content.polylines.size();
     for (const std::string& file : *files)
       for (const io::FilePolyline& line : io::read_obj_polylines(file))

@@ -64,7 +64,8 @@ class MeshCache {
 // The geodesic disk of the spec (file vertex -> mesh vertex checked).
 inline macrocon::Patch cut_patch(const HostMesh& host, const EntrySpec& spec) {
   const int center = io::mesh_vertex_of_file_vertex(host.file, spec.center_vertex, "--center-vertex", spec.mesh);
-  require(spec.radius > 0, MCON_ERROR_INVALID_ARGUMENT, "--radius must be > 0 (got " + std::to_string(spec.radius) + ")");
+  require(spec.radius > 0, MCON_ERROR_INVALID_ARGUMENT,
+          "--radius must be > 0 (got " + std::to_string(spec.radius) + ")");
   return macrocon::Patch::extract(host.sdk,
                                   macrocon::PatchOptions::at_vertex(static_cast<std::uint32_t>(center), spec.radius));
 }
