@@ -33,17 +33,9 @@ mcon_status mcon_patch_compute_distance_from_point(mcon_patch patch, const mcon_
                                                    double* out_distances, size_t capacity) {
   return guard_object("mcon_patch_compute_distance_from_point", patch, "patch", [&] {
     require_pointer(point, "point");
-    const std::size_t triangles = patch->patch.mesh.triangles.size();
-    require(point->face < triangles, MCON_ERROR_INVALID_ARGUMENT,
-            "point.face " + std::to_string(point->face) + " is not a triangle of the patch (" +
-                std::to_string(triangles) + " triangles)");
-    const Vec3 weights(point->barycentric[0], point->barycentric[1], point->barycentric[2]);
-    require(weights.allFinite(), MCON_ERROR_NON_FINITE, "point.barycentric is not finite");
-    require(weights.minCoeff() >= -1e-6 && std::abs(weights.sum() - 1.0) <= 1e-6, MCON_ERROR_INVALID_ARGUMENT,
-            "point.barycentric must be >= 0 and sum to 1");
-    write_distances(patch, out_distances, capacity, [&](const HeatGeodesics& heat) {
-      return heat.from_point(static_cast<int>(point->face), weights);
-    });
+    const SurfacePoint p = read_point(*point, patch->patch.mesh.triangles.size(), "point");
+    write_distances(patch, out_distances, capacity,
+                    [&](const HeatGeodesics& heat) { return heat.from_point(p.triangle, p.barycentric); });
   });
 }
 

@@ -4,6 +4,7 @@
 
 #include <memory>
 #include <mutex>
+#include <string>
 
 #include <oneapi/tbb/task_arena.h>
 
@@ -53,6 +54,11 @@ class LazyHeat {
   std::once_flag once_;
   std::unique_ptr<HeatGeodesics> heat_;
 };
+
+// A caller's point on a patch of `triangle_count` triangles: the face must be one of them, the
+// weights finite (else NON_FINITE), each in [0, 1] and summing to 1 (capi_patch.cpp). `what`
+// names it in the error.
+SurfacePoint read_point(const mcon_surface_point& p, std::size_t triangle_count, const std::string& what);
 
 // mcon_mesh_closest_points / mcon_patch_closest_points on a tree (capi_mesh.cpp).
 void write_closest_points(mcon_context context, const TriangleTree3D& tree, const double* xyz, std::size_t count,

@@ -17,26 +17,6 @@ mcon_library_entry_desc default_entry_desc() {
   return d;
 }
 
-// A caller's surface point: the face must be a patch triangle, the weights finite, >= 0, sum 1.
-SurfacePoint read_point(const mcon_surface_point& p, std::size_t triangle_count, const std::string& what) {
-  require(p.face < triangle_count, MCON_ERROR_INVALID_ARGUMENT,
-          what + ": face " + std::to_string(p.face) + " is not a triangle of the patch (" +
-              std::to_string(triangle_count) + " triangles)");
-  SurfacePoint out;
-  out.triangle = static_cast<int>(p.face);
-  double sum = 0;
-  for (int k = 0; k < 3; ++k) {
-    const double b = p.barycentric[k];
-    require(std::isfinite(b), MCON_ERROR_NON_FINITE, what + ": barycentric[" + std::to_string(k) + "] is not finite");
-    require(b >= -1e-9 && b <= 1 + 1e-9, MCON_ERROR_INVALID_ARGUMENT,
-            what + ": barycentric[" + std::to_string(k) + "] = " + std::to_string(b) + " is outside [0, 1]");
-    out.barycentric[k] = b;
-    sum += b;
-  }
-  require(std::abs(sum - 1) <= 1e-6, MCON_ERROR_INVALID_ARGUMENT,
-          what + ": barycentric weights sum to " + std::to_string(sum) + ", not 1");
-  return out;
-}
 
 // Per-vertex values of one field, checked for finiteness (and float range) per value.
 VertexField read_field(const mcon_vertex_field& f, std::size_t n, const std::string& what) {

@@ -12,6 +12,31 @@ using namespace mcon::capi;
 
 mcon_patch_t::~mcon_patch_t() { release_owned(context); }
 
+namespace mcon::capi {
+
+// capi_handles.h: a caller's point on a patch, checked.
+SurfacePoint read_point(const mcon_surface_point& p, std::size_t triangle_count, const std::string& what) {
+  require(p.face < triangle_count, MCON_ERROR_INVALID_ARGUMENT,
+          what + ": face " + std::to_string(p.face) + " is not a triangle of the patch (" +
+              std::to_string(triangle_count) + " triangles)");
+  SurfacePoint out;
+  out.triangle = static_cast<int>(p.face);
+  double sum = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double b = p.barycentric[k];
+    require(std::isfinite(b), MCON_ERROR_NON_FINITE, what + ": barycentric[" + std::to_string(k) + "] is not finite");
+    require(b >= -1e-9 && b <= 1 + 1e-9, MCON_ERROR_INVALID_ARGUMENT,
+            what + ": barycentric[" + std::to_string(k) + "] = " + std::to_string(b) + " is outside [0, 1]");
+    out.barycentric[k] = b;
+    sum += b;
+  }
+  require(std::abs(sum - 1) <= 1e-6, MCON_ERROR_INVALID_ARGUMENT,
+          what + ": barycentric weights sum to " + std::to_string(sum) + ", not 1");
+  return out;
+}
+
+}  // namespace mcon::capi
+
 namespace {
 
 mcon_patch_options default_patch_options() {
