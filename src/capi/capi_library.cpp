@@ -37,7 +37,6 @@ Eigen::MatrixXd read_rows(const double* values, std::size_t rows, std::uint32_t 
   return out;
 }
 
-
 std::string caller_text(const char* s, const std::string& what) {
   if (s == nullptr) return std::string();
   std::string out(s);
@@ -220,10 +219,7 @@ mcon_status mcon_library_set_descriptor(mcon_library library, uint32_t descripto
     // A fresh configuration: without entries there is no vocabulary or normalization to keep.
     RetrievalConfig config;
     config.descriptor = descriptor_name(descriptor, l.retrieval().descriptor);
-    ConstraintLibrary next(config);
-    next.set_name(l.name());
-    next.set_description(l.description());
-    library->replace(std::move(next));
+    library->replace(with_config(l, config));
   });
 }
 
@@ -247,10 +243,7 @@ mcon_status mcon_library_merge(mcon_library library, mcon_library other) {
     if (b.size() == 0) return;  // nothing to append (whatever its configuration)
     if (a.size() == 0 && ca.vocabulary_size == 0) {
       // An empty library without vocabulary takes the other's configuration as it is.
-      ConstraintLibrary next(cb, b.entries());
-      next.set_name(a.name());
-      next.set_description(a.description());
-      library->replace(std::move(next));
+      library->replace(with_config(a, cb, b.entries()));
       return;
     }
     if (same_retrieval_config(ca, cb)) {
@@ -278,9 +271,7 @@ mcon_status mcon_library_merge(mcon_library library, mcon_library other) {
       for (MacroConstraint& e : entries) e.histogram.clear();
       return entries;
     };
-    ConstraintLibrary next(dropped, strip(a.entries()));
-    next.set_name(a.name());
-    next.set_description(a.description());
+    ConstraintLibrary next = with_config(a, dropped, strip(a.entries()));
     next.merge(ConstraintLibrary(dropped, strip(b.entries())));
     library->replace(std::move(next));
   });

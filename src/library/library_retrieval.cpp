@@ -71,6 +71,8 @@ void report(const std::function<bool(double)>& progress, double fraction) {
   if (progress && !progress(fraction)) fail(MCON_ERROR_CANCELLED, "cancelled by the progress callback");
 }
 
+}  // namespace
+
 ConstraintLibrary with_config(const ConstraintLibrary& like, RetrievalConfig config,
                               std::vector<MacroConstraint> entries) {
   ConstraintLibrary out(std::move(config), std::move(entries));
@@ -78,8 +80,6 @@ ConstraintLibrary with_config(const ConstraintLibrary& like, RetrievalConfig con
   out.set_description(like.description());
   return out;
 }
-
-}  // namespace
 
 MacroConstraint make_library_entry(const Patch& patch, MacroConstraint content, const RetrievalConfig& config,
                                    const Eigen::MatrixXd* custom_descriptors) {

@@ -42,6 +42,11 @@ inline constexpr std::uint32_t kDefaultVocabularySize = 128;
 // retrieval/retrieval_config.h: per-vertex descriptors of a host's own).
 inline constexpr const char* kCustomDescriptorApi = "custom:host";
 
+// A library with `like`'s name and description, and `config` and `entries` (validated, throws
+// mcon::Error): what a change of configuration keeps.
+ConstraintLibrary with_config(const ConstraintLibrary& like, RetrievalConfig config,
+                              std::vector<MacroConstraint> entries = {});
+
 // `content` carries id, metadata, constraints and fields; its geometry (mesh, center, source
 // scale and origin) is taken from the patch. Descriptors: `custom_descriptors` (n x d, for a
 // custom library) rounded to float, else the config's built-in descriptor computed on the stored
