@@ -227,10 +227,7 @@ mcon_status mcon_retrieval_descriptor_from_name(const char* name, uint32_t* out_
   return guard("mcon_retrieval_descriptor_from_name", [&] {
     require_pointer(name, "name");
     require_pointer(out_descriptor, "out_descriptor");
-    const BuiltinDescriptor* d = find_builtin_descriptor(name);
-    require(d != nullptr, MCON_ERROR_INVALID_ARGUMENT,
-            "unknown retrieval descriptor '" + printable_text(name) + "' (" + builtin_descriptor_names() + ")");
-    *out_descriptor = d->code;
+    *out_descriptor = builtin_descriptor(name).code;
   });
 }
 

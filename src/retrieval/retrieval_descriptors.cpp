@@ -2,6 +2,7 @@
 
 #include "operators/cotan_laplacian.h"
 #include "base/error.h"
+#include "base/text.h"
 #include "operators/heat_geodesics.h"
 #include "descriptors/spectral_descriptors.h"
 
@@ -54,14 +55,16 @@ std::uint32_t builtin_descriptor_values(const std::string& name) {
   return d ? d->values : 0;
 }
 
-int builtin_descriptor_dimension(const std::string& name) {
-  if (const std::uint32_t d = builtin_descriptor_values(name)) return static_cast<int>(d);
-  fail(MCON_ERROR_INVALID_ARGUMENT, "unknown retrieval descriptor '" + name + "' (" + builtin_descriptor_names() + ")");
+const BuiltinDescriptor& builtin_descriptor(const std::string& name) {
+  if (const BuiltinDescriptor* d = find_builtin_descriptor(name)) return *d;
+  fail(MCON_ERROR_INVALID_ARGUMENT,
+       "unknown retrieval descriptor '" + printable_text(name) + "' (" + builtin_descriptor_names() + ")");
 }
 
+int builtin_descriptor_dimension(const std::string& name) { return static_cast<int>(builtin_descriptor(name).values); }
+
 Eigen::MatrixXd compute_retrieval_descriptor(const TriMesh& mesh, const std::string& name, PatchBoundary boundary) {
-  if (const BuiltinDescriptor* d = find_builtin_descriptor(name)) return d->compute(mesh, boundary);
-  fail(MCON_ERROR_INVALID_ARGUMENT, "unknown retrieval descriptor '" + name + "' (" + builtin_descriptor_names() + ")");
+  return builtin_descriptor(name).compute(mesh, boundary);
 }
 
 PatchDescriptors patch_areas_and_center_distance(const TriMesh& mesh, const SurfacePoint& center) {

@@ -30,6 +30,9 @@ const std::vector<BuiltinDescriptor>& builtin_descriptors();
 // The row named `name` (or with C API code `code`), or nullptr.
 const BuiltinDescriptor* find_builtin_descriptor(const std::string& name);
 const BuiltinDescriptor* find_builtin_descriptor_code(std::uint32_t code);
+// The row named `name`; throws INVALID_ARGUMENT "unknown retrieval descriptor 'x' (curv9, hks or
+// wks)" (the name escaped) otherwise.
+const BuiltinDescriptor& builtin_descriptor(const std::string& name);
 // "curv9, hks or wks": the names for error messages.
 std::string builtin_descriptor_names();
 
