@@ -111,11 +111,18 @@ namespace Macrocon
         public void SetDescriptor(RetrievalDescriptor descriptor) =>
             Native.Check(Native.mcon_library_set_descriptor(Handle, descriptor));
 
-        public string GetString(LibraryString which)
+        public string GetString(LibraryString which) =>
+            ReadString((byte[] text, UIntPtr capacity, out UIntPtr size) =>
+                Native.mcon_library_get_string(Handle, which, text, capacity, out size));
+
+        private delegate Status StringCall(byte[] text, UIntPtr capacity, out UIntPtr size);
+
+        // A string out of the C convention: once for the size (text null), then into a buffer of it.
+        private static string ReadString(StringCall call)
         {
-            Native.Check(Native.mcon_library_get_string(Handle, which, null, UIntPtr.Zero, out UIntPtr size));
+            Native.Check(call(null, UIntPtr.Zero, out UIntPtr size));
             var buf = new byte[(int)size];
-            Native.Check(Native.mcon_library_get_string(Handle, which, buf, size, out size));
+            Native.Check(call(buf, size, out size));
             return System.Text.Encoding.UTF8.GetString(buf, 0, Math.Max(0, (int)size - 1));
         }
 
@@ -398,13 +405,9 @@ namespace Macrocon
             return i;
         }
 
-        public string GetEntryString(int index, EntryString which, int item = 0)
-        {
-            Native.Check(Native.mcon_library_get_entry_string(Handle, (UIntPtr)index, which, (UIntPtr)item, null, UIntPtr.Zero, out UIntPtr size));
-            var buf = new byte[(int)size];
-            Native.Check(Native.mcon_library_get_entry_string(Handle, (UIntPtr)index, which, (UIntPtr)item, buf, size, out size));
-            return System.Text.Encoding.UTF8.GetString(buf, 0, Math.Max(0, (int)size - 1));
-        }
+        public string GetEntryString(int index, EntryString which, int item = 0) =>
+            ReadString((byte[] text, UIntPtr capacity, out UIntPtr size) =>
+                Native.mcon_library_get_entry_string(Handle, (UIntPtr)index, which, (UIntPtr)item, text, capacity, out size));
 
         public string[] GetEntryTags(int index)
         {

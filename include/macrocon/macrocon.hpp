@@ -196,6 +196,18 @@ ClosestPoints closest_points(Handle handle, const std::vector<double>& xyz, cons
   return c;
 }
 
+/// A string out of the C convention: call(text, capacity, &size) once for the size (text NULL),
+/// then into a buffer; size counts the terminating NUL.
+template <typename Call>
+std::string read_string(const Call& call) {
+  std::size_t size = 0;
+  check(call(nullptr, 0, &size));
+  std::string s(size, '\0');
+  check(call(&s[0], s.size(), &size));
+  s.resize(size > 0 ? size - 1 : 0);
+  return s;
+}
+
 /// Carries a std::function through a C progress callback; an exception becomes "cancel" and is
 /// rethrown by the call that took the callback (no exception may cross the C boundary).
 struct ProgressForward {
@@ -657,12 +669,9 @@ class Library {
   void set_descriptor(std::uint32_t descriptor) { check(mcon_library_set_descriptor(handle(), descriptor)); }
   /// MCON_LIBRARY_NAME, MCON_LIBRARY_DESCRIPTION or MCON_LIBRARY_DESCRIPTOR (its stored name).
   std::string string(mcon_library_string which) const {
-    std::size_t size = 0;
-    check(mcon_library_get_string(handle(), which, nullptr, 0, &size));
-    std::string s(size, '\0');
-    check(mcon_library_get_string(handle(), which, &s[0], s.size(), &size));
-    s.resize(size > 0 ? size - 1 : 0);
-    return s;
+    return detail::read_string([&](char* text, std::size_t capacity, std::size_t* size) {
+      return mcon_library_get_string(handle(), which, text, capacity, size);
+    });
   }
   void set_string(mcon_library_string which, const std::string& text) {
     if (text.find('\0') != std::string::npos)
@@ -750,12 +759,9 @@ class Library {
     return e;
   }
   std::string entry_string(std::size_t index, mcon_entry_string which, std::size_t item) const {
-    std::size_t size = 0;
-    check(mcon_library_get_entry_string(handle(), index, which, item, nullptr, 0, &size));
-    std::string s(size, '\0');
-    check(mcon_library_get_entry_string(handle(), index, which, item, &s[0], s.size(), &size));
-    s.resize(size > 0 ? size - 1 : 0);
-    return s;
+    return detail::read_string([&](char* text, std::size_t capacity, std::size_t* size) {
+      return mcon_library_get_entry_string(handle(), index, which, item, text, capacity, size);
+    });
   }
 
   mcon_library get() const noexcept { return ref_.get(); }

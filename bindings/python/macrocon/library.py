@@ -163,6 +163,16 @@ def _utf8(name: str, text: Optional[str]) -> Optional[bytes]:
     return text.encode("utf-8")
 
 
+def _read_string(function, *args) -> str:
+    """A string out of the C convention: ``function(*args, text, capacity, &size)`` once for the
+    size (text NULL), then into a buffer of it."""
+    size = _native.c_size()
+    check(function(*args, None, 0, ctypes.byref(size)))
+    buf = ctypes.create_string_buffer(size.value)
+    check(function(*args, buf, size.value, ctypes.byref(size)))
+    return buf.value.decode("utf-8")
+
+
 class Entry:
     """A read-only view of entry ``index`` of a library (valid until the library is modified)."""
 
@@ -177,12 +187,7 @@ class Entry:
         return self.info.id
 
     def _string(self, which: int, item: int = 0) -> str:
-        size = _native.c_size()
-        h = self.library.handle
-        check(_native.lib.mcon_library_get_entry_string(h, self.index, which, item, None, 0, ctypes.byref(size)))
-        buf = ctypes.create_string_buffer(size.value)
-        check(_native.lib.mcon_library_get_entry_string(h, self.index, which, item, buf, size.value, ctypes.byref(size)))
-        return buf.value.decode("utf-8")
+        return _read_string(_native.lib.mcon_library_get_entry_string, self.library.handle, self.index, which, item)
 
     @property
     def name(self) -> str:
@@ -306,11 +311,7 @@ class Library(_Handle):
         check(_native.lib.mcon_library_set_descriptor(self.handle, int(descriptor)))
 
     def _string(self, which: int) -> str:
-        size = _native.c_size()
-        check(_native.lib.mcon_library_get_string(self.handle, which, None, 0, ctypes.byref(size)))
-        buf = ctypes.create_string_buffer(size.value)
-        check(_native.lib.mcon_library_get_string(self.handle, which, buf, size.value, ctypes.byref(size)))
-        return buf.value.decode("utf-8")
+        return _read_string(_native.lib.mcon_library_get_string, self.handle, which)
 
     @property
     def name(self) -> str:
