@@ -10,6 +10,7 @@
 
 #include "base/error.h"
 #include "base/text.h"
+#include "sdk_arrays.h"
 
 namespace mcon::cli {
 namespace {
@@ -26,8 +27,9 @@ struct Snap {
 class PatchSnapper {
  public:
   PatchSnapper(const HostMesh& host, const macrocon::Patch& patch, double max_distance)
-      : host_(host.sdk), patch_(patch), info_(patch.info()), positions_(patch.positions()),
-        triangles_(patch.triangles()), max_distance_(max_distance), tolerance_(1e-3 * info_.radius) {}
+      : host_(host.sdk), patch_(patch), info_(patch.info()),
+        in_host_units_(file_mesh(patch, info_.radius, info_.center)), max_distance_(max_distance),
+        tolerance_(1e-3 * info_.radius) {}
 
   // Per point, the patch point nearest to it, or nothing when it lies beside the host outside the
   // patch. Throws for the first point farther than the limit from the host surface (what(i)
@@ -55,24 +57,18 @@ class PatchSnapper {
   }
 
  private:
-  // host = center + radius * p, as the patch's closest-point tree places it.
+  // In host units (center + radius * p), as the patch's closest-point tree places it.
   Vec3 position(std::uint32_t triangle, const double* weights) const {
+    const Tri& t = in_host_units_.triangles[triangle];
     Vec3 q = Vec3::Zero();
-    for (int k = 0; k < 3; ++k) {
-      const std::size_t v = triangles_[3 * triangle + static_cast<std::size_t>(k)];
-      const Vec3 p(info_.center[0] + info_.radius * positions_[3 * v],
-                   info_.center[1] + info_.radius * positions_[3 * v + 1],
-                   info_.center[2] + info_.radius * positions_[3 * v + 2]);
-      q += weights[k] * p;
-    }
+    for (int k = 0; k < 3; ++k) q += weights[k] * in_host_units_.positions[t[k]];
     return q;
   }
 
   const macrocon::Mesh& host_;
   const macrocon::Patch& patch_;
   mcon_patch_info info_;
-  std::vector<double> positions_;
-  std::vector<std::uint32_t> triangles_;
+  TriMesh in_host_units_;
   double max_distance_, tolerance_;
 };
 
