@@ -82,6 +82,9 @@ TEST_F(LibraryArgs, NullAndForeignHandles) {
     EXPECT_STATUS(mcon_library_save_memory(l, nullptr, 0, &size), s);
     EXPECT_STATUS(mcon_library_get_info(l, &info), s);
     EXPECT_STATUS(mcon_library_get_count(l, &n), s);
+    EXPECT_STATUS(mcon_library_get_string(l, MCON_LIBRARY_NAME, nullptr, 0, &size), s);
+    EXPECT_STATUS(mcon_library_set_string(l, MCON_LIBRARY_NAME, "x"), s);
+    EXPECT_STATUS(mcon_library_set_descriptor(l, MCON_RETRIEVAL_DESCRIPTOR_HKS), s);
     EXPECT_STATUS(mcon_library_add_entry(l, &c.desc, &id), s);
     EXPECT_STATUS(mcon_library_remove_entry(l, 1), s);
     EXPECT_STATUS(mcon_library_find_entry(l, 1, &index), s);

@@ -516,6 +516,10 @@ TEST_F(CapiPatch, GeodesicDistancesFromAPointAndFromVertices) {
   bad.barycentric[0] = std::numeric_limits<double>::quiet_NaN();
   EXPECT_EQ(mcon_patch_compute_distance_from_point(patch.get(), &bad, untouched.data(), nv), MCON_ERROR_NON_FINITE);
   EXPECT_EQ(mcon_patch_compute_distance_from_point(patch.get(), nullptr, untouched.data(), nv), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_patch_compute_distance_from_point(patch.get(), &center, nullptr, nv), MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_patch_compute_distance_from_vertices(patch.get(), nullptr, 1, untouched.data(), nv),
+            MCON_ERROR_NULL_POINTER);
+  EXPECT_EQ(mcon_patch_compute_distance_from_vertices(patch.get(), set, 1, nullptr, nv), MCON_ERROR_NULL_POINTER);
   EXPECT_EQ(mcon_patch_compute_distance_from_point(patch.get(), &center, untouched.data(), nv - 1),
             MCON_ERROR_BUFFER_TOO_SMALL);
   const uint32_t outside = static_cast<uint32_t>(nv);

@@ -152,7 +152,7 @@ TEST_F(CapiPatchArgs, GettersRejectNullAndWrongHandles) {
   const mcon_patch wrong[] = {reinterpret_cast<mcon_patch>(mesh_.get()), reinterpret_cast<mcon_patch>(ctx_.get()),
                               reinterpret_cast<mcon_patch>(&g)};
   double d[64];
-  uint32_t u[64];
+  uint32_t u[64] = {};
   mcon_patch_info info;
   ASSERT_EQ(mcon_patch_info_init(&info), MCON_OK);
   for (mcon_patch p : {static_cast<mcon_patch>(nullptr), wrong[0], wrong[1], wrong[2]}) {
@@ -166,6 +166,9 @@ TEST_F(CapiPatchArgs, GettersRejectNullAndWrongHandles) {
     EXPECT_EQ(mcon_patch_get_host_triangles(p, u, 64), expected);
     EXPECT_EQ(mcon_patch_compute_descriptors(p, MCON_DESCRIPTOR_MEAN_CURVATURE, d, 64), expected);
     EXPECT_NE(last_message().find("mcon_patch_compute_descriptors"), std::string::npos) << last_message();
+    const mcon_surface_point corner{0, {1, 0, 0}};
+    EXPECT_EQ(mcon_patch_compute_distance_from_point(p, &corner, d, 64), expected);
+    EXPECT_EQ(mcon_patch_compute_distance_from_vertices(p, u, 1, d, 64), expected);
     EXPECT_EQ(mcon_patch_retain(p), expected);
   }
   EXPECT_EQ(mcon_patch_release(nullptr), MCON_OK);
