@@ -899,6 +899,9 @@ struct MapOptions {
   std::optional<double> guidance_weight;
   /// Gaussian width factor of the refinement pass after the finest level (0: no pass; (0, 1]).
   std::optional<double> refine_sigma_factor;
+  /// Up directions of the two hosts, each in its own host coordinates (mcon_map_options.use_up_hints):
+  /// both or neither.
+  std::optional<std::array<double, 3>> source_up, target_up;
 };
 
 /// The re-embedding map Phi of a source patch onto a target patch, and transfers through it.
@@ -917,6 +920,15 @@ class Map {
     c.target_guidance = options.target_guidance.empty() ? nullptr : options.target_guidance.data();
     if (options.guidance_weight) c.guidance_weight = *options.guidance_weight;
     if (options.refine_sigma_factor) c.refine_sigma_factor = *options.refine_sigma_factor;
+    if (options.source_up.has_value() != options.target_up.has_value())
+      throw Error(MCON_ERROR_INVALID_ARGUMENT, "MapOptions: source_up and target_up go together");
+    if (options.source_up) {
+      c.use_up_hints = 1u;
+      for (std::size_t k = 0; k < 3; ++k) {
+        c.source_up[k] = (*options.source_up)[k];
+        c.target_up[k] = (*options.target_up)[k];
+      }
+    }
     if (options.guidance_dimension != 0 &&
         (options.source_guidance.size() != source.vertex_count() * options.guidance_dimension ||
          options.target_guidance.size() != target.vertex_count() * options.guidance_dimension))
@@ -1114,6 +1126,15 @@ class CutMesh {
   std::vector<std::uint32_t> triangles() const {
     std::vector<std::uint32_t> out(3 * info().triangle_count);
     check(mcon_cut_mesh_get_triangles(handle(), out.data(), out.size()));
+    return out;
+  }
+  /// Per vertex its point on the patch (on the mesh for cut_whole_host): triangle and 3 weights.
+  std::pair<std::vector<std::uint32_t>, std::vector<double>> host_points() const {
+    const std::size_t n = info().vertex_count;
+    std::pair<std::vector<std::uint32_t>, std::vector<double>> out;
+    out.first.resize(n);
+    out.second.resize(3 * n);
+    check(mcon_cut_mesh_get_host_points(handle(), out.first.data(), out.second.data(), n));
     return out;
   }
   std::vector<std::uint32_t> guide_edges() const {

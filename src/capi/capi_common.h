@@ -198,10 +198,11 @@ mcon_status init_struct(const char* function, T* out, const char* name, const T&
 }
 
 // Copies `rows` (fixed-size rows: positions, uv, index triples) row after row into the caller's
-// flat array `out` of N values per row, after the NULL check (`name`) and the capacity check
+// flat array `out` of N values per row, after (when there is a row) the NULL check (`name`) and the capacity check
 // (`capacity_name` says in which unit, e.g. "out_xyz (capacity in doubles)").
 template <int N, typename Out, typename Rows>
 void write_rows(const Rows& rows, Out* out, std::size_t capacity, const char* name, const char* capacity_name) {
+  if (rows.empty()) return;  // nothing to write: NULL is fine (an empty std::vector's data())
   require_pointer(out, name);
   require_capacity(capacity, N * rows.size(), capacity_name);
   for (std::size_t r = 0; r < rows.size(); ++r)

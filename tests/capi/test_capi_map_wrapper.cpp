@@ -1,5 +1,6 @@
 // The C++ wrapper of the map section (macrocon.hpp): Map, PolylineSet, patch_from_arrays,
 // compute_cross_field, write_rosy; errors become macrocon::Error with the C status.
+#include <array>
 #include <cstdio>
 #include <set>
 #include <stdexcept>
@@ -117,6 +118,29 @@ TEST(CppMap, ComputeTransferAndCrossField) {
   EXPECT_GT(steps, 0u);
   EXPECT_EQ(cut.carry_field(std::vector<double>(target.vertex_count(), 2.0), 1),
             std::vector<double>(ci.vertex_count, 2.0));
+  // Every cut vertex lies on a target triangle: convex weights that reproduce its position.
+  const auto [host_triangles, host_weights] = cut.host_points();
+  ASSERT_EQ(host_triangles.size(), ci.vertex_count);
+  ASSERT_EQ(host_weights.size(), 3 * ci.vertex_count);
+  const std::vector<double> patch_xyz = target.positions(), cut_xyz = cut.positions();
+  const std::vector<std::uint32_t> patch_faces = target.triangles();
+  const mcon_patch_info ti = target.info();
+  for (size_t v = 0; v < ci.vertex_count; ++v) {
+    ASSERT_LT(host_triangles[v], target.triangle_count());
+    EXPECT_NEAR(host_weights[3 * v] + host_weights[3 * v + 1] + host_weights[3 * v + 2], 1.0, 1e-12);
+    for (int d = 0; d < 3; ++d) {
+      double at = 0;
+      for (int k = 0; k < 3; ++k) at += host_weights[3 * v + k] * patch_xyz[3 * patch_faces[3 * host_triangles[v] + k] + d];
+      // A snapped vertex moves onto its guide, at most a fraction of an edge from its host point.
+      EXPECT_NEAR(ti.center[d] + ti.radius * at, cut_xyz[3 * v + d], 0.05 * ti.radius) << "cut vertex " << v;
+    }
+  }
+  // No guides: the patch comes back uncut and the empty getters return empty arrays.
+  const macrocon::PolylineSet none = map.transfer_polylines({}, {}, {});
+  const macrocon::CutMesh uncut = macrocon::CutMesh::cut(target, none);
+  EXPECT_EQ(uncut.info().triangle_count, target.triangle_count());
+  EXPECT_TRUE(uncut.guide_edges().empty());
+  EXPECT_TRUE(uncut.guides().empty());
   EXPECT_EQ(status_of([&] { (void)macrocon::CutMesh::cut(target, set, 0.9); }), MCON_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(status_of([&] { (void)macrocon::CutMesh::cut(source, set); }), MCON_ERROR_INVALID_ARGUMENT);
 
@@ -171,6 +195,32 @@ TEST(CppMap, OrientationOptionReachesTheCApi) {
   o.orientation = static_cast<mcon_map_orientation>(3);  // in the enum's value range, not a member
   EXPECT_EQ(status_of([&] { (void)macrocon::Map::compute(source, target, o); }), MCON_ERROR_INVALID_ARGUMENT)
       << "an invalid orientation was accepted";
+}
+
+TEST(CppMap, UpHintsReachTheCApi) {
+  const NosePair pair;
+  const auto& [ctx, body, source, target] = pair;
+  macrocon::MapOptions o = fast();
+  o.source_up = std::array<double, 3>{{0, 1, 0}};
+  EXPECT_EQ(status_of([&] { (void)macrocon::Map::compute(source, target, o); }), MCON_ERROR_INVALID_ARGUMENT)
+      << "a source up without a target up was accepted";
+  o.target_up = std::array<double, 3>{{0, 1, 0}};
+  const macrocon::Map upright = macrocon::Map::compute(source, target, o);
+  EXPECT_EQ(upright.info().flipped_triangles, 0u);
+  // The C call with the same hints gives the same map (the wrapper adds nothing of its own).
+  mcon_map_options c;
+  ASSERT_EQ(mcon_map_options_init(&c), MCON_OK);
+  c.alignment_samples = 200;
+  c.max_iterations = 30;
+  c.seed = 3;
+  c.use_up_hints = 1;
+  c.source_up[1] = c.target_up[1] = 1;
+  mcon_map direct = nullptr;
+  ASSERT_EQ(mcon_map_compute(source.get(), target.get(), &c, &direct), MCON_OK);
+  const macrocon::Map same = macrocon::Map::adopt(direct);
+  EXPECT_EQ(same.phi(), upright.phi());
+  o.target_up = std::array<double, 3>{{0, 0, 0}};  // refused by the C API, by name
+  EXPECT_EQ(status_of([&] { (void)macrocon::Map::compute(source, target, o); }), MCON_ERROR_INVALID_ARGUMENT);
 }
 
 TEST(CppMap, RefineSigmaFactorReachesTheCApi) {
