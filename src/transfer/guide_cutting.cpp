@@ -787,18 +787,4 @@ Eigen::MatrixXd carry_vertex_values(const CutMesh& cut, const TriMesh& input, co
   return out;
 }
 
-double turning_per_length(const std::vector<Vec3>& points, bool closed) {
-  const std::size_t n = points.size();
-  if (n < 3) return 0;
-  double length = 0, turning = 0;
-  const std::size_t segments = closed ? n : n - 1;
-  for (std::size_t i = 0; i < segments; ++i) length += (points[(i + 1) % n] - points[i]).norm();
-  for (std::size_t i = closed ? 0 : 1; i < (closed ? n : n - 1); ++i) {
-    const Vec3 a = points[i] - points[(i + n - 1) % n], b = points[(i + 1) % n] - points[i];
-    if (a.norm() == 0 || b.norm() == 0) continue;
-    turning += std::atan2(a.cross(b).norm(), a.dot(b));
-  }
-  return length > 0 ? turning / length : 0;
-}
-
 }  // namespace mcon

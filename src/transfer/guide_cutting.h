@@ -63,8 +63,4 @@ CutMesh cut_guides_into_mesh(const TriMesh& mesh, const std::vector<std::vector<
 // mismatch.
 Eigen::MatrixXd carry_vertex_values(const CutMesh& cut, const TriMesh& input, const Eigen::MatrixXd& values);
 
-// Sum of the absolute turning angles (radians) at the interior points of a polyline (and at every
-// point of a closed one) divided by its length: how much it zig-zags. 0 for fewer than 3 points.
-double turning_per_length(const std::vector<Vec3>& points, bool closed);
-
 }  // namespace mcon

@@ -247,11 +247,3 @@ TEST(GuideCutting, BadInputIsRefusedWithTheFix) {
   EXPECT_EQ(same.input_triangles_cut, 0);
 }
 
-TEST(GuideCutting, TurningPerLengthMeasuresZigZag) {
-  const std::vector<Vec3> straight{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0)};
-  EXPECT_DOUBLE_EQ(turning_per_length(straight, false), 0.0);
-  const std::vector<Vec3> step{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(2, 1, 0)};
-  EXPECT_NEAR(turning_per_length(step, false), kPi / 3, 1e-12);  // two right angles over length 3
-  const std::vector<Vec3> square{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0)};
-  EXPECT_NEAR(turning_per_length(square, true), 2 * kPi / 4, 1e-12);
-}

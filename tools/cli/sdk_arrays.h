@@ -11,17 +11,25 @@
 
 namespace mcon::cli {
 
+// A mesh's positions (x0 y0 z0 x1 ...) and triangles (a0 b0 c0 a1 ...) as the API's flat arrays.
+inline std::vector<double> flat_positions(const TriMesh& mesh) {
+  std::vector<double> xyz;
+  xyz.reserve(3 * mesh.positions.size());
+  for (const Vec3& q : mesh.positions) xyz.insert(xyz.end(), {q.x(), q.y(), q.z()});
+  return xyz;
+}
+inline std::vector<std::uint32_t> flat_triangles(const TriMesh& mesh) {
+  std::vector<std::uint32_t> triangles;
+  triangles.reserve(3 * mesh.triangles.size());
+  for (const Tri& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) triangles.push_back(static_cast<std::uint32_t>(t[k]));
+  return triangles;
+}
+
 // The loaded file as an SDK mesh (already oriented and validated by read_mesh; the SDK's own
 // orientation step then changes nothing).
 inline macrocon::Mesh sdk_mesh(const macrocon::Context& context, const TriMesh& mesh) {
-  std::vector<double> xyz;
-  std::vector<std::uint32_t> triangles;
-  xyz.reserve(3 * mesh.positions.size());
-  triangles.reserve(3 * mesh.triangles.size());
-  for (const Vec3& q : mesh.positions) xyz.insert(xyz.end(), {q.x(), q.y(), q.z()});
-  for (const Tri& t : mesh.triangles)
-    for (int k = 0; k < 3; ++k) triangles.push_back(static_cast<std::uint32_t>(t[k]));
-  return macrocon::Mesh::from_arrays(context, xyz, triangles);
+  return macrocon::Mesh::from_arrays(context, flat_positions(mesh), flat_triangles(mesh));
 }
 
 // A patch's triangles at `scale * p + origin` (1 and 0: its normalized positions; radius and
