@@ -179,7 +179,8 @@ endforeach()
 # a value that is missing (the next word is an option) or an unknown option is refused by name.
 run_checked(OUTPUT_VARIABLE help_patch COMMAND ${CLI} help patch)
 run_checked(OUTPUT_VARIABLE dash_help_patch COMMAND ${CLI} patch --mesh x.obj --help)
-if(NOT help_patch STREQUAL dash_help_patch OR NOT help_patch MATCHES "Options:\n(.*\n)*  --radius R +\n"
+if(NOT help_patch STREQUAL dash_help_patch
+   OR NOT help_patch MATCHES "Options:\n(.*\n)*  --radius R +geodesic radius in mesh units\n"
    OR NOT help_patch MATCHES "  --no-fill")
   message(FATAL_ERROR "macrocon help patch lacks the generated option list, or differs from patch --help:\n${help_patch}")
 endif()

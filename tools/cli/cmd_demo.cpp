@@ -295,8 +295,16 @@ const char* kUsage =
     "it anyway.\n";
 
 int run_demo(const Args& args) {
+  static const OptionHelp help{
+      {"data", "folder of the bundled sample data (default: the source tree's samples/data)"},
+      {"out", "output folder (default demo-out)"},
+      {"library", "the constraint library to query (default: the starter library)"},
+      {"snap", "with --cut-guides / --whole-host: crossings this close to a vertex snap to it (default 0.25)"},
+      {"cut-guides", "also cut each region's guides into it and write QuadWild's inputs"},
+      {"whole-host", "also cut every region's guides into the whole body"},
+  };
   const ArgParser p(args, {"data", "out", "library", "snap"}, {"cut-guides", "whole-host", "quiet", "progress"},
-                    kUsage);
+                    kUsage, help);
   mcon_guide_cut_options cut_options;
   check(mcon_guide_cut_options_init(&cut_options));
   require(p.flag("cut-guides") || p.flag("whole-host") || !p.has("snap"), MCON_ERROR_INVALID_ARGUMENT,

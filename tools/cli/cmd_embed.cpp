@@ -70,8 +70,7 @@ const char* kUsage =
     "Crossings closer than --snap F (default 0.25) edge lengths to a vertex snap to it and guides that\n"
     "close merge, so no sliver is made; the summary's 'cut' reports the smallest angle created.\n"
     "A progress bar for the map is drawn on stderr when it is a terminal; --quiet hides it, --progress\n"
-    "draws it anyway (e.g. into a log).\n"
-    MACROCON_HELP_NUMBERING;
+    "draws it anyway (e.g. into a log).\n" MACROCON_HELP_NUMBERING;
 
 io::LoadedMesh load(const ArgParser& p, const std::string& file_key, const std::string& range_key,
                     OrientationRule orientation = OrientationRule::outward) {
@@ -113,8 +112,8 @@ std::uint32_t landmark_vertex(const io::LoadedMesh& mesh, const macrocon::HostVe
                               const char* side) {
   const bool known = file_vertex >= 0 && file_vertex < static_cast<long>(mesh.file_to_mesh.size()) &&
                      mesh.file_to_mesh[static_cast<std::size_t>(file_vertex)] >= 0;
-  const std::uint32_t h = known ? static_cast<std::uint32_t>(mesh.file_to_mesh[static_cast<std::size_t>(file_vertex)])
-                                : MCON_INVALID_INDEX;
+  const std::uint32_t h =
+      known ? static_cast<std::uint32_t>(mesh.file_to_mesh[static_cast<std::size_t>(file_vertex)]) : MCON_INVALID_INDEX;
   for (std::size_t v = 0; known && v < host.v0.size(); ++v)
     if (host.v0[v] == h && host.v1[v] == h) return static_cast<std::uint32_t>(v);
   fail(MCON_ERROR_INVALID_ARGUMENT, std::string("--landmarks: ") + side + " vertex " + std::to_string(file_vertex) +
@@ -156,7 +155,8 @@ std::array<double, 3> parse_vec3(const std::string& key, const std::string& s) {
   for (std::size_t comma; (comma = s.find(',', begin)) != std::string::npos; begin = comma + 1)
     parts.push_back(s.substr(begin, comma - begin));
   parts.push_back(s.substr(begin));
-  require(parts.size() == 3, MCON_ERROR_INVALID_ARGUMENT, "--" + key + " expects X,Y,Z (three numbers), got '" + s + "'");
+  require(parts.size() == 3, MCON_ERROR_INVALID_ARGUMENT,
+          "--" + key + " expects X,Y,Z (three numbers), got '" + s + "'");
   std::array<double, 3> v{};
   for (std::size_t k = 0; k < 3; ++k) v[k] = ArgParser::parse_number(key, parts[k]);
   return v;
@@ -246,10 +246,10 @@ void entry_source(const ArgParser& p, EmbedPatches& e) {
   const mcon_library_entry_info info = lib.entry_info(index);
   e.entry = lib.entry(index);
   const mcon_surface_point& c = info.center;
-  e.source = macrocon::patch_from_arrays(
-      e.context, lib.entry_positions(index), lib.entry_triangles(index), c.face,
-      {{c.barycentric[0], c.barycentric[1], c.barycentric[2]}},
-      {{info.source_origin[0], info.source_origin[1], info.source_origin[2]}}, info.source_scale);
+  e.source = macrocon::patch_from_arrays(e.context, lib.entry_positions(index), lib.entry_triangles(index), c.face,
+                                         {{c.barycentric[0], c.barycentric[1], c.barycentric[2]}},
+                                         {{info.source_origin[0], info.source_origin[1], info.source_origin[2]}},
+                                         info.source_scale);
   for (std::size_t v = 0; v < info.vertex_count; ++v) {
     e.source_mesh.file_to_mesh.push_back(static_cast<int>(v));
     e.source_mesh.mesh_to_file.push_back(static_cast<long>(v));
@@ -374,8 +374,9 @@ EmbedTransfer transfer_constraints(const macrocon::Map& map, const EmbedPatches&
   const auto t_polylines = std::chrono::steady_clock::now();
   x.traced = trace_polylines(map, x.source.polylines);
   const mcon_surface_point& c = e.source_geometry.center_point;
-  x.center_on_target = map.transfer_points({c.face}, {c.barycentric[0], c.barycentric[1], c.barycentric[2]})
-                           .triangles[0] != MCON_INVALID_INDEX;
+  x.center_on_target =
+      map.transfer_points({c.face}, {c.barycentric[0], c.barycentric[1], c.barycentric[2]}).triangles[0] !=
+      MCON_INVALID_INDEX;
   std::vector<mcon_surface_point> singularities;
   for (const mcon_singularity& s : x.source.singularities) singularities.push_back(s.location);
   std::vector<std::uint32_t> triangles;
@@ -392,11 +393,32 @@ EmbedTransfer transfer_constraints(const macrocon::Map& map, const EmbedPatches&
 }
 
 int run_embed(const Args& args) {
+  static const OptionHelp help{
+      {"source", "the source: a mesh, a disk patch file, or a library (.mclb) with --entry"},
+      {"target", "the target mesh"},
+      {"face-range", "keep only the target file's faces [A, B)"},
+      {"center-vertex", "center of the target region (target file vertex)"},
+      {"radius", "geodesic radius of the target region in target mesh units"},
+      {"source-center-vertex", "cut the source region around this source file vertex"},
+      {"source-radius", "geodesic radius of the source region (default --radius)"},
+      {"source-face-range", "keep only the source file's faces [A, B)"},
+      {"entry", "with a library --source: the entry (id, or a unique name)"},
+      {"samples", "rigid start candidates scored (default 10000)"},
+      {"iterations", "Newton iterations per coarse-to-fine level (default 100)"},
+      {"orientation", "auto (default), preserve or reverse"},
+      {"landmarks", "source:target vertex pairs that must correspond"},
+      {"up", "up direction of both meshes, in file coordinates"},
+      {"source-up", "up direction of the source mesh (with --target-up)"},
+      {"target-up", "up direction of the target mesh (with --source-up)"},
+      {"out", "output folder (default embed-out)"},
+      {"snap", "with --cut-guides: snap crossings this close to a vertex (edge fraction, default 0.25)"},
+      {"cut-guides", "also cut the guides into the target patch and write QuadWild's inputs"},
+  };
   const ArgParser p(args,
                     {"source", "target", "center-vertex", "radius", "source-center-vertex", "source-radius",
                      "face-range", "source-face-range", "seed", "samples", "iterations", "orientation", "landmarks",
                      "up", "source-up", "target-up", "out", "snap", "entry"},
-                    {"json", "cut-guides", "quiet", "progress"}, kUsage);
+                    {"json", "cut-guides", "quiet", "progress"}, kUsage, help);
   const auto t_start = std::chrono::steady_clock::now();
   const EmbedOptions o = embed_options(p);
   const EmbedPatches e = cut_embed_patches(p);

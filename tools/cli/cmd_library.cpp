@@ -92,6 +92,37 @@ struct Parsed {
   bool quiet = false, progress = false;  // the progress bar: off, forced on
 };
 
+// One line of --help per option of build, add and info.
+const OptionHelp& library_help() {
+  static const OptionHelp help{
+      {"out", "build: the library file to write (.mclb)"},
+      {"library", "add, info: the library file (.mclb)"},
+      {"spec", "build: read entries from this JSON file too"},
+      {"descriptor", "build: curv9 (default), hks or wks"},
+      {"rings", "build: histogram rings (default: the measured best)"},
+      {"vocabulary", "build: visual words k of the k-means++ vocabulary (default 128)"},
+      {"seed", "build: seed of the vocabulary's k-means++"},
+      {"sigma", "build: soft-assignment width (default: the median rule)"},
+      {"id", "add: the new entry's id (default: the next free one)"},
+      {"mesh", "the mesh the entries that follow are cut from"},
+      {"face-range", "keep only that mesh file's faces [A, B)"},
+      {"center-vertex", "starts an entry: its center (file vertex)"},
+      {"radius", "the entry's geodesic radius in mesh units"},
+      {"class", "the entry's class label (e.g. nose)"},
+      {"name", "the entry's name"},
+      {"author", "the entry's author"},
+      {"licence", "the entry's licence"},
+      {"tag", "a tag of the entry (repeatable)"},
+      {"guides", "guide polylines of the entry (OBJ 'l' lines; repeatable)"},
+      {"features", "feature polylines of the entry (OBJ 'l' lines; repeatable)"},
+      {"singularities", "the entry's singularities (CSV or PLY table of x, y, z, index)"},
+      {"fields", "per-vertex fields of the entry (PLY vertex properties or CSV)"},
+      {"field", "NAME[=COL,...][:KIND]: a field to take from --fields (repeatable)"},
+      {"max-snap-distance", "farthest a constraint point may lie from the mesh (default 0.1 x radius)"},
+  };
+  return help;
+}
+
 // Reads the arguments in order: --mesh / --face-range set the source of the entries that
 // follow; --center-vertex starts an entry; entry options apply to the latest entry.
 Parsed parse(const Args& args, const std::set<std::string>& globals) {
@@ -100,7 +131,7 @@ Parsed parse(const Args& args, const std::set<std::string>& globals) {
   keys.insert(entry_options().begin(), entry_options().end());
   Parsed p;
   std::string mesh, face_range;
-  for (const ArgOccurrence& o : parse_in_order(args, keys, {"json", "quiet", "progress"}, kUsage)) {
+  for (const ArgOccurrence& o : parse_in_order(args, keys, {"json", "quiet", "progress"}, kUsage, library_help())) {
     const std::string& key = o.key;
     const std::string& value = o.value;
     if (o.flag) {

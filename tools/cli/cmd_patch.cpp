@@ -89,9 +89,20 @@ void write_patch_ply(const std::string& path, const macrocon::Patch& patch, cons
 }
 
 int run_patch(const Args& args) {
+  static const OptionHelp help{
+      {"mesh", "the host mesh (OBJ, PLY, OFF; .gz too)"},
+      {"center-vertex", "center at this file vertex"},
+      {"center-triangle", "center inside this file face (with --barycentric)"},
+      {"barycentric", "the center's weights in --center-triangle (default 1/3 each)"},
+      {"radius", "geodesic radius in mesh units"},
+      {"out", "write the normalized patch here (PLY)"},
+      {"group", "keep only this OBJ group of the mesh"},
+      {"snap", "boundary crossings this close to a vertex (fraction of an edge) snap to it"},
+      {"no-fill", "leave holes inside the disk open (default: filled)"},
+  };
   const ArgParser p(args, {"mesh", "center-vertex", "center-triangle", "barycentric", "radius", "out", "face-range",
                            "group", "snap"},
-                    {"json", "no-fill"}, kUsage);
+                    {"json", "no-fill"}, kUsage, help);
   io::MeshFileOptions file_options;
   if (p.has("face-range")) parse_range("face-range", p.get("face-range"), file_options.face_begin, file_options.face_end);
   file_options.obj_group = p.get("group");

@@ -26,8 +26,15 @@ const char* kUsage =
     MACROCON_HELP_NUMBERING;
 
 int run_query(const Args& args) {
+  static const OptionHelp help{
+      {"library", "the constraint library (.mclb)"},
+      {"mesh", "the mesh to query on (OBJ, PLY, OFF; .gz too)"},
+      {"center-vertex", "center of the query region (file vertex)"},
+      {"radius", "geodesic radius of the query region in mesh units"},
+      {"top", "how many entries to print, nearest first (default 5)"},
+  };
   const ArgParser p(args, {"library", "mesh", "center-vertex", "radius", "top", "face-range"},
-                    {"json", "quiet", "progress"}, kUsage);
+                    {"json", "quiet", "progress"}, kUsage, help);
   const std::string path = p.required("library");
   const std::string mesh_path = p.required("mesh");
   const long center_vertex = ArgParser::parse_integer("center-vertex", p.required("center-vertex"));

@@ -109,8 +109,10 @@ SourceConstraints synthetic_constraints(const macrocon::Patch& source) {
 SourceConstraints entry_constraints(const macrocon::EntryData& entry) {
   SourceConstraints c;
   c.polylines = entry.polylines;  // read back guides first, then features
-  c.guide_count = static_cast<std::size_t>(std::count_if(
-      c.polylines.begin(), c.polylines.end(), [](const macrocon::Polyline& l) { return l.kind == MCON_POLYLINE_GUIDE; }));
+  c.guide_count =
+      static_cast<std::size_t>(std::count_if(c.polylines.begin(), c.polylines.end(), [](const macrocon::Polyline& l) {
+        return l.kind == MCON_POLYLINE_GUIDE;
+      }));
   c.singularities = entry.singularities;
   c.fields = entry.fields;
   return c;
@@ -155,8 +157,8 @@ std::vector<io::VertexAttribute> field_attributes(const std::vector<macrocon::Ve
     };
     const bool one = dimension <= 3;
     for (std::size_t first = 0; first < dimension; first += one ? dimension : 1) {
-      io::VertexAttribute a{one ? f.name : f.name + "_" + std::to_string(first), one ? static_cast<int>(dimension) : 1,
-                            {}};
+      io::VertexAttribute a{
+          one ? f.name : f.name + "_" + std::to_string(first), one ? static_cast<int>(dimension) : 1, {}};
       for (std::size_t v = 0; v < n; ++v)
         for (std::size_t k = first; k < first + static_cast<std::size_t>(a.components); ++k)
           a.values.push_back(value(v, k));

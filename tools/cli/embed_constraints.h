@@ -33,8 +33,8 @@ std::vector<macrocon::VertexField> transfer_fields(const macrocon::Map& map,
 
 // Where each vertex of a cut patch lies on the patch it was cut from.
 struct CutHostPoints {
-  std::vector<std::uint32_t> triangles;    // patch triangle per cut vertex
-  std::vector<double> barycentric;         // 3 per cut vertex
+  std::vector<std::uint32_t> triangles;        // patch triangle per cut vertex
+  std::vector<double> barycentric;             // 3 per cut vertex
   std::vector<std::uint32_t> patch_triangles;  // the patch's triangles, 3 indices each
 };
 

@@ -43,7 +43,7 @@ void write_target_ply(const std::string& ply, const EmbedPatches& e, const Embed
     out_attr.values.push_back(x.outside[w]);
     const std::uint32_t h = host.t[w] < 0.5 ? host.v0[w] : host.v1[w];
     host_vertex.values.push_back(host.v0[w] == MCON_INVALID_INDEX ? -1.0
-                                                                   : static_cast<double>(e.target_mesh.mesh_to_file[h]));
+                                                                  : static_cast<double>(e.target_mesh.mesh_to_file[h]));
   }
   attributes.push_back(std::move(out_attr));
   attributes.push_back(std::move(host_vertex));
@@ -103,7 +103,8 @@ std::vector<std::vector<Vec3>> source_in_host_units(const EmbedPatches& e, const
   std::vector<std::vector<Vec3>> out;
   for (const macrocon::Polyline& in : x.source.polylines) {
     std::vector<Vec3> line;
-    for (const mcon_surface_point& q : in.points) line.push_back(e.source_geometry.to_host(e.source_geometry.position(q)));
+    for (const mcon_surface_point& q : in.points)
+      line.push_back(e.source_geometry.to_host(e.source_geometry.position(q)));
     out.push_back(std::move(line));
   }
   return out;
@@ -121,10 +122,11 @@ void compute_cut(const EmbedOptions& o, const EmbedPatches& e, const EmbedTransf
   c.info = c.cut.info();
   const std::vector<double> xyz = c.cut.positions();
   const std::vector<std::uint32_t> triangles = c.cut.triangles(), edges = c.cut.guide_edges();
-  for (std::size_t v = 0; 3 * v < xyz.size(); ++v) c.host_units.positions.emplace_back(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
+  for (std::size_t v = 0; 3 * v < xyz.size(); ++v)
+    c.host_units.positions.emplace_back(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
   for (std::size_t t = 0; 3 * t < triangles.size(); ++t)
-    c.host_units.triangles.push_back(
-        {static_cast<int>(triangles[3 * t]), static_cast<int>(triangles[3 * t + 1]), static_cast<int>(triangles[3 * t + 2])});
+    c.host_units.triangles.push_back({static_cast<int>(triangles[3 * t]), static_cast<int>(triangles[3 * t + 1]),
+                                      static_cast<int>(triangles[3 * t + 2])});
   for (std::size_t i = 0; 2 * i < edges.size(); ++i)
     c.guide_edges.push_back({static_cast<int>(edges[2 * i]), static_cast<int>(edges[2 * i + 1])});
   c.guides = c.cut.guides();
@@ -143,7 +145,8 @@ std::vector<io::VertexAttribute> cut_attributes(const EmbedPatches& e, const Emb
   const std::vector<std::uint8_t> outside = carry_labels(host, x.outside);
   io::VertexAttribute out_attr{"outside", 1, {}}, guide{"guide", 1, {}};
   std::vector<double> on_guide(c.host_units.positions.size(), 0.0);
-  for (const auto& edge : c.guide_edges) on_guide[static_cast<std::size_t>(edge[0])] = on_guide[static_cast<std::size_t>(edge[1])] = 1.0;
+  for (const auto& edge : c.guide_edges)
+    on_guide[static_cast<std::size_t>(edge[0])] = on_guide[static_cast<std::size_t>(edge[1])] = 1.0;
   for (std::size_t w = 0; w < on_guide.size(); ++w) {
     out_attr.values.push_back(outside[w]);
     guide.values.push_back(on_guide[w]);
@@ -202,11 +205,16 @@ tools::Json source_summary(const EmbedPatches& e, const EmbedTransfer& x) {
 
 const char* stop_reason_name(std::uint32_t reason) {
   switch (reason) {
-    case MCON_MAP_STOP_CONVERGED: return "converged";
-    case MCON_MAP_STOP_STALLED: return "stalled";
-    case MCON_MAP_STOP_ITERATION_CAP: return "iteration_cap";
-    case MCON_MAP_STOP_CANCELLED: return "cancelled";
-    default: return "unknown";
+    case MCON_MAP_STOP_CONVERGED:
+      return "converged";
+    case MCON_MAP_STOP_STALLED:
+      return "stalled";
+    case MCON_MAP_STOP_ITERATION_CAP:
+      return "iteration_cap";
+    case MCON_MAP_STOP_CANCELLED:
+      return "cancelled";
+    default:
+      return "unknown";
   }
 }
 
@@ -396,10 +404,12 @@ void add_cut_summary(const EmbedCut& cut, tools::Json& summary) {
   summary.set("files", files);
   // Run in the output folder; <quadwild> is its build.
   tools::Json commands = tools::Json::array();
-  commands.push_back(std::string("quadwild target_cut.obj 2 target_cut.rosy target_cut.sharp "
-                                 "<quadwild>/config/prep_config/basic_setup.txt"));
-  commands.push_back(std::string("quad_from_patches target_cut_rem_p0.obj 123 "
-                                 "<quadwild>/config/main_config/flow_noalign_lemon.txt"));
+  commands.push_back(
+      std::string("quadwild target_cut.obj 2 target_cut.rosy target_cut.sharp "
+                  "<quadwild>/config/prep_config/basic_setup.txt"));
+  commands.push_back(
+      std::string("quad_from_patches target_cut_rem_p0.obj 123 "
+                  "<quadwild>/config/main_config/flow_noalign_lemon.txt"));
   summary.set("quadwild_commands", commands);
 }
 
@@ -410,9 +420,10 @@ void print_report(const EmbedOptions& o, const EmbedMap& m, const EmbedTransfer&
               info.source_vertex_count, info.target_vertex_count, info.overlap_ratio, info.iterations,
               stop_reason_name(info.stop_reason), info.reflected ? "reflected" : "not reflected",
               info.flipped_triangles, m.map_seconds);
-  std::printf("constraints: %zu guides and features in, %zu out (%zu points), %zu singularities, %zu fields; files in %s\n",
-              x.source.polylines.size(), x.traced.inputs.size(), f.traced_points, x.source.singularities.size(),
-              x.fields.size(), o.out_dir.c_str());
+  std::printf(
+      "constraints: %zu guides and features in, %zu out (%zu points), %zu singularities, %zu fields; files in %s\n",
+      x.source.polylines.size(), x.traced.inputs.size(), f.traced_points, x.source.singularities.size(),
+      x.fields.size(), o.out_dir.c_str());
   if (cut)
     std::printf("cut: %zu vertices, %zu triangles, %zu guide edges, smallest angle made %.1f degrees\n",
                 cut->info.vertex_count, cut->info.triangle_count, cut->info.guide_edge_count,

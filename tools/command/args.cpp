@@ -40,11 +40,25 @@ std::string value_name(const char* usage, const std::string& key) {
   const std::string option = "--" + key + " ";
   for (std::size_t at = text.find(option); at != std::string::npos; at = text.find(option, at + 1)) {
     std::size_t b = at + option.size(), e = b;
-    while (e < text.size() && text[e] != ' ' && text[e] != ']' && text[e] != '\n' && text[e] != ')') ++e;
-    const std::string word = text.substr(b, e - b);
+    int depth = 0;  // "NAME[=COL,COL...]" keeps its brackets; the synopsis' own "]" ends the word
+    for (; e < text.size() && text[e] != ' ' && text[e] != '\n' && text[e] != ')'; ++e) {
+      if (text[e] == '[') ++depth;
+      if (text[e] == ']' && depth-- == 0) break;
+    }
+    std::string word = text.substr(b, e - b);
+    while (!word.empty() && (word.back() == ':' || word.back() == ',')) word.pop_back();  // prose punctuation
     if (!word.empty() && word[0] >= 'A' && word[0] <= 'Z') return word;
   }
   return "VALUE";
+}
+
+// The option's line of --help: the command's own, else the shared one, else none.
+std::string help_line(const OptionHelp& help, const std::string& key) {
+  for (const OptionHelp* table : {&help, &shared_option_help()}) {
+    const auto it = table->find(key);
+    if (it != table->end()) return it->second;
+  }
+  return "";
 }
 
 // The command's own usage text (its synopsis and prose) replaces CLI11's one-line "Usage:"; the
@@ -57,14 +71,20 @@ class HelpFormatter : public CLI::Formatter {
 // Declares every key (one value each occurrence, any number of occurrences) and flag, parses,
 // and handles --help. What a command allows more than once is the caller's decision.
 void parse(CLI::App& app, const Args& args, const std::set<std::string>& keys, const std::set<std::string>& flags,
-           const char* usage) {
+           const char* usage, const OptionHelp& help) {
   app.description(usage != nullptr ? usage : "");
   app.set_help_flag("-h,--help", "print this help and exit");
   app.formatter(std::make_shared<HelpFormatter>());
   app.get_formatter()->column_width(30);
   for (const std::string& key : keys)
-    app.add_option("--" + key)->type_name(value_name(usage, key))->expected(1)->take_all()->allow_extra_args(false);
-  for (const std::string& key : flags) app.add_flag("--" + key)->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+    app.add_option("--" + key)
+        ->description(help_line(help, key))
+        ->type_name(value_name(usage, key))
+        ->expected(1)
+        ->take_all()
+        ->allow_extra_args(false);
+  for (const std::string& key : flags)
+    app.add_flag("--" + key)->description(help_line(help, key))->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   // CLI11 gives an option its value even when the next word is another option; a forgotten value
   // would then swallow the option after it. A value starting with "--" needs --key=--value.
   for (std::size_t i = 0; i + 1 < args.size(); ++i)
@@ -103,10 +123,24 @@ void parse_range(const std::string& key, const std::string& s, long& begin, long
   require(begin >= 0 && end > begin, MCON_ERROR_INVALID_ARGUMENT, "--" + key + " needs 0 <= BEGIN < END");
 }
 
+const OptionHelp& shared_option_help() {
+  static const OptionHelp help{
+      {"json", "print the result as one JSON object on stdout"},
+      {"quiet", "draw no progress bar"},
+      {"progress", "draw the progress bar even when stderr is not a terminal"},
+      {"face-range", "keep only the file's faces [A, B) of the mesh"},
+      {"seed", "seed of every random choice (same seed, same result)"},
+      {"threads", "worker threads (TBB arena)"},
+      {"shared", "the shared data folder (meshes/, bench/)"},
+  };
+  return help;
+}
+
 std::vector<ArgOccurrence> parse_in_order(const Args& args, const std::set<std::string>& keys,
-                                          const std::set<std::string>& flags, const char* usage) {
+                                          const std::set<std::string>& flags, const char* usage,
+                                          const OptionHelp& help) {
   CLI::App app;
-  parse(app, args, keys, flags, usage);
+  parse(app, args, keys, flags, usage, help);
   std::map<const CLI::Option*, std::size_t> seen;
   std::vector<ArgOccurrence> out;
   for (const CLI::Option* o : app.parse_order()) {
@@ -119,8 +153,8 @@ std::vector<ArgOccurrence> parse_in_order(const Args& args, const std::set<std::
 }
 
 ArgParser::ArgParser(const Args& args, const std::set<std::string>& keys, const std::set<std::string>& flags,
-                     const char* usage) {
-  for (const ArgOccurrence& a : parse_in_order(args, keys, flags, usage)) {
+                     const char* usage, const OptionHelp& help) {
+  for (const ArgOccurrence& a : parse_in_order(args, keys, flags, usage, help)) {
     if (a.flag) {
       flags_.insert(a.key);
       continue;

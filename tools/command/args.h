@@ -36,17 +36,24 @@ struct ArgOccurrence {
   bool flag = false;
 };
 
+// One line of --help per option (key without "--" -> text). Options every command means the same
+// way (--json, --quiet, --progress, --face-range, ...) have a shared line a command may override.
+using OptionHelp = std::map<std::string, std::string>;
+const OptionHelp& shared_option_help();
+
 // Every occurrence in order, for commands whose options apply to what precedes them (library
 // build: --mesh, --center-vertex, then that entry's options). `flags` take no value; every other key
-// takes one. --help / -h print `usage` and the generated option list, then throw HelpShown.
+// takes one. --help / -h print `usage` and the generated option list (with `help`'s lines), then
+// throw HelpShown.
 std::vector<ArgOccurrence> parse_in_order(const Args& args, const std::set<std::string>& keys,
-                                          const std::set<std::string>& flags, const char* usage);
+                                          const std::set<std::string>& flags, const char* usage,
+                                          const OptionHelp& help = {});
 
 class ArgParser {
  public:
   // Each key at most once.
   ArgParser(const Args& args, const std::set<std::string>& keys, const std::set<std::string>& flags,
-            const char* usage = nullptr);
+            const char* usage = nullptr, const OptionHelp& help = {});
 
   bool has(const std::string& key) const { return values_.count(key) > 0; }
   bool flag(const std::string& key) const { return flags_.count(key) > 0; }

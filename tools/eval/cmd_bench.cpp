@@ -191,7 +191,16 @@ tools::Json heat_row(const Patch& dst, int runs, tbb::task_arena& arena) {
 }
 
 int run_bench(const Args& args) {
-  const ArgParser p(args, {"shared", "runs", "threads", "seed", "cases"}, {"json", "large", "no-plain-newton"}, kUsage);
+  static const OptionHelp help{
+      {"runs", "runs per case; medians are reported (default 3)"},
+      {"threads", "worker threads (TBB arena, default 2)"},
+      {"seed", "seed of the two people (default 1)"},
+      {"cases", "only these cases (hand_r, face, hand_r_subdivided, face_subdivided, face_subdivided_twice)"},
+      {"large", "add the face on the body subdivided twice (about 46,000 vertices)"},
+      {"no-plain-newton", "skip the side-by-side plain Newton runs"},
+  };
+  const ArgParser p(args, {"shared", "runs", "threads", "seed", "cases"}, {"json", "large", "no-plain-newton"}, kUsage,
+                    help);
   const std::string shared = p.required("shared");
   const int runs = static_cast<int>(p.integer("runs", 3));
   const int threads = static_cast<int>(p.integer("threads", 2));

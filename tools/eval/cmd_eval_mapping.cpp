@@ -86,11 +86,36 @@ void print_cross_family(const tools::Json& cross, const std::vector<std::string>
   }
 }
 
+const OptionHelp& mapping_help() {
+  static const OptionHelp help{
+      {"seed", "seed of the people, faces and re-tessellations (default 1)"},
+      {"pairs", "number of pairs (default 13: the MakeHuman slots; 20 adds ICT)"},
+      {"classes", "only these classes (eye, nose, mouth, ear, face, hand, foot, arm)"},
+      {"method", "only these methods (macrocon, rigid, thesis, proximity, ...)"},
+      {"samples", "rigid start candidates (default 10000)"},
+      {"thesis-iterations", "iterations of the thesis baseline (default 15000)"},
+      {"eval-vertices", "evaluated source vertices per pair (default 300)"},
+      {"threads", "worker threads (TBB arena, default 2)"},
+      {"landmarks", "true point pairs of the landmarks method (default 4)"},
+      {"noise", "Gaussian noise on the target host, std F x its mean edge length"},
+      {"density", "decimate or subdivide the target host to S x its vertex count"},
+      {"frame-anchor", "macrocon-frame's anchor weight (default the SDK's)"},
+      {"frame-anchor-decay", "macrocon-frame's anchor factor per stage (default the SDK's)"},
+      {"up-anchor", "macrocon-up's pull towards the rigid start"},
+      {"cross-family", "also map MakeHuman <-> ICT, scored on the semantic landmarks"},
+      {"flip-winding", "reverse every triangle of the target host"},
+      {"plain-newton", "one factorization per Newton iteration (no reuse)"},
+      {"cycle-signal", "also map backwards and report the cycle consistency"},
+  };
+  return help;
+}
+
 int run_eval_mapping(const Args& args) {
   const ArgParser p(args,
                     {"shared", "seed", "pairs", "classes", "method", "samples", "thesis-iterations", "eval-vertices",
                      "threads", "landmarks", "noise", "density", "frame-anchor", "frame-anchor-decay", "up-anchor"},
-                    {"json", "quiet", "progress", "cross-family", "flip-winding", "plain-newton", "cycle-signal"}, kUsage);
+                    {"json", "quiet", "progress", "cross-family", "flip-winding", "plain-newton", "cycle-signal"}, kUsage,
+                    mapping_help());
   tools::MappingEvalOptions o;
   o.shared_dir = p.required("shared");
   const long seed = p.integer("seed", 1);

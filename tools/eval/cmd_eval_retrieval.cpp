@@ -88,10 +88,31 @@ struct EvalRetrievalCommand {
   std::string plot_dir;
 };
 
+const OptionHelp& retrieval_help() {
+  static const OptionHelp help{
+      {"seed", "seed of the people, faces and re-tessellations (default 1)"},
+      {"people", "random MakeHuman people (default 8)"},
+      {"faces", "random ICT faces (default 8)"},
+      {"descriptor", "curv9 (default), hks or wks"},
+      {"rings", "histogram rings (default 1)"},
+      {"vocabulary", "visual words k (default 128)"},
+      {"sigma", "soft-assignment width (default: the median rule)"},
+      {"threads", "worker threads (TBB arena)"},
+      {"plot", "write precision_recall.svg and mds.svg to this folder"},
+      {"noise", "Gaussian noise on every host, std F x its mean edge length"},
+      {"density", "decimate or subdivide every host to S x its vertex count"},
+      {"compare", "also evaluate curv9, hks and wks with 1, 2, 4 and 8 rings"},
+      {"flip-winding", "reverse every triangle of every host"},
+      {"leave-family-out", "query a library of one family with the other family's patches"},
+  };
+  return help;
+}
+
 EvalRetrievalCommand parse_eval_retrieval(const Args& args) {
   const ArgParser p(args, {"shared", "seed", "people", "faces", "descriptor", "rings", "vocabulary", "sigma",
                            "threads", "plot", "noise", "density"},
-                    {"json", "compare", "flip-winding", "leave-family-out", "quiet", "progress"}, kUsage);
+                    {"json", "compare", "flip-winding", "leave-family-out", "quiet", "progress"}, kUsage,
+                    retrieval_help());
   EvalRetrievalCommand cmd;
   tools::RetrievalBenchmarkOptions& options = cmd.options;
   options.shared_dir = p.required("shared");
