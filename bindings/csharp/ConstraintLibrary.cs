@@ -54,6 +54,9 @@ namespace Macrocon
         /// DescriptorStride; passed in place with descriptor_stride.</summary>
         public Array DescriptorRecords;
         public int DescriptorOffset, DescriptorStride;
+        /// <summary>The up direction of the patch's host in its coordinates (3 numbers, not all 0),
+        /// stored with the entry as the SourceUp of later maps; null: none.</summary>
+        public double[] Up;
     }
 
     /// <summary>Retrieval settings; null members keep the library's defaults.</summary>
@@ -294,6 +297,12 @@ namespace Macrocon
                         desc.descriptors = pins.Pin(e.Descriptors);
                         desc.descriptor_dimension = checked((uint)e.DescriptorDimension);
                     }
+                    if (e.Up != null)
+                    {
+                        if (e.Up.Length != 3) throw new ArgumentException("Up needs 3 components");
+                        desc.has_up = 1;
+                        desc.up_x = e.Up[0]; desc.up_y = e.Up[1]; desc.up_z = e.Up[2];
+                    }
                     Native.Check(Native.mcon_library_add_entry(Handle, ref desc, out ulong id));
                     return id;
                 }
@@ -403,6 +412,13 @@ namespace Macrocon
             Native.Check(Native.mcon_library_entry_info_init(ref i));
             Native.Check(Native.mcon_library_get_entry_info(Handle, (UIntPtr)index, ref i));
             return i;
+        }
+
+        /// <summary>The entry's stored up direction (source coordinates), or null if it stores none.</summary>
+        public double[] GetEntryUp(int index)
+        {
+            EntryInfo i = GetEntryInfo(index);
+            return i.HasUp != 0 ? new[] { i.UpX, i.UpY, i.UpZ } : null;
         }
 
         public string GetEntryString(int index, EntryString which, int item = 0) =>

@@ -64,6 +64,8 @@ namespace Macrocon
         public uint StructSize; public ulong Id; public UIntPtr VertexCount; public UIntPtr TriangleCount; public UIntPtr TagCount;
         public UIntPtr PolylineCount; public UIntPtr SingularityCount; public UIntPtr FieldCount; public SurfacePoint Center;
         public double SourceScale; public double SourceOriginX, SourceOriginY, SourceOriginZ;
+        /// <summary>1 if the entry stores its source's up direction (UpX, UpY, UpZ; source coordinates).</summary>
+        public uint HasUp; public double UpX, UpY, UpZ;
     }
 
     /// <summary>mcon_map_info (C layout).</summary>
@@ -314,7 +316,7 @@ namespace Macrocon
             public IntPtr tags; public UIntPtr tag_count; public IntPtr author; public IntPtr licence;
             public IntPtr polylines; public UIntPtr polyline_count; public IntPtr singularities; public UIntPtr singularity_count;
             public IntPtr fields; public UIntPtr field_count; public IntPtr descriptors; public uint descriptor_dimension;
-            public UIntPtr descriptor_stride;
+            public UIntPtr descriptor_stride; public uint has_up; public double up_x, up_y, up_z;
         }
 
         [StructLayout(LayoutKind.Sequential)]

@@ -431,6 +431,10 @@ typedef struct mcon_library_entry_desc {
   const double* descriptors;
   uint32_t descriptor_dimension;
   size_t descriptor_stride;
+  /** Nonzero: `up` is the up direction of the patch's host in its coordinates (any length, not
+   * zero), stored with the entry for mcon_map_options.source_up. Default 0: none. */
+  uint32_t has_up;
+  double up[3];
 } mcon_library_entry_desc;
 
 MCON_API mcon_status mcon_library_entry_desc_init(mcon_library_entry_desc* desc);
@@ -562,6 +566,8 @@ typedef struct mcon_library_entry_info {
   mcon_surface_point center; /**< the patch center, a point of the entry's mesh */
   double source_scale;       /**< normalized = (source - source_origin) / source_scale */
   double source_origin[3];
+  uint32_t has_up;           /**< 1 if the entry stores its host's up direction (`up`, source coordinates) */
+  double up[3];
 } mcon_library_entry_info;
 
 MCON_API mcon_status mcon_library_entry_info_init(mcon_library_entry_info* info);

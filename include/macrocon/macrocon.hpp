@@ -540,6 +540,8 @@ struct EntryData {
   /// Caller-supplied descriptors (custom libraries): vertex_count * descriptor_dimension values.
   std::vector<double> descriptors;
   std::uint32_t descriptor_dimension = 0;
+  /// The up direction of the patch's host in its coordinates (mcon_library_entry_desc.up), if any.
+  std::optional<std::array<double, 3>> up;
 };
 
 struct QueryHit {
@@ -633,6 +635,10 @@ class Library {
       d.descriptors = data.descriptors.data();
       d.descriptor_dimension = data.descriptor_dimension;
     }
+    if (data.up) {
+      d.has_up = 1u;
+      for (std::size_t k = 0; k < 3; ++k) d.up[k] = (*data.up)[k];
+    }
     std::uint64_t id = 0;
     check(mcon_library_add_entry(handle(), &d, &id));
     return id;
@@ -722,6 +728,7 @@ class Library {
     const mcon_library_entry_info ei = entry_info(index);
     EntryData e;
     e.id = ei.id;
+    if (ei.has_up) e.up = std::array<double, 3>{{ei.up[0], ei.up[1], ei.up[2]}};
     e.name = entry_string(index, MCON_ENTRY_NAME, 0);
     e.class_label = entry_string(index, MCON_ENTRY_CLASS_LABEL, 0);
     e.author = entry_string(index, MCON_ENTRY_AUTHOR, 0);

@@ -1,6 +1,7 @@
 // Library entries: adding (every caller array checked and named before anything changes),
 // removing, finding, and reading entries back by index.
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <limits>
 
@@ -11,6 +12,10 @@ using namespace mcon;
 using namespace mcon::capi;
 
 namespace {
+
+// The first published versions of the entry structs (before has_up): older callers pass these sizes.
+constexpr std::size_t kEntryDescMinSize = offsetof(mcon_library_entry_desc, has_up);
+constexpr std::size_t kEntryInfoMinSize = offsetof(mcon_library_entry_info, has_up);
 
 mcon_library_entry_desc default_entry_desc() {
   auto d = zeroed_struct<mcon_library_entry_desc>();
@@ -102,6 +107,14 @@ MacroConstraint read_content(const mcon_library_entry_desc& d, const Patch& patc
   require(d.fields != nullptr || d.field_count == 0, MCON_ERROR_NULL_POINTER, "fields is NULL but field_count > 0");
   for (std::size_t i = 0; i < d.field_count; ++i)
     e.fields.push_back(read_field(d.fields[i], n, "fields[" + std::to_string(i) + "]"));
+
+  if (d.has_up != 0) {
+    require(std::isfinite(d.up[0]) && std::isfinite(d.up[1]) && std::isfinite(d.up[2]), MCON_ERROR_NON_FINITE,
+            "desc.up is not finite");
+    require(d.up[0] != 0 || d.up[1] != 0 || d.up[2] != 0, MCON_ERROR_INVALID_ARGUMENT,
+            "desc.up is the zero vector (set has_up = 0 for no up direction)");
+    e.up = std::array<double, 3>{{d.up[0], d.up[1], d.up[2]}};
+  }
   return e;
 }
 
@@ -123,7 +136,7 @@ mcon_status mcon_library_entry_desc_init(mcon_library_entry_desc* desc) {
 mcon_status mcon_library_add_entry(mcon_library library, const mcon_library_entry_desc* desc, uint64_t* out_id) {
   return guard_object("mcon_library_add_entry", library, "library", [&] {
     require_pointer(desc, "desc");
-    const auto d = read_options(desc, sizeof(mcon_library_entry_desc), "mcon_library_entry_desc", default_entry_desc());
+    const auto d = read_options(desc, kEntryDescMinSize, "mcon_library_entry_desc", default_entry_desc());
     check_handle(d.patch, "patch");
     const Patch& patch = d.patch->patch;
     MacroConstraint content = read_content(d, patch);
@@ -185,7 +198,9 @@ mcon_status mcon_library_get_entry_info(mcon_library library, size_t index, mcon
     v.center = to_c(e.center);
     v.source_scale = e.source_scale;
     for (int k = 0; k < 3; ++k) v.source_origin[k] = e.source_origin[static_cast<std::size_t>(k)];
-    write_info(info, sizeof(mcon_library_entry_info), "mcon_library_entry_info", v);
+    v.has_up = e.up ? 1u : 0u;
+    for (int k = 0; k < 3 && e.up; ++k) v.up[k] = (*e.up)[static_cast<std::size_t>(k)];
+    write_info(info, kEntryInfoMinSize, "mcon_library_entry_info", v);
   });
 }
 

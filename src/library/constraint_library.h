@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -70,6 +71,8 @@ struct MacroConstraint {
 
   std::vector<float> descriptors;  // n * RetrievalConfig::dimension, vertex-major
   std::vector<float> histogram;    // RetrievalConfig::histogram_length(), ring-major
+  // The source mesh's up direction in its coordinates (finite, not zero), if the author gave one.
+  std::optional<std::array<double, 3>> up;
 
   std::size_t vertex_count() const { return positions.size() / 3; }
   std::size_t triangle_count() const { return triangles.size() / 3; }

@@ -226,6 +226,11 @@ void validate_library_entry(const MacroConstraint& e, std::size_t index, const R
   check(std::isfinite(e.source_scale) && e.source_scale > 0,
         "source_scale is " + std::to_string(e.source_scale) + ", expected a finite value > 0");
   for (int k = 0; k < 3; ++k) check(std::isfinite(e.source_origin[k]), "source_origin is not finite");
+  if (e.up) {
+    const std::array<double, 3>& u = *e.up;
+    check(std::isfinite(u[0]) && std::isfinite(u[1]) && std::isfinite(u[2]), "up is not finite");
+    check(u[0] != 0 || u[1] != 0 || u[2] != 0, "up is the zero vector (leave it out for no up direction)");
+  }
 
   for (std::size_t i = 0; i < e.guides.size(); ++i) check_polyline(check, e.guides[i], m, "guide " + std::to_string(i));
   for (std::size_t i = 0; i < e.features.size(); ++i)

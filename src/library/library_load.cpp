@@ -143,6 +143,7 @@ MacroConstraint read_entry(Reader& r, const fb::Entry* e, std::size_t index) {
   m.center.barycentric = vec3(r.triple(e->center_barycentric(), where + ": center barycentric"));
   m.source_scale = e->source_scale();
   m.source_origin = r.triple(e->source_origin(), where + ": source_origin");
+  if (e->up() != nullptr) m.up = r.triple(e->up(), where + ": up");
   m.guides = read_polylines(r, e->guides(), where, "guide");
   m.features = read_polylines(r, e->features(), where, "feature");
   const auto* sings = e->singularities();

@@ -83,6 +83,7 @@ Offset<fb::Entry> write_entry(FlatBufferBuilder& b, const MacroConstraint& e) {
   const auto fields = b.CreateVector(field_offsets);
   const auto descriptors = b.CreateVector(e.descriptors);
   const auto histogram = b.CreateVector(e.histogram);
+  const auto up = e.up ? b.CreateVector(e.up->data(), 3) : 0;  // absent: the bytes of a file without it
 
   fb::EntryBuilder eb(b);
   eb.add_id(e.id);
@@ -103,6 +104,7 @@ Offset<fb::Entry> write_entry(FlatBufferBuilder& b, const MacroConstraint& e) {
   eb.add_fields(fields);
   eb.add_descriptors(descriptors);
   eb.add_histogram(histogram);
+  if (e.up) eb.add_up(up);
   return eb.Finish();
 }
 

@@ -7,6 +7,7 @@
 #include <set>
 
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <map>
 
@@ -578,6 +579,62 @@ TEST_F(LibraryTest, NameDescriptionAndDescriptorNameSurviveSaveAndOpen) {
   EXPECT_EQ(mcon_library_set_string(lib.get(), static_cast<mcon_library_string>(9), "x"), MCON_ERROR_INVALID_ARGUMENT);
   char small[2];
   EXPECT_NE(mcon_library_get_string(lib.get(), MCON_LIBRARY_NAME, small, sizeof small, nullptr), MCON_OK);
+}
+
+TEST_F(LibraryTest, AnEntryStoresItsUpDirectionThroughSaveOpenAndMerge) {
+  LibraryPtr lib = make_library(ctx_.get());
+  EntryContent plain, up;
+  fill_entry(plain, patches_[0].get(), "plain", "nose", false);
+  fill_entry(up, patches_[1].get(), "upright", "eye", false);
+  up.desc.has_up = 1;
+  up.desc.up[0] = 0;
+  up.desc.up[1] = 2.5;  // any length: a direction
+  up.desc.up[2] = -0.5;
+  ASSERT_EQ(mcon_library_add_entry(lib.get(), &plain.desc, nullptr), MCON_OK) << last_message();
+  ASSERT_EQ(mcon_library_add_entry(lib.get(), &up.desc, nullptr), MCON_OK) << last_message();
+  // A desc of the size before has_up (an older caller) adds an entry without one.
+  EntryContent older;
+  fill_entry(older, patches_[2].get(), "older", "ear", false);
+  older.desc.has_up = 1;  // beyond struct_size: never read
+  older.desc.struct_size = static_cast<uint32_t>(offsetof(mcon_library_entry_desc, has_up));
+  ASSERT_EQ(mcon_library_add_entry(lib.get(), &older.desc, nullptr), MCON_OK) << last_message();
+
+  const std::vector<uint8_t> bytes = save_bytes(lib.get());
+  mcon_library opened = nullptr;
+  ASSERT_EQ(mcon_library_open_memory(ctx_.get(), bytes.data(), bytes.size(), &opened), MCON_OK) << last_message();
+  LibraryPtr reopened(opened);
+  LibraryPtr merged = make_library(ctx_.get());
+  ASSERT_EQ(mcon_library_merge(merged.get(), opened), MCON_OK) << last_message();
+  for (mcon_library l : {lib.get(), opened, merged.get()}) {
+    mcon_library_entry_info e[3];
+    for (size_t i = 0; i < 3; ++i) {
+      ASSERT_EQ(mcon_library_entry_info_init(&e[i]), MCON_OK);
+      ASSERT_EQ(mcon_library_get_entry_info(l, i, &e[i]), MCON_OK) << last_message();
+    }
+    EXPECT_EQ(e[0].has_up, 0u);
+    EXPECT_EQ(e[2].has_up, 0u);
+    ASSERT_EQ(e[1].has_up, 1u);
+    EXPECT_EQ(e[1].up[0], 0.0);
+    EXPECT_EQ(e[1].up[1], 2.5);
+    EXPECT_EQ(e[1].up[2], -0.5);
+  }
+  // An info struct of the size before has_up (an older caller) is filled up to its size only.
+  mcon_library_entry_info small;
+  ASSERT_EQ(mcon_library_entry_info_init(&small), MCON_OK);
+  small.struct_size = static_cast<uint32_t>(offsetof(mcon_library_entry_info, has_up));
+  small.has_up = 7;
+  ASSERT_EQ(mcon_library_get_entry_info(lib.get(), 1, &small), MCON_OK) << last_message();
+  EXPECT_EQ(small.has_up, 7u);
+  EXPECT_EQ(small.vertex_count, patch_info(patches_[1].get()).vertex_count);
+
+  // Refused by name, the library unchanged: a zero vector and a non-finite one.
+  up.desc.up[1] = 0;
+  up.desc.up[2] = 0;
+  EXPECT_EQ(mcon_library_add_entry(lib.get(), &up.desc, nullptr), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(last_message().find("desc.up is the zero vector"), std::string::npos) << last_message();
+  up.desc.up[2] = std::nan("");
+  EXPECT_EQ(mcon_library_add_entry(lib.get(), &up.desc, nullptr), MCON_ERROR_NON_FINITE);
+  EXPECT_EQ(library_count(lib.get()), 3u);
 }
 
 TEST(RetrievalDescriptorNames, EveryBuiltInNameGivesItsCode) {

@@ -2,6 +2,7 @@
 // retain and move = steal, array getters, progress through std::function, version helpers.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -332,6 +333,7 @@ TEST(CppWrapper, LibraryAddBuildQuerySaveOpenMergeAndEntries) {
     weight.name = "weight";
     weight.values.assign(n, 0.5 * static_cast<double>(i));
     data.fields = {label, weight};
+    if (i == 2) data.up = std::array<double, 3>{{0, 0, 1}};  // the grid's host is z-up
     ids.push_back(lib.add(patches[i], data));
   }
   EXPECT_EQ(lib.size(), 3u);
@@ -374,6 +376,9 @@ TEST(CppWrapper, LibraryAddBuildQuerySaveOpenMergeAndEntries) {
   EXPECT_EQ(lib.entry_positions(1).size(), 3 * patches[1].vertex_count());
   EXPECT_EQ(lib.entry_triangles(1).size(), 3 * patches[1].triangle_count());
   EXPECT_EQ(lib.entry_histogram(1).size(), 8u * o.rings);  // k words per ring
+  EXPECT_FALSE(e.up.has_value());
+  ASSERT_TRUE(lib.entry(2).up.has_value());
+  EXPECT_EQ(*lib.entry(2).up, (std::array<double, 3>{{0, 0, 1}}));
 
   // Bytes round trip; merge of a copy; remove.
   const std::vector<std::uint8_t> bytes = lib.save_memory();

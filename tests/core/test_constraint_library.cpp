@@ -381,6 +381,34 @@ TEST(ConstraintLibraryHostile, FormatOneLoadsWithoutChecksumFormatTwoNeedsOne) {
                   MCON_ERROR_INVALID_LIBRARY, "content checksum mismatch");
 }
 
+TEST(ConstraintLibrary, AnUpDirectionIsStoredOnlyWhenGiven) {
+  // The sample's entries have none: their tables carry no up field at all (the bytes of files
+  // written before entries could store one).
+  const Bytes plain = serialize_library(sample_library());
+  for (const auto* e : *fb::GetLibrary(plain.data())->entries()) EXPECT_EQ(e->up(), nullptr);
+  const Outcome none = try_load(plain);
+  ASSERT_EQ(none.status, MCON_OK) << none.message;
+  // One entry with an up: it loads back exactly, the others still have none.
+  const Outcome with = load_forged([](fb::LibraryT& l) { l.entries[1]->up = {0.0, -2.0, 1e-3}; });
+  ASSERT_EQ(with.status, MCON_OK) << with.message;
+  const Bytes forged = forge([](fb::LibraryT& l) { l.entries[1]->up = {0.0, -2.0, 1e-3}; });
+  const ConstraintLibrary back = load_library_from_buffer(forged.data(), forged.size());
+  ASSERT_TRUE(back.entries()[1].up.has_value());
+  EXPECT_EQ(*back.entries()[1].up, (std::array<double, 3>{{0.0, -2.0, 1e-3}}));
+  EXPECT_FALSE(back.entries()[0].up.has_value());
+  const Bytes again = serialize_library(back);
+  EXPECT_EQ(serialize_library(load_library_from_buffer(again.data(), again.size())), again);  // same library, same bytes
+}
+
+TEST(ConstraintLibraryHostile, AnUpDirectionMustBeThreeFiniteNumbersNotAllZero) {
+  expect_rejected(load_forged([](fb::LibraryT& l) { l.entries[0]->up = {0.0, 1.0}; }), MCON_ERROR_INVALID_LIBRARY,
+                  "entry 0 'nose_07': up");
+  expect_rejected(load_forged([](fb::LibraryT& l) { l.entries[0]->up = {0.0, 0.0, 0.0}; }),
+                  MCON_ERROR_INVALID_LIBRARY, "up is the zero vector");
+  expect_rejected(load_forged([](fb::LibraryT& l) { l.entries[0]->up = {0.0, std::nan(""), 1.0}; }),
+                  MCON_ERROR_INVALID_LIBRARY, "up is not finite");
+}
+
 TEST(ConstraintLibraryHostile, OutOfRangeIndices) {
   expect_rejected(load_forged([](fb::LibraryT& l) { l.entries[0]->triangles[37] = 900; }),
                   MCON_ERROR_INVALID_LIBRARY, "entry 0 'nose_07': triangle 12 uses vertex 900 of 19");

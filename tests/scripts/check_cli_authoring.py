@@ -231,6 +231,45 @@ def check_spec():
         fail("--spec authoring gave %s" % r)
 
 
+def check_up():
+    """--up stores the mesh's up direction with the entries after it (and "up" in a spec); embed
+    --entry then takes the source's from the entry and needs only the target's."""
+    lib = os.path.join(WORK, "up.mclb")
+    mesh = ["--mesh", BODY, "--face-range", "0:%d" % BODY_FACES]
+    run("library", "build", "--out", lib, *mesh, "--vocabulary", "8",
+        "--center-vertex", str(EYE), "--radius", "0.6", "--class", "eye", "--name", "eye_plain",
+        "--up", "0,1,0", "--center-vertex", str(NOSE), "--radius", "0.5", "--class", "nose", "--name", "nose_up")
+    eye, nose = json.loads(run("library", "info", "--library", lib, "--json").stdout)["entry_list"]
+    if "up" in eye or nose.get("up") != [0, 1, 0]:
+        fail("library info: up %s (eye, before --up) and %s (nose, after it)" % (eye.get("up"), nose.get("up")))
+    target = ["--target", BODY, "--face-range", "0:%d" % BODY_FACES, "--center-vertex", str(NOSE), "--radius", "0.45",
+              "--samples", "500", "--quiet", "--json"]
+    s = json.loads(run("embed", "--source", lib, "--entry", "nose_up", *target, "--target-up", "0,1,0",
+                       "--out", os.path.join(WORK, "embed_up")).stdout)
+    if not s["up_hints"] or not s["up_from_entry"] or s["flips"] != 0:
+        fail("embed --entry with a stored up: up_hints %s, up_from_entry %s" % (s["up_hints"], s["up_from_entry"]))
+    plain = json.loads(run("embed", "--source", lib, "--entry", "nose_up", *target,
+                           "--out", os.path.join(WORK, "embed_no_target_up")).stdout)
+    if plain["up_hints"] or plain["up_from_entry"]:
+        fail("without the target's up the entry's alone must not become a hint")
+    expect_error(["embed", "--source", lib, "--entry", "eye_plain", *target, "--target-up", "0,1,0",
+                  "--out", os.path.join(WORK, "bad")], "--target-up needs --source-up")
+    expect_error(["library", "build", "--out", os.path.join(WORK, "bad.mclb"), *mesh, "--up", "0,0,0",
+                  "--center-vertex", str(NOSE), "--radius", "0.5", "--class", "nose"], "up is the zero vector")
+    expect_error(["library", "build", "--out", os.path.join(WORK, "bad.mclb"), *mesh, "--up", "0,1",
+                  "--center-vertex", str(NOSE), "--radius", "0.5", "--class", "nose"], "--up expects X,Y,Z")
+    spec = {"mesh": BODY, "face_range": "0:%d" % BODY_FACES, "up": [0, 0, 1],
+            "entries": [{"center_vertex": NOSE, "radius": 0.5, "class": "nose"},
+                        {"center_vertex": EYE, "radius": 0.6, "class": "eye", "up": [0, 1, 0]}]}
+    path = os.path.join(WORK, "up_spec.json")
+    with open(path, "w") as f:
+        json.dump(spec, f)
+    run("library", "build", "--out", lib, "--spec", path, "--vocabulary", "8")
+    ups = [e.get("up") for e in json.loads(run("library", "info", "--library", lib, "--json").stdout)["entry_list"]]
+    if ups != [[0, 0, 1], [0, 1, 0]]:
+        fail("--spec \"up\": entries got %s" % ups)
+
+
 def check_errors(lib):
     mesh = ["--mesh", BODY, "--face-range", "0:%d" % BODY_FACES]
     entry = ["--center-vertex", str(NOSE), "--radius", "0.5", "--class", "nose"]
@@ -269,6 +308,7 @@ def main():
     nose_id = check_values(lib, positions, nose_guide)
     check_embed(lib, nose_id)
     check_spec()
+    check_up()
     check_errors(lib)
     print("PASS")
 

@@ -60,8 +60,10 @@ const char* kUsage =
     "them (mcon_map_options guidance channels), which settles what the geometry cannot (orientation,\n"
     "which finger is which).\n"
     "--up gives both meshes' up direction in their file coordinates (e.g. 0,1,0 for Y-up hosts);\n"
-    "--source-up and --target-up give them apart. The map's rigid start then turns the source's up onto\n"
-    "the target's (within 60 degrees), so it is never upside down; a reflection stays --orientation's.\n"
+    "--source-up and --target-up give them apart; an --entry that stores its up (library build --up)\n"
+    "gives the source's, so --up or --target-up is the target's. The map's rigid start then turns the\n"
+    "source's up onto the target's (within 60 degrees), so it is never upside down; a reflection stays\n"
+    "--orientation's.\n"
     "An up direction (nearly) normal to a patch at its center is refused: omit it for such patches.\n"
     "--cut-guides also cuts the re-traced guides into the target patch, so every guide is a chain of\n"
     "mesh edges, and writes the cut patch for a quad mesher: target_cut.obj (QuadWild's input, exact\n"
@@ -148,20 +150,6 @@ macrocon::Patch as_entry(const macrocon::Context& context, const TriMesh& mesh) 
                                      center_barycentric);
 }
 
-// "X,Y,Z" as a vector of three finite numbers.
-std::array<double, 3> parse_vec3(const std::string& key, const std::string& s) {
-  std::vector<std::string> parts;
-  std::size_t begin = 0;
-  for (std::size_t comma; (comma = s.find(',', begin)) != std::string::npos; begin = comma + 1)
-    parts.push_back(s.substr(begin, comma - begin));
-  parts.push_back(s.substr(begin));
-  require(parts.size() == 3, MCON_ERROR_INVALID_ARGUMENT,
-          "--" + key + " expects X,Y,Z (three numbers), got '" + s + "'");
-  std::array<double, 3> v{};
-  for (std::size_t k = 0; k < 3; ++k) v[k] = ArgParser::parse_number(key, parts[k]);
-  return v;
-}
-
 EmbedOptions embed_options(const ArgParser& p) {
   require(p.has("center-vertex"), MCON_ERROR_INVALID_ARGUMENT, "missing required option --center-vertex");
   require(p.has("radius"), MCON_ERROR_INVALID_ARGUMENT, "missing required option --radius");
@@ -178,13 +166,9 @@ EmbedOptions embed_options(const ArgParser& p) {
           MCON_ERROR_INVALID_ARGUMENT, "--orientation must be auto, preserve or reverse, got '" + o.orientation + "'");
   require(!p.has("up") || (!p.has("source-up") && !p.has("target-up")), MCON_ERROR_INVALID_ARGUMENT,
           "give --up (both meshes) or --source-up and --target-up, not both");
-  require(p.has("source-up") == p.has("target-up"), MCON_ERROR_INVALID_ARGUMENT,
-          "--source-up and --target-up go together (or give --up for both)");
   if (p.has("up")) o.source_up = o.target_up = parse_vec3("up", p.get("up"));
-  if (p.has("source-up")) {
-    o.source_up = parse_vec3("source-up", p.get("source-up"));
-    o.target_up = parse_vec3("target-up", p.get("target-up"));
-  }
+  if (p.has("source-up")) o.source_up = parse_vec3("source-up", p.get("source-up"));
+  if (p.has("target-up")) o.target_up = parse_vec3("target-up", p.get("target-up"));
   o.cut_guides = p.flag("cut-guides");
   require(o.cut_guides || !p.has("snap"), MCON_ERROR_INVALID_ARGUMENT, "--snap needs --cut-guides");
   mcon_guide_cut_options defaults;
@@ -289,6 +273,18 @@ EmbedPatches cut_embed_patches(const ArgParser& p) {
   e.target_geometry = geometry_of(e.target);
   e.source_geometry = geometry_of(e.source);
   return e;
+}
+
+// An --entry that stores its source's up direction supplies the source's hint: --up and --target-up
+// then give the target's (an explicit --source-up still wins). Both hints or none reach the map.
+void resolve_up_hints(const ArgParser& p, const EmbedPatches& e, EmbedOptions& o) {
+  if (e.entry && e.entry->up && !p.has("source-up") && o.target_up) {
+    o.source_up = e.entry->up;
+    o.up_from_entry = true;
+  }
+  require(o.source_up.has_value() == o.target_up.has_value(), MCON_ERROR_INVALID_ARGUMENT,
+          o.source_up ? "--source-up and --target-up go together (or give --up for both)"
+                      : "--target-up needs --source-up (or an --entry that stores its up; see library info --json)");
 }
 
 // Landmarks: one guidance channel per pair, the geodesic distance from it on each patch.
@@ -420,8 +416,9 @@ int run_embed(const Args& args) {
                      "up", "source-up", "target-up", "out", "snap", "entry"},
                     {"json", "cut-guides", "quiet", "progress"}, kUsage, help);
   const auto t_start = std::chrono::steady_clock::now();
-  const EmbedOptions o = embed_options(p);
+  EmbedOptions o = embed_options(p);
   const EmbedPatches e = cut_embed_patches(p);
+  resolve_up_hints(p, e, o);
   const double patch_seconds = seconds_since(t_start);
   const EmbedMap m = map_embed_patches(p, o, e);
   const EmbedTransfer x = transfer_constraints(m.map, e);

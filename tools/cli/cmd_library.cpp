@@ -17,13 +17,14 @@ namespace mcon::cli {
 namespace {
 
 const char* kUsage =
-    "usage: macrocon library build --out LIB.mclb [--mesh FILE] [--face-range A:B]\n"
+    "usage: macrocon library build --out LIB.mclb [--mesh FILE] [--face-range A:B] [--up X,Y,Z]\n"
     "                              (--center-vertex N --radius R --class C [--name S] [--author A]\n"
     "                               [--licence L] [--tag T]...)...  [--spec FILE.json]\n"
     "                              [--descriptor curv9|hks|wks] [--rings K] [--vocabulary K] [--seed S]\n"
     "                              [--sigma X] [--json] [--quiet | --progress]\n"
-    "       macrocon library add --library LIB.mclb [--mesh FILE] [--face-range A:B] --center-vertex N\n"
-    "                            --radius R --class C [--name S] [--author A] [--licence L] [--tag T]...\n"
+    "       macrocon library add --library LIB.mclb [--mesh FILE] [--face-range A:B] [--up X,Y,Z]\n"
+    "                            --center-vertex N --radius R --class C [--name S] [--author A]\n"
+    "                            [--licence L] [--tag T]...\n"
     "                            [CONSTRAINTS] [--id ID] [--json]\n"
     "       macrocon library info --library LIB.mclb [--json]\n"
     "build: every --center-vertex starts an entry: a geodesic disk of radius R (mesh units) around\n"
@@ -32,6 +33,9 @@ const char* kUsage =
     "  {\"mesh\": \"body.obj.gz\", \"face_range\": \"0:13378\", \"entries\": [{\"center_vertex\": 297,\n"
     "  \"radius\": 0.5, \"class\": \"nose\", \"name\": \"nose\", \"author\": \"..\", \"licence\": \"..\",\n"
     "  \"tags\": [\"..\"], \"mesh\": \"(optional, per entry)\"}]} (paths relative to the spec file).\n"
+    "  --up X,Y,Z (like --mesh: for the entries that follow; \"up\": [x, y, z] in a spec, top level or\n"
+    "  per entry) stores the mesh's up direction with them, in its file coordinates (e.g. 0,1,0 for a\n"
+    "  Y-up character); embed --entry then needs only the target's up.\n"
     "  Then the vocabulary (k-means++, k = --vocabulary, default 128), sigma and every histogram\n"
     "  are computed; rings default to the measured best. The file is written atomically.\n"
     "add: the entry's histogram is computed with the library's vocabulary (no rebuild), and the\n"
@@ -106,6 +110,7 @@ const OptionHelp& library_help() {
       {"id", "add: the new entry's id (default: the next free one)"},
       {"mesh", "the mesh the entries that follow are cut from"},
       {"face-range", "keep only that mesh file's faces [A, B)"},
+      {"up", "X,Y,Z: that mesh's up direction, stored with the entries that follow"},
       {"center-vertex", "starts an entry: its center (file vertex)"},
       {"radius", "the entry's geodesic radius in mesh units"},
       {"class", "the entry's class label (e.g. nose)"},
@@ -123,14 +128,15 @@ const OptionHelp& library_help() {
   return help;
 }
 
-// Reads the arguments in order: --mesh / --face-range set the source of the entries that
+// Reads the arguments in order: --mesh / --face-range / --up set the source of the entries that
 // follow; --center-vertex starts an entry; entry options apply to the latest entry.
 Parsed parse(const Args& args, const std::set<std::string>& globals) {
   std::set<std::string> keys(globals);
-  keys.insert({"mesh", "face-range", "center-vertex"});
+  keys.insert({"mesh", "face-range", "up", "center-vertex"});
   keys.insert(entry_options().begin(), entry_options().end());
   Parsed p;
   std::string mesh, face_range;
+  std::optional<std::array<double, 3>> up;
   for (const ArgOccurrence& o : parse_in_order(args, keys, {"json", "quiet", "progress"}, kUsage, library_help())) {
     const std::string& key = o.key;
     const std::string& value = o.value;
@@ -142,10 +148,13 @@ Parsed parse(const Args& args, const std::set<std::string>& globals) {
       long b = 0, e = 0;
       parse_range("face-range", value, b, e);
       face_range = value;
+    } else if (key == "up") {
+      up = parse_vec3("up", value);
     } else if (key == "center-vertex") {
       EntrySpec s;
       s.mesh = mesh;
       s.face_range = face_range;
+      s.up = up;
       s.center_vertex = parse_integer(key, value);
       p.entries.push_back(s);
     } else if (is_entry_option(key)) {
@@ -210,6 +219,15 @@ std::vector<EntrySpec> read_spec(const std::string& path) {
   };
   const std::string mesh = text(spec, "mesh", "");
   const std::string face_range = text(spec, "face_range", "");
+  // "up": [x, y, z], for every entry or per entry.
+  auto up_of = [&](const tools::Json& j, const std::optional<std::array<double, 3>>& fallback) {
+    const tools::Json* v = j.find("up");
+    if (!v) return fallback;
+    require(v->is_array() && v->size() == 3, MCON_ERROR_INVALID_ARGUMENT, path + ": \"up\" must be [x, y, z]");
+    return std::optional<std::array<double, 3>>(std::array<double, 3>{{(*v)[0].as_number(), (*v)[1].as_number(),
+                                                                       (*v)[2].as_number()}});
+  };
+  const std::optional<std::array<double, 3>> up = up_of(spec, std::nullopt);
   std::vector<EntrySpec> out;
   const tools::Json& entries = spec.at("entries");
   for (std::size_t i = 0; i < entries.size(); ++i) {
@@ -219,6 +237,7 @@ std::vector<EntrySpec> read_spec(const std::string& path) {
     require(!m.empty(), MCON_ERROR_INVALID_ARGUMENT, path + ": entry " + std::to_string(i) + " has no mesh");
     s.mesh = resolve(m);
     s.face_range = text(e, "face_range", face_range);
+    s.up = up_of(e, up);
     s.center_vertex = static_cast<long>(e.at("center_vertex").as_int());
     s.radius = e.at("radius").as_number();
     s.class_label = e.at("class").as_string();
@@ -481,6 +500,11 @@ tools::Json entry_json(const EntrySummary& e) {
   o.set("fields", fields);
   o.set("field_kinds", kinds);
   o.set("source_scale", e.info.source_scale);
+  if (e.info.has_up) {
+    tools::Json up = tools::Json::array();
+    for (double c : e.info.up) up.push_back(c);
+    o.set("up", up);
+  }
   return o;
 }
 

@@ -372,6 +372,7 @@ tools::Json embed_summary(const EmbedOptions& o, const EmbedPatches& e, const Em
   summary.set("orientation", o.orientation);
   summary.set("landmarks", static_cast<double>(m.landmarks));
   summary.set("up_hints", o.source_up.has_value());
+  summary.set("up_from_entry", o.up_from_entry);
   summary.set("alignment_score_unreflected", info.alignment_score_unreflected);
   summary.set("alignment_score_reflected", info.alignment_score_reflected);
   summary.set("orientation_compared", info.orientation_compared != 0);

@@ -27,6 +27,7 @@ struct EmbedOptions {
   long samples = 0, iterations = 0, seed = 0;
   std::string orientation;
   std::optional<std::array<double, 3>> source_up, target_up;
+  bool up_from_entry = false;  // the source's up is the library entry's own
   bool cut_guides = false;
   double snap = 0;
 };

@@ -3,8 +3,10 @@
 // the JSON of a library.
 #pragma once
 
+#include <array>
 #include <cstdlib>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -28,6 +30,7 @@ struct EntrySpec {
   double radius = 0;       // geodesic radius in mesh units
   std::string class_label, name, author, licence;
   std::vector<std::string> tags;
+  std::optional<std::array<double, 3>> up;  // the mesh's up direction (file coordinates)
   AuthoringSpec authoring;  // constraints from DCC files (guides, features, singularities, fields)
 };
 
@@ -78,6 +81,7 @@ inline macrocon::EntryData entry_content(const EntrySpec& spec) {
   e.author = spec.author;
   e.licence = spec.licence;
   e.tags = spec.tags;
+  e.up = spec.up;
   return e;
 }
 

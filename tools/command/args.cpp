@@ -136,6 +136,19 @@ const OptionHelp& shared_option_help() {
   return help;
 }
 
+std::array<double, 3> parse_vec3(const std::string& key, const std::string& s) {
+  std::vector<std::string> parts;
+  std::size_t begin = 0;
+  for (std::size_t comma; (comma = s.find(',', begin)) != std::string::npos; begin = comma + 1)
+    parts.push_back(s.substr(begin, comma - begin));
+  parts.push_back(s.substr(begin));
+  require(parts.size() == 3, MCON_ERROR_INVALID_ARGUMENT,
+          "--" + key + " expects X,Y,Z (three numbers), got '" + s + "'");
+  std::array<double, 3> v{};
+  for (std::size_t k = 0; k < 3; ++k) v[k] = ArgParser::parse_number(key, parts[k]);
+  return v;
+}
+
 std::vector<ArgOccurrence> parse_in_order(const Args& args, const std::set<std::string>& keys,
                                           const std::set<std::string>& flags, const char* usage,
                                           const OptionHelp& help) {

@@ -3,6 +3,7 @@
 // generates from what the command accepts, so the list cannot drift from the parser.
 #pragma once
 
+#include <array>
 #include <map>
 #include <set>
 #include <string>
@@ -25,6 +26,9 @@ std::vector<std::string> split_names(const std::string& s);
 // "BEGIN:END" of --face-range / --source-face-range (file faces [BEGIN, END), integers, 0 <= BEGIN <
 // END), named by `key` in errors.
 void parse_range(const std::string& key, const std::string& s, long& begin, long& end);
+
+// "X,Y,Z" of --up and the like: three finite numbers, named by `key` in errors.
+std::array<double, 3> parse_vec3(const std::string& key, const std::string& s);
 
 // Thrown after a command's help was printed; run_commands ends the program with status 0.
 struct HelpShown {};

@@ -37,6 +37,15 @@ def checked(name: str, array, dtype, shape: Sequence[Optional[int]]) -> np.ndarr
     return a
 
 
+def vector3(name: str, value) -> Tuple[float, float, float]:
+    """A direction given as 3 numbers (a sequence or an array of 3); ValueError naming it otherwise.
+    Finiteness and zero length are the C API's to refuse (NON_FINITE, INVALID_ARGUMENT)."""
+    v = np.asarray(value, dtype=np.float64).reshape(-1)
+    if v.shape != (3,):
+        raise ValueError(f"{name} must have 3 components, got shape {np.shape(value)}")
+    return float(v[0]), float(v[1]), float(v[2])
+
+
 def rows(name: str, array, dtype) -> np.ndarray:
     """A per-vertex array: (n,) is taken as (n, 1); (n, d) stays as is."""
     a = np.asarray(array)

@@ -196,6 +196,8 @@ class LibraryEntryDesc(Struct):
         ("descriptors", ctypes.c_void_p),
         ("descriptor_dimension", ctypes.c_uint32),
         ("descriptor_stride", c_size),
+        ("has_up", ctypes.c_uint32),
+        ("up", ctypes.c_double * 3),
     ]
 
 
@@ -241,6 +243,8 @@ class LibraryEntryInfo(Struct):
         ("center", SurfacePoint),
         ("source_scale", ctypes.c_double),
         ("source_origin", ctypes.c_double * 3),
+        ("has_up", ctypes.c_uint32),
+        ("up", ctypes.c_double * 3),
     ]
 
 

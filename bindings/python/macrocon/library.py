@@ -11,7 +11,7 @@ from typing import Dict, Iterator, List, Optional, Sequence, Union
 import numpy as np
 
 from . import _native
-from ._arrays import SINGULARITY, SURFACE_POINT, checked, ptr, strided_rows
+from ._arrays import SINGULARITY, SURFACE_POINT, checked, ptr, strided_rows, vector3
 from .core import Context, Patch, ProgressCallback, _Handle, _Progress, require_type
 from .errors import EntryIndexError, NotFoundError, check, check_path
 
@@ -115,7 +115,8 @@ class EntryInfo:
     """Sizes and placement of one library entry (mcon_library_entry_info), as ``Entry.info`` holds it.
 
     ``center_face`` / ``center_barycentric``: the patch center on the entry's mesh;
-    ``source_scale`` / ``source_origin``: where it sat in its source (host = origin + scale * p).
+    ``source_scale`` / ``source_origin``: where it sat in its source (host = origin + scale * p);
+    ``up``: its source's up direction in source coordinates, or None if the entry stores none.
     """
 
     id: int
@@ -129,6 +130,7 @@ class EntryInfo:
     center_barycentric: tuple
     source_scale: float
     source_origin: tuple
+    up: Optional[tuple] = None
 
 
 @dataclass(frozen=True)
@@ -180,6 +182,12 @@ class Entry:
         self.library = library
         self.index = index
         self.info = library._entry_info(index)
+
+    @property
+    def up(self) -> Optional[tuple]:
+        """The up direction of the entry's source (source coordinates), or None if it stores none;
+        pass it as ``source_up`` when mapping the entry."""
+        return self.info.up
 
     @property
     def id(self) -> int:
@@ -398,8 +406,11 @@ class Library(_Handle):
         fields: Sequence[Field] = (),
         descriptors: Optional[np.ndarray] = None,
         id: int = 0,
+        up: Optional[Sequence[float]] = None,
     ) -> int:
-        """Validates and appends one entry; returns its id. Every array is checked before the call."""
+        """Validates and appends one entry; returns its id. Every array is checked before the call.
+        ``up``: the up direction of the patch's host in its coordinates (3 numbers, not all 0), stored
+        with the entry as the source_up of later maps (``MapOptions.source_up``)."""
         require_type(patch, Patch, "patch")
         keep: list = []  # everything the C side reads during the call
         desc = _native.LibraryEntryDesc()
@@ -452,6 +463,9 @@ class Library(_Handle):
             d, stride = strided_rows("descriptors", descriptors, np.float64, vector=True)
             keep.append(d)
             desc.descriptors, desc.descriptor_dimension, desc.descriptor_stride = ptr(d), d.shape[1], stride
+        if up is not None:
+            desc.has_up = 1
+            desc.up[:] = vector3("up", up)
         out_id = ctypes.c_uint64()
         check(_native.lib.mcon_library_add_entry(self.handle, ctypes.byref(desc), ctypes.byref(out_id)))
         del keep
@@ -579,7 +593,7 @@ class Library(_Handle):
         check(_native.lib.mcon_library_get_entry_info(self.handle, int(index), ctypes.byref(i)))
         return EntryInfo(i.id, i.vertex_count, i.triangle_count, i.tag_count, i.polyline_count, i.singularity_count,
                          i.field_count, i.center.face, tuple(i.center.barycentric), i.source_scale,
-                         tuple(i.source_origin))
+                         tuple(i.source_origin), tuple(i.up) if i.has_up else None)
 
     def entry(self, index: Union[int, str, None] = None, *, id: Optional[int] = None,
               name: Optional[str] = None) -> Entry:

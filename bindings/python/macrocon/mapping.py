@@ -9,7 +9,7 @@ from typing import Dict, List, Optional, Sequence, Tuple
 import numpy as np
 
 from . import _native
-from ._arrays import checked, ptr, rows, strided_rows
+from ._arrays import checked, ptr, rows, strided_rows, vector3
 from .core import Patch, ProgressCallback, _Handle, _Progress, require_type
 from .errors import check
 from .library import FieldKind, Polyline
@@ -343,11 +343,7 @@ class Map(_Handle):
             raise ValueError("source_up and target_up must be given together")
         if source_up is not None:
             for name, up, field in (("source_up", source_up, o.source_up), ("target_up", target_up, o.target_up)):
-                v = np.asarray(up, dtype=np.float64).reshape(-1)
-                if v.shape != (3,):
-                    raise ValueError(f"{name} must have 3 components, got shape {np.shape(up)}")
-                for k in range(3):
-                    field[k] = float(v[k])
+                field[:] = vector3(name, up)
             o.use_up_hints = 1
         if refine_sigma_factor is not None:
             o.refine_sigma_factor = float(refine_sigma_factor)

@@ -338,3 +338,22 @@ def test_descriptor_chosen_at_creation_name_and_description(context, patches):
     assert lib.name == "bumps \u00e9t\u00e9"
     again.close()
     lib.close()
+
+
+def test_an_entry_stores_its_up_direction(context, patches, tmp_path):
+    with macrocon.Library(context) as lib:
+        lib.add_entry(patches[0], name="plain")
+        lib.add_entry(patches[1], name="upright", up=np.array([0.0, 2.0, 0.5]))
+        assert lib[0].up is None
+        assert lib[1].up == (0.0, 2.0, 0.5) == lib[1].info.up
+        path = str(tmp_path / "up.mclb")
+        lib.save(path)
+        with macrocon.Library.open(context, path) as back:
+            assert back[0].info.up is None and back[1].info.up == (0.0, 2.0, 0.5)
+        with pytest.raises(ValueError, match="up must have 3 components"):
+            lib.add_entry(patches[2], up=[0.0, 1.0])
+        with pytest.raises(macrocon.InvalidArgumentError, match="zero vector"):
+            lib.add_entry(patches[2], up=(0, 0, 0))
+        with pytest.raises(macrocon.Error, match="not finite"):
+            lib.add_entry(patches[2], up=(0, float("nan"), 1))
+        assert len(lib) == 2
