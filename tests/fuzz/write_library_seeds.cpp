@@ -1,4 +1,5 @@
 // Writes a few small valid libraries into a directory: the fuzzer's seed corpus.
+#include <array>
 #include <cstdio>
 #include <string>
 
@@ -15,9 +16,14 @@ int main(int argc, char** argv) {
   ConstraintLibrary empty;
   ConstraintLibrary unconfigured;
   unconfigured.add_entry(test_samples::sample_entry(RetrievalConfig{}, 0, 1, false));
+  ConstraintLibrary upright;  // an entry that stores its up direction (the optional field)
+  MacroConstraint with_up = test_samples::sample_entry(RetrievalConfig{}, 0, 1, false);
+  with_up.up = std::array<double, 3>{{0.0, 1.0, 0.0}};
+  upright.add_entry(with_up);
   const std::pair<const char*, ConstraintLibrary> seeds[] = {
       {"empty.mcl", empty},
       {"unconfigured.mcl", unconfigured},
+      {"upright.mcl", upright},
       {"tiny.mcl", test_samples::tiny_library()},
       {"sample.mcl", test_samples::sample_library()},
   };
