@@ -1,14 +1,16 @@
-// libFuzzer target for the constraint library loader (hostile files, docs/design.md §6). Any input
-// must either load or throw mcon::Error with INVALID_LIBRARY or UNSUPPORTED; a crash, a sanitizer
-// report, another exception or status is a finding. So is an accepted library that does not
-// survive its own save/load round trip unchanged, or that cannot be queried: what the loader
-// accepts, retrieval must handle.
+// libFuzzer target for the constraint library loader (hostile files, docs/design.md §6), from
+// memory and from a file path. Any input must either load or throw mcon::Error with
+// INVALID_LIBRARY or UNSUPPORTED; a crash, a sanitizer report, another exception or status is a
+// finding. So is a file load that disagrees with the memory load of the same bytes, an accepted
+// library that does not survive its own save/load round trip unchanged, or one that cannot be
+// queried: what the loader accepts, retrieval must handle.
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 
 #include "base/error.h"
+#include "fuzz/fuzz_input_file.h"
 #include "library/library_file.h"
 #include "operators/cotan_laplacian.h"
 #include "retrieval/bag_of_features.h"
@@ -16,10 +18,7 @@
 
 namespace {
 
-[[noreturn]] void finding(const char* what, const char* detail = "") {
-  std::fprintf(stderr, "%s%s\n", what, detail);
-  std::abort();
-}
+using mcon_fuzz::finding;
 
 // The query side on entries the library holds: each entry's stored descriptors and vertex areas
 // through bag_of_features (the ring distances from the center are Euclidean here, not geodesic:
@@ -64,18 +63,36 @@ void query(const mcon::ConstraintLibrary& library) {
   }
 }
 
-}  // namespace
-
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  // As a file would be loaded (mutations almost never carry a matching checksum)...
+// Loads through `load`; returns the library's bytes as saved, or an empty vector with `*status`
+// set when the loader refused it with a documented status.
+template <typename Load>
+std::vector<std::uint8_t> load_checked(Load load, mcon_status* status) {
+  *status = MCON_OK;
   try {
-    mcon::load_library_from_buffer(data, size);
+    return mcon::serialize_library(load());
   } catch (const mcon::Error& e) {
     if (e.status() != MCON_ERROR_INVALID_LIBRARY && e.status() != MCON_ERROR_UNSUPPORTED) {
       std::fprintf(stderr, "unexpected status %d: %s\n", static_cast<int>(e.status()), e.what());
       std::abort();
     }
+    *status = e.status();
+    return {};
   }
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  // As a file would be loaded (mutations almost never carry a matching checksum), from memory and
+  // from a path: both must give the same answer for the same bytes.
+  mcon_status memory_status = MCON_OK, file_status = MCON_OK;
+  const std::vector<std::uint8_t> from_memory =
+      load_checked([&] { return mcon::load_library_from_buffer(data, size); }, &memory_status);
+  const std::string path = mcon_fuzz::write_input_file(data, size, ".mcl");
+  const std::vector<std::uint8_t> from_file =
+      load_checked([&] { return mcon::load_library_from_file(path); }, &file_status);
+  if (file_status != memory_status || from_file != from_memory)
+    finding("loading from a file and from memory disagree on the same bytes");
   // ... and past the checksum, so that mutations reach the Verifier and the validator behind it.
   mcon::ConstraintLibrary library;
   try {

@@ -36,10 +36,16 @@ else()
   set(corpus ${BINARY_DIR}/corpus/${FUZZ_TARGET})
 endif()
 file(MAKE_DIRECTORY ${corpus} ${BINARY_DIR}/artifacts)
+# Inputs up to the size of real files for the parsers (libFuzzer's default cap is the largest seed,
+# a few KB); the C API target consumes a bounded prefix of its input, so it keeps the default.
+set(max_len)
+if(NOT FUZZ_TARGET STREQUAL "capi_fuzzer")
+  set(max_len -max_len=2097152)
+endif()
 
 execute_process(
   COMMAND ${BINARY_DIR}/${FUZZ_TARGET}
-    -max_total_time=${SECONDS} -timeout=10 -rss_limit_mb=2048 -print_final_stats=1
+    -max_total_time=${SECONDS} ${max_len} -timeout=10 -rss_limit_mb=2048 -print_final_stats=1
     -artifact_prefix=${BINARY_DIR}/artifacts/${FUZZ_TARGET}-
     ${corpus} ${seeds}
   RESULT_VARIABLE rc
