@@ -1,7 +1,8 @@
 /* Checks the generated starter library through the C API only:
  *   starter_library_check LIBRARY.mclb ENTRY_COUNT CLASS...
  *  - it opens (validated) and has ENTRY_COUNT entries covering every CLASS;
- *  - every entry is labelled honestly (tag "example", the CC0/MakeHuman licence, an author) and
+ *  - every entry is labelled honestly (tag "example", the CC0/MakeHuman licence, an author), stores
+ *    the body's up direction (+Y, entries.json "up") and
  *    carries the example fields: uv in the unit disk, skin weights that sum to 1, a colour in
  *    [0, 1], integer region labels;
  *  - eyes and mouth have closed edge-loop guides, hands open finger flow lines with a valence-3
@@ -52,6 +53,8 @@ static void check_entry(mcon_context ctx, mcon_library lib, size_t i, char* klas
   EXPECT(strcmp(text, "CC0-1.0 (geometry: MakeHuman)") == 0, "%s: licence '%s'", name, text);
   entry_string(lib, i, MCON_ENTRY_AUTHOR, 0, text, sizeof(text));
   EXPECT(text[0] != '\0', "%s: no author", name);
+  EXPECT(info.has_up == 1 && info.up[0] == 0 && info.up[1] > 0 && info.up[2] == 0, "%s: up %d (%g, %g, %g), not +Y",
+         name, (int)info.has_up, info.up[0], info.up[1], info.up[2]);
   int example = 0;
   for (size_t t = 0; t < info.tag_count; ++t) {
     entry_string(lib, i, MCON_ENTRY_TAG, t, text, sizeof(text));

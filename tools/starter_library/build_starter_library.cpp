@@ -267,7 +267,8 @@ std::vector<mcon_vertex_field> field_views(const std::vector<Field>& fields) {
 // One entry of entries.json on an extracted patch: its procedural fields and constraints, added
 // to the library (which copies everything), and its line of the build log.
 void add_patch_entry(mcon_library library, mcon_patch patch, const mcon::tools::Json& e, const std::string& name,
-                     const std::string& klass, const std::string& author, const std::string& licence) {
+                     const std::string& klass, const std::string& author, const std::string& licence,
+                     const std::array<double, 3>* up) {
   mcon_patch_info info;
   const starter::Geometry g = patch_geometry(patch, info);
 
@@ -301,6 +302,10 @@ void add_patch_entry(mcon_library library, mcon_patch patch, const mcon::tools::
   ed.singularity_count = c.singularities.size();
   ed.fields = cfields.data();
   ed.field_count = cfields.size();
+  if (up != nullptr) {  // the body's up, for hosts that pass their own (mcon_map_options.target_up)
+    ed.has_up = 1;
+    for (int k = 0; k < 3; ++k) ed.up[k] = (*up)[k];
+  }
   std::uint64_t id = 0;
   check(mcon_library_add_entry(library, &ed, &id), name + ": mcon_library_add_entry");
   std::printf("  %-7s id %2llu  class %-6s  %5zu vertices  %2zu guides  %zu features  %zu singularities  %zu fields\n",
@@ -308,18 +313,31 @@ void add_patch_entry(mcon_library library, mcon_patch patch, const mcon::tools::
               c.guides.size(), c.features.size(), c.singularities.size(), fields.size());
 }
 
+// An optional "up": [x, y, z] of entries.json (the SDK checks it is finite and not zero).
+bool read_up(const mcon::tools::Json& object, std::array<double, 3>* up) {
+  const mcon::tools::Json* value = object.find("up");
+  if (value == nullptr) return false;
+  const auto& xyz = value->elements();
+  if (xyz.size() != 3) throw std::runtime_error("\"up\" must be [x, y, z]");
+  for (int k = 0; k < 3; ++k) (*up)[k] = xyz[static_cast<std::size_t>(k)].as_number();
+  return true;
+}
+
 // Cuts the entry's geodesic disk from the body and adds it; the patch is released either way.
+// An entry's own "up" overrides the file's.
 void add_entry(mcon_library library, mcon_mesh mesh, const mcon::tools::Json& e, const std::string& author,
-               const std::string& licence) {
+               const std::string& licence, const std::array<double, 3>* file_up) {
   const std::string name = e.at("name").as_string(), klass = e.at("class").as_string();
   mcon_patch_options po;
   check(mcon_patch_options_init(&po), "mcon_patch_options_init");
   po.center_vertex = static_cast<std::uint32_t>(e.at("center_vertex").as_number());
   po.radius = e.at("radius").as_number();
+  std::array<double, 3> own_up{};
+  const std::array<double, 3>* up = read_up(e, &own_up) ? &own_up : file_up;
   mcon_patch patch = nullptr;
   check(mcon_patch_extract(mesh, &po, &patch), name + ": mcon_patch_extract");
   try {
-    add_patch_entry(library, patch, e, name, klass, author, licence);
+    add_patch_entry(library, patch, e, name, klass, author, licence, up);
   } catch (...) {
     mcon_patch_release(patch);
     throw;
@@ -350,7 +368,10 @@ int run(int argc, char** argv) {
     check(mcon_library_create(ctx, &library), "mcon_library_create");
 
     const std::string author = root.at("author").as_string(), licence = root.at("licence").as_string();
-    for (const auto& e : root.at("entries").elements()) add_entry(library, mesh, e, author, licence);
+    std::array<double, 3> file_up{};
+    const bool has_up = read_up(root, &file_up);
+    for (const auto& e : root.at("entries").elements())
+      add_entry(library, mesh, e, author, licence, has_up ? &file_up : nullptr);
 
     mcon_retrieval_options ro;
     check(mcon_retrieval_options_init(&ro), "mcon_retrieval_options_init");
