@@ -119,6 +119,8 @@ namespace Macrocon
         public uint MovedVertices;
         /// <summary>Mesh.CutGuides only: guide points on hole-filling patch triangles (dropped), and the guides split there.</summary>
         public uint UnplacedPoints, SplitGuides;
+        /// <summary>Chain vertices moved by fairing (fairPasses).</summary>
+        public uint FairedVertices;
     }
 
     /// <summary>A failed Macrocon call: the C status code and the library's message.</summary>
@@ -430,7 +432,11 @@ namespace Macrocon
 
         // ---- guides cut into a patch (mcon_cut_mesh_*) ----
         [StructLayout(LayoutKind.Sequential)]
-        internal struct GuideCutOptions { public uint struct_size; public double snap_fraction; public double simplify_fraction; }
+        internal struct GuideCutOptions
+        {
+            public uint struct_size; public double snap_fraction; public double simplify_fraction;
+            public uint fair_passes; public double fair_max_shift;
+        }
 
         [DllImport(Lib)] internal static extern Status mcon_guide_cut_options_init(ref GuideCutOptions options);
         [DllImport(Lib)] internal static extern Status mcon_cut_mesh_info_init(ref CutMeshInfo info);
@@ -952,10 +958,11 @@ namespace Macrocon
         }
 
         /// <summary>Cuts the guides of several macro constraints (each set transferred onto a patch extracted from this mesh) into the whole mesh: the result covers every face; null fractions keep the defaults.</summary>
-        public CutMesh CutGuides(PolylineSet[] guideSets, double? snapFraction = null, double? simplifyFraction = null)
+        public CutMesh CutGuides(PolylineSet[] guideSets, double? snapFraction = null, double? simplifyFraction = null,
+                                 uint? fairPasses = null)
         {
             if (guideSets == null) throw new ArgumentNullException(nameof(guideSets));
-            var o = Patch.CutOptions(snapFraction, simplifyFraction);
+            var o = Patch.CutOptions(snapFraction, simplifyFraction, fairPasses);
             var raw = new IntPtr[guideSets.Length];
             var added = new bool[guideSets.Length];
             try
@@ -1203,21 +1210,23 @@ namespace Macrocon
                                  writing: true);
         }
 
-        /// <summary>Cuts `guides` (a PolylineSet transferred onto this patch) into it: a new mesh in which every guide is a chain of edges; null fractions keep mcon_guide_cut_options_init's defaults.</summary>
-        public CutMesh CutGuides(PolylineSet guides, double? snapFraction = null, double? simplifyFraction = null)
+        /// <summary>Cuts `guides` (a PolylineSet transferred onto this patch) into it: a new mesh in which every guide is a chain of edges; null options keep mcon_guide_cut_options_init's defaults (fairPasses 3, 0 = no chain fairing).</summary>
+        public CutMesh CutGuides(PolylineSet guides, double? snapFraction = null, double? simplifyFraction = null,
+                                 uint? fairPasses = null)
         {
             if (guides == null) throw new ArgumentNullException(nameof(guides));
-            var o = CutOptions(snapFraction, simplifyFraction);
+            var o = CutOptions(snapFraction, simplifyFraction, fairPasses);
             Native.Check(Native.mcon_patch_cut_guides(Handle, guides.Handle, ref o, out CutMeshHandle h));
             return new CutMesh(h, VertexCount);
         }
 
-        internal static Native.GuideCutOptions CutOptions(double? snapFraction, double? simplifyFraction)
+        internal static Native.GuideCutOptions CutOptions(double? snapFraction, double? simplifyFraction, uint? fairPasses)
         {
             var o = new Native.GuideCutOptions();
             Native.Check(Native.mcon_guide_cut_options_init(ref o));
             if (snapFraction.HasValue) o.snap_fraction = snapFraction.Value;
             if (simplifyFraction.HasValue) o.simplify_fraction = simplifyFraction.Value;
+            if (fairPasses.HasValue) o.fair_passes = fairPasses.Value;
             return o;
         }
 

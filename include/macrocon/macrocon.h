@@ -891,6 +891,11 @@ typedef struct mcon_guide_cut_options {
   /** Guide points inside a triangle closer than this fraction of an edge to their chord are
    * dropped; default 0.05, in [0, 1]. */
   double simplify_fraction;
+  /** Passes of chain fairing after the cut (each chain vertex halfway to its neighbours' midpoint,
+   * on the surface); default 3, in [0, 100], 0 = off. */
+  uint32_t fair_passes;
+  /** How far fairing may move a chain vertex, in edge lengths; default 0.1, in [0, 0.5]. */
+  double fair_max_shift;
 } mcon_guide_cut_options;
 
 MCON_API mcon_status mcon_guide_cut_options_init(mcon_guide_cut_options* options);
@@ -914,6 +919,7 @@ typedef struct mcon_cut_mesh_info {
    * (dropped), and the guides split into pieces there. */
   uint32_t unplaced_points;
   uint32_t split_guides;
+  uint32_t faired_vertices;      /**< chain vertices moved by fairing (mcon_guide_cut_options.fair_passes) */
 } mcon_cut_mesh_info;
 
 MCON_API mcon_status mcon_cut_mesh_info_init(mcon_cut_mesh_info* info);

@@ -1091,11 +1091,12 @@ class CutMesh {
  public:
   CutMesh() noexcept = default;
   static CutMesh cut(const Patch& patch, const PolylineSet& guides, std::optional<double> snap_fraction = {},
-                     std::optional<double> simplify_fraction = {}) {
+                     std::optional<double> simplify_fraction = {}, std::optional<std::uint32_t> fair_passes = {}) {
     mcon_guide_cut_options o;
     check(mcon_guide_cut_options_init(&o));
     if (snap_fraction) o.snap_fraction = *snap_fraction;
     if (simplify_fraction) o.simplify_fraction = *simplify_fraction;
+    if (fair_passes) o.fair_passes = *fair_passes;
     mcon_cut_mesh out = nullptr;
     check(mcon_patch_cut_guides(detail::require(patch.get(), "Patch"), detail::require(guides.get(), "PolylineSet"),
                                 &o, &out));
@@ -1106,11 +1107,13 @@ class CutMesh {
   /// The guides of several macro constraints cut into the whole host (mcon_mesh_cut_guides): each
   /// set lies on a patch extracted from `mesh`; the result covers every face of `mesh`.
   static CutMesh cut_whole_host(const Mesh& mesh, const std::vector<PolylineSet>& guide_sets,
-                                std::optional<double> snap_fraction = {}, std::optional<double> simplify_fraction = {}) {
+                                std::optional<double> snap_fraction = {}, std::optional<double> simplify_fraction = {},
+                                std::optional<std::uint32_t> fair_passes = {}) {
     mcon_guide_cut_options o;
     check(mcon_guide_cut_options_init(&o));
     if (snap_fraction) o.snap_fraction = *snap_fraction;
     if (simplify_fraction) o.simplify_fraction = *simplify_fraction;
+    if (fair_passes) o.fair_passes = *fair_passes;
     std::vector<mcon_polyline_set> sets;
     for (const PolylineSet& s : guide_sets) sets.push_back(detail::require(s.get(), "PolylineSet"));
     mcon_cut_mesh out = nullptr;

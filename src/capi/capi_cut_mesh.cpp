@@ -43,11 +43,17 @@ struct mcon_cut_mesh_t {
 
 namespace {
 
+// First-version struct sizes (docs/api.md "Growing structs"): fields appended later keep defaults.
+constexpr std::size_t kCutOptionsMinSize = offsetof(mcon_guide_cut_options, fair_passes);
+constexpr std::size_t kCutInfoMinSize = offsetof(mcon_cut_mesh_info, faired_vertices);
+
 mcon_guide_cut_options default_cut_options() {
   auto o = zeroed_struct<mcon_guide_cut_options>();
   const GuideCutOptions core;
   o.snap_fraction = core.snap_fraction;
   o.simplify_fraction = core.simplify_fraction;
+  o.fair_passes = static_cast<std::uint32_t>(core.fair_passes);
+  o.fair_max_shift = core.fair_max_shift;
   return o;
 }
 
@@ -59,13 +65,17 @@ TriMesh host_units(const mcon_cut_mesh_t& c) {
 }
 
 GuideCutOptions cut_options(const mcon_guide_cut_options* options) {
-  const auto o =
-      read_options(options, sizeof(mcon_guide_cut_options), "mcon_guide_cut_options", default_cut_options());
-  require(std::isfinite(o.snap_fraction) && std::isfinite(o.simplify_fraction), MCON_ERROR_NON_FINITE,
-          "snap_fraction and simplify_fraction must be finite");
+  // Structs from before fairing (ending at simplify_fraction) get the default fairing.
+  const auto o = read_options(options, kCutOptionsMinSize, "mcon_guide_cut_options", default_cut_options());
+  require(std::isfinite(o.snap_fraction) && std::isfinite(o.simplify_fraction) && std::isfinite(o.fair_max_shift),
+          MCON_ERROR_NON_FINITE, "snap_fraction, simplify_fraction and fair_max_shift must be finite");
+  require(o.fair_passes <= 100, MCON_ERROR_INVALID_ARGUMENT,
+          "fair_passes is " + std::to_string(o.fair_passes) + "; give 0 (off) to 100");
   GuideCutOptions co;
   co.snap_fraction = o.snap_fraction;
   co.simplify_fraction = o.simplify_fraction;
+  co.fair_passes = static_cast<int>(o.fair_passes);
+  co.fair_max_shift = o.fair_max_shift;
   return co;
 }
 
@@ -246,7 +256,8 @@ mcon_status mcon_cut_mesh_get_info(mcon_cut_mesh cut, mcon_cut_mesh_info* info) 
     v.moved_vertices = static_cast<std::uint32_t>(c.moved_vertices);
     v.unplaced_points = cut->unplaced_points;
     v.split_guides = cut->split_guides;
-    write_info(info, sizeof(mcon_cut_mesh_info), "mcon_cut_mesh_info", v);
+    v.faired_vertices = static_cast<std::uint32_t>(c.faired_vertices);
+    write_info(info, kCutInfoMinSize, "mcon_cut_mesh_info", v);
   });
 }
 

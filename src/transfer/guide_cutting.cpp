@@ -169,6 +169,8 @@ class GuideCutter {
   void chain_guides();
   SurfacePoint closest_guide_point(int v, const std::vector<SurfacePoint>& line, bool closed, Vec3& x, double& distance) const;
   void relocate_snapped_vertices(const std::vector<std::vector<SurfacePoint>>& polylines, const std::vector<bool>& closed);
+  void fair_chains();
+  void measure_min_angle();
   std::vector<int> triangles_of(const Node& n) const;
   int edge_of(int a, int b) const {
     const auto it = edge_index_.find(edge_key(a, b));
@@ -626,13 +628,108 @@ void GuideCutter::relocate_snapped_vertices(const std::vector<std::vector<Surfac
     out_.host[v] = target;
     ++out_.moved_vertices;
   }
-  // The smallest angle made: over the cut pieces and the stars of moved vertices.
+}
+
+// Chain fairing (docs/design.md §14, step 6). Tracing and snapping leave the chains zig-zagging at
+// the scale of one triangle; a quad mesher lays its quad edges along the chain's chords, so every
+// zig-zag becomes an angle between guide and quad edge. Each pass moves every chain vertex that one
+// guide owns (not on the mesh border, not an open chain's end) halfway to the midpoint of its two
+// chain neighbours (a Laplacian step, lambda 1/2), projected onto the input triangles its star lies
+// in, so the vertex stays on the input surface and its host point moves with it. A move is kept
+// only if no star triangle turns by more than 60 degrees, the star's smallest angle stays at least
+// 0.8 of what it was, and the vertex stays within fair_max_shift mean edges of its place after the
+// cut (the guide keeps the shape it was traced with).
+void GuideCutter::fair_chains() {
+  if (options_.fair_passes <= 0 || out_.guides.empty()) return;
+  const int nv = out_.mesh.num_vertices();
+  std::vector<int> owner(static_cast<std::size_t>(nv), -1);  // -2: several guides or twice in one
+  std::vector<std::array<int, 2>> neighbours(static_cast<std::size_t>(nv), {-1, -1});
+  for (std::size_t g = 0; g < out_.guides.size(); ++g) {
+    const std::vector<int>& chain = out_.guides[g];
+    const bool closed = chain.size() >= 4 && chain.front() == chain.back();
+    const std::size_t m = closed ? chain.size() - 1 : chain.size();  // distinct positions
+    for (std::size_t k = 0; k < m; ++k) {
+      const int v = chain[k];
+      owner[v] = owner[v] == -1 ? static_cast<int>(g) : -2;
+      if (closed)
+        neighbours[v] = {chain[(k + m - 1) % m], chain[(k + 1) % m]};
+      else if (k > 0 && k + 1 < m)
+        neighbours[v] = {chain[k - 1], chain[k + 1]};
+    }
+  }
+  std::vector<std::vector<int>> star(static_cast<std::size_t>(nv));
+  std::map<std::pair<int, int>, int> edge_uses;
+  for (int t = 0; t < out_.mesh.num_triangles(); ++t) {
+    const Tri& tri = out_.mesh.triangles[t];
+    for (int k = 0; k < 3; ++k) {
+      star[tri[k]].push_back(t);
+      ++edge_uses[{std::min(tri[k], tri[(k + 1) % 3]), std::max(tri[k], tri[(k + 1) % 3])}];
+    }
+  }
+  std::vector<bool> border(static_cast<std::size_t>(nv), false);
+  for (const auto& [e, uses] : edge_uses)
+    if (uses == 1) border[e.first] = border[e.second] = true;
+  std::vector<Vec3>& x = out_.mesh.positions;
+  const std::vector<Vec3> cut_position = x;
+  std::vector<bool> faired(static_cast<std::size_t>(nv), false);
+  auto star_min_angle = [&](int v) {
+    double a = 180;
+    for (int t : star[v]) {
+      const Tri& tri = out_.mesh.triangles[t];
+      a = std::min(a, min_angle(x[tri[0]], x[tri[1]], x[tri[2]]));
+    }
+    return a;
+  };
+  for (int pass = 0; pass < options_.fair_passes; ++pass)
+    for (std::size_t g = 0; g < out_.guides.size(); ++g)
+      for (int v : out_.guides[g]) {
+        if (owner[v] != static_cast<int>(g) || border[v] || neighbours[v][0] < 0) continue;
+        const Vec3 want = 0.5 * x[v] + 0.25 * (x[neighbours[v][0]] + x[neighbours[v][1]]);
+        // The closest point to `want` on the input triangles v's star lies in.
+        double best = std::numeric_limits<double>::infinity();
+        SurfacePoint to;
+        Vec3 q = x[v];
+        for (int t : star[v]) {
+          const int origin = out_.triangle_origin[t];
+          const Tri& tri = mesh_.triangles[origin];
+          Vec3 bary;
+          const Vec3 p = closest_point_on_triangle(want, mesh_.positions[tri[0]], mesh_.positions[tri[1]],
+                                                   mesh_.positions[tri[2]], bary);
+          if ((p - want).norm() < best) {
+            best = (p - want).norm();
+            q = p;
+            to = {origin, bary};
+          }
+        }
+        if (!((q - cut_position[v]).norm() <= options_.fair_max_shift * mean_side(mesh_, to.triangle))) continue;
+        std::vector<Vec3> normals;
+        for (int t : star[v]) normals.push_back(triangle_normal(out_.mesh, t));
+        const double before = star_min_angle(v);
+        const Vec3 was = x[v];
+        x[v] = q;
+        bool ok = star_min_angle(v) >= 0.8 * before;
+        for (std::size_t k = 0; k < star[v].size() && ok; ++k)
+          ok = triangle_normal(out_.mesh, star[v][k]).dot(normals[k]) > 0.5;
+        if (!ok) {
+          x[v] = was;
+          continue;
+        }
+        out_.host[v] = to;
+        faired[v] = true;
+      }
+  out_.faired_vertices = static_cast<int>(std::count(faired.begin(), faired.end(), true));
+}
+
+// The smallest angle made: over the cut pieces and the stars of moved input vertices.
+void GuideCutter::measure_min_angle() {
+  const int n = mesh_.num_vertices();
   out_.min_angle_created = 180;
   std::vector<bool> changed(out_.mesh.triangles.size(), false);
-  for (std::size_t t = 0; t < changed.size(); ++t) changed[t] = out_.mesh.triangles[t] != mesh_.triangles[out_.triangle_origin[t]];
-  for (int v = 0; v < n; ++v)
-    if (out_.mesh.positions[v] != mesh_.positions[v])
-      for (int t : star[v]) changed[t] = true;
+  for (std::size_t t = 0; t < changed.size(); ++t) {
+    const Tri& tri = out_.mesh.triangles[t];
+    changed[t] = tri != mesh_.triangles[out_.triangle_origin[t]];
+    for (int v : tri) changed[t] = changed[t] || (v < n && out_.mesh.positions[v] != mesh_.positions[v]);
+  }
   for (std::size_t t = 0; t < changed.size(); ++t)
     if (changed[t]) {
       const Tri& tri = out_.mesh.triangles[t];
@@ -671,6 +768,8 @@ CutMesh GuideCutter::run(const std::vector<std::vector<SurfacePoint>>& polylines
   assemble_mesh(cut);
   chain_guides();
   relocate_snapped_vertices(polylines, closed);
+  fair_chains();
+  measure_min_angle();
   return std::move(out_);
 }
 
@@ -765,6 +864,10 @@ CutMesh cut_guides_into_mesh(const TriMesh& mesh, const std::vector<std::vector<
           MCON_ERROR_INVALID_ARGUMENT, "snap_fraction must be in [0, 0.45]");
   require(std::isfinite(options.simplify_fraction) && options.simplify_fraction >= 0 && options.simplify_fraction <= 1,
           MCON_ERROR_INVALID_ARGUMENT, "simplify_fraction must be in [0, 1]");
+  require(options.fair_passes >= 0 && options.fair_passes <= 100, MCON_ERROR_INVALID_ARGUMENT,
+          "fair_passes must be in [0, 100]");
+  require(std::isfinite(options.fair_max_shift) && options.fair_max_shift >= 0 && options.fair_max_shift <= 0.5,
+          MCON_ERROR_INVALID_ARGUMENT, "fair_max_shift must be in [0, 0.5]");
   require(closed.empty() || closed.size() == polylines.size(), MCON_ERROR_INVALID_ARGUMENT,
           "closed has " + std::to_string(closed.size()) + " flags for " + std::to_string(polylines.size()) +
               " polylines; give one per polyline or none");

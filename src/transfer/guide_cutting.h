@@ -25,6 +25,12 @@ struct GuideCutOptions {
   // Points inside one triangle closer than simplify_fraction * (mean edge length) to the chord of
   // their run are dropped (Douglas-Peucker). In [0, 1].
   double simplify_fraction = 0.05;
+  // Passes of chain fairing after the cut (docs/design.md §14, step 6): each chain vertex moves
+  // halfway to the midpoint of its chain neighbours, staying on the input surface, within
+  // fair_max_shift * (mean edge length) of where the cut put it and without folding or thinning its
+  // star. In [0, 100], 0: off; fair_max_shift in [0, 0.5].
+  int fair_passes = 3;
+  double fair_max_shift = 0.1;
 };
 
 struct CutMesh {
@@ -47,6 +53,7 @@ struct CutMesh {
   int dropped_points = 0;            // points inside triangles dropped as adding no shape
   int shortcuts = 0;                 // steps through a snapped vertex replaced by the edge across
   int moved_vertices = 0;            // snapped input vertices moved onto their guide
+  int faired_vertices = 0;           // chain vertices moved by fairing
 };
 
 // `polylines[i]` are surface points of `mesh`, consecutive points in one common triangle (as

@@ -1,6 +1,7 @@
 // mcon_patch_cut_guides and the cut mesh's accessors, on a map of the bundled body's nose: the
 // guides become chains of the cut mesh's edges, fields are carried, QuadWild's three files agree,
 // and bad arguments are refused by name.
+#include <cstddef>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -312,6 +313,55 @@ TEST(CapiCutMesh, WholeHostCombinesSeveralConstraints) {
   const CutPtr plain(c);
   EXPECT_EQ(info_of(plain.get()).triangle_count, host_triangles);
   EXPECT_EQ(info_of(plain.get()).guide_count, 0u);
+}
+
+TEST(CapiCutMesh, FairingIsOnByDefaultAndOlderStructsGetIt) {
+  CutSetup& x = setup();
+  mcon_guide_cut_options o;
+  ASSERT_EQ(mcon_guide_cut_options_init(&o), MCON_OK);
+  EXPECT_EQ(o.fair_passes, 3u);
+  EXPECT_DOUBLE_EQ(o.fair_max_shift, 0.1);
+  const CutPtr faired = cut_of(x, &o);
+  const mcon_cut_mesh_info fi = info_of(faired.get());
+  EXPECT_GT(fi.faired_vertices, 0u);
+  o.fair_passes = 0;
+  const CutPtr raw = cut_of(x, &o);
+  const mcon_cut_mesh_info ri = info_of(raw.get());
+  EXPECT_EQ(ri.faired_vertices, 0u);
+  EXPECT_EQ(ri.triangle_count, fi.triangle_count);  // fairing moves vertices, it does not cut
+  CutArrays a, b;
+  ASSERT_NO_FATAL_FAILURE(fetch(faired.get(), fi, a));
+  ASSERT_NO_FATAL_FAILURE(fetch(raw.get(), ri, b));
+  EXPECT_EQ(a.tri, b.tri);
+  EXPECT_NE(a.xyz, b.xyz);
+  // A struct from before fairing (ending at simplify_fraction) is accepted and gets the default.
+  mcon_guide_cut_options old;
+  ASSERT_EQ(mcon_guide_cut_options_init(&old), MCON_OK);
+  old.fair_passes = 0;  // beyond the old size: must not be read
+  old.struct_size = offsetof(mcon_guide_cut_options, fair_passes);
+  const CutPtr from_old = cut_of(x, &old);
+  EXPECT_EQ(info_of(from_old.get()).faired_vertices, fi.faired_vertices);
+  // So is an old-size info struct, and the new field is left alone.
+  mcon_cut_mesh_info old_info;
+  ASSERT_EQ(mcon_cut_mesh_info_init(&old_info), MCON_OK);
+  old_info.faired_vertices = 12345;
+  old_info.struct_size = offsetof(mcon_cut_mesh_info, faired_vertices);
+  ASSERT_EQ(mcon_cut_mesh_get_info(faired.get(), &old_info), MCON_OK) << last_message();
+  EXPECT_EQ(old_info.faired_vertices, 12345u);
+  EXPECT_EQ(old_info.guide_edge_count, fi.guide_edge_count);
+  // Out of range or not finite: refused by name.
+  mcon_cut_mesh c = nullptr;
+  ASSERT_EQ(mcon_guide_cut_options_init(&o), MCON_OK);
+  o.fair_passes = 101;
+  EXPECT_EQ(mcon_patch_cut_guides(x.target.get(), x.guides.get(), &o, &c), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(last_message().find("fair_passes"), std::string::npos) << last_message();
+  o.fair_passes = 3;
+  o.fair_max_shift = 0.7;
+  EXPECT_EQ(mcon_patch_cut_guides(x.target.get(), x.guides.get(), &o, &c), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(last_message().find("fair_max_shift"), std::string::npos) << last_message();
+  o.fair_max_shift = std::nan("");
+  EXPECT_EQ(mcon_patch_cut_guides(x.target.get(), x.guides.get(), &o, &c), MCON_ERROR_NON_FINITE);
+  EXPECT_EQ(c, nullptr);
 }
 
 TEST(CapiCutMesh, BadArgumentsAreRefusedByName) {

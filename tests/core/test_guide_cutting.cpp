@@ -167,6 +167,69 @@ TEST(GuideCutting, SnappingAvoidsSliversAndMergesGuidesThatRunTooClose) {
   EXPECT_EQ(again.guides, snapped.guides);
 }
 
+namespace {
+
+// Sum of |turning angles| per unit length of a chain of cut-mesh vertices (closed: first == last).
+double chain_turning(const CutMesh& cut, const std::vector<int>& chain) {
+  const bool closed = chain.size() > 3 && chain.front() == chain.back();
+  const std::size_t n = closed ? chain.size() - 1 : chain.size();
+  double turning = 0, length = 0;
+  for (std::size_t k = 0; k + 1 < chain.size(); ++k)
+    length += (cut.mesh.positions[chain[k + 1]] - cut.mesh.positions[chain[k]]).norm();
+  for (std::size_t k = closed ? 0 : 1; k < (closed ? n : n - 1); ++k) {
+    const Vec3 a = cut.mesh.positions[chain[(k + n - 1) % n]], b = cut.mesh.positions[chain[k]],
+               c = cut.mesh.positions[chain[(k + 1) % n]];
+    turning += std::atan2((b - a).cross(c - b).norm(), (b - a).dot(c - b));
+  }
+  return turning / length;
+}
+
+}  // namespace
+
+TEST(GuideCutting, FairingStraightensTheChainsOnTheSurfaceWithinItsShift) {
+  const known::KnownMap m = curved_map();
+  const Traced g = traced_guides(m, false);
+  GuideCutOptions off;
+  off.fair_passes = 0;
+  const CutMesh raw = cut_guides_into_mesh(m.target, g.points, g.closed, off);
+  const CutMesh faired = cut_guides_into_mesh(m.target, g.points, g.closed);  // default: 3 passes
+  EXPECT_EQ(raw.faired_vertices, 0);
+  EXPECT_GT(faired.faired_vertices, 0);
+  EXPECT_NO_THROW(validate_mesh(faired.mesh));
+  // Fairing moves vertices only: the same triangles and chains.
+  ASSERT_EQ(faired.mesh.triangles, raw.mesh.triangles);
+  ASSERT_EQ(faired.guides, raw.guides);
+  double mean_side = 0;
+  for (const Tri& t : m.target.triangles)
+    for (int k = 0; k < 3; ++k) mean_side += (m.target.positions[t[k]] - m.target.positions[t[(k + 1) % 3]]).norm();
+  mean_side /= 3.0 * m.target.num_triangles();
+  // Each vertex on its host point (on the input surface), within the shift of where the cut put it.
+  int moved = 0;
+  for (std::size_t v = 0; v < faired.host.size(); ++v) {
+    const Tri& t = m.target.triangles[faired.host[v].triangle];
+    Vec3 x = Vec3::Zero();
+    for (int k = 0; k < 3; ++k) x += faired.host[v].barycentric[k] * m.target.positions[t[k]];
+    EXPECT_LE((x - faired.mesh.positions[v]).norm(), 1e-12) << v;
+    const double shift = (faired.mesh.positions[v] - raw.mesh.positions[v]).norm();
+    EXPECT_LE(shift, 1.5 * off.fair_max_shift * mean_side) << v;  // per-triangle mean side, 1.5x slack
+    moved += shift > 0;
+  }
+  EXPECT_EQ(moved, faired.faired_vertices);
+  // No piece folds over its input triangle, and the smallest angle stays what the cut allowed.
+  for (int t = 0; t < faired.mesh.num_triangles(); ++t)
+    EXPECT_GT(triangle_normal(faired.mesh, t).dot(triangle_normal(m.target, faired.triangle_origin[t])), 0.5) << t;
+  EXPECT_GE(faired.min_angle_created, 0.8 * raw.min_angle_created - 1e-9);
+  // Straighter: every chain turns less per unit length, and the three together clearly less.
+  double before = 0, after = 0;
+  for (std::size_t i = 0; i < raw.guides.size(); ++i) {
+    const double a = chain_turning(raw, raw.guides[i]), b = chain_turning(faired, faired.guides[i]);
+    EXPECT_LE(b, a * 1.0001) << "guide " << i;
+    before += a;
+    after += b;
+  }
+  EXPECT_LT(after, 0.9 * before) << before << " -> " << after;
+}
+
 TEST(GuideCutting, LinearFieldsAreCarriedExactlyAndTheCrossFieldFollowsTheCutEdges) {
   const known::KnownMap m = curved_map();
   const Traced g = traced_guides(m, false);
@@ -230,6 +293,13 @@ TEST(GuideCutting, BadInputIsRefusedWithTheFix) {
   GuideCutOptions bad;
   bad.snap_fraction = 0.5;
   EXPECT_EQ(status_of([&] { cut_guides_into_mesh(grid, {}, {}, bad); }), MCON_ERROR_INVALID_ARGUMENT);
+  for (const auto& [passes, shift] : {std::pair<int, double>{-1, 0.1}, {101, 0.1}, {3, 0.6}, {3, -0.1}, {3, std::nan("")}}) {
+    GuideCutOptions fair;
+    fair.fair_passes = passes;
+    fair.fair_max_shift = shift;
+    EXPECT_EQ(status_of([&] { cut_guides_into_mesh(grid, {}, {}, fair); }, &message), MCON_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(message.find("fair_"), std::string::npos) << message;
+  }
   // A guide that crosses itself inside one triangle (a bow tie through triangle 0) is refused by name;
   // a closed triangle loop inside it is not.
   const std::vector<SurfacePoint> bow_tie{{0, Vec3(0.8, 0.1, 0.1)}, {0, Vec3(0.5, 0.4, 0.1)},

@@ -312,3 +312,9 @@ endif()
 run_checked(WHAT "--snap without --cut-guides" EXPECT_FAILURE "--snap needs --cut-guides"
   COMMAND ${CLI} embed --source ${MESH} --target ${MESH} --center-vertex 297 --radius 0.55
           --source-center-vertex 297 --snap 0.2 --out ${OUT}/bad)
+run_checked(WHAT "--fair-passes without --cut-guides" EXPECT_FAILURE "--fair-passes needs --cut-guides"
+  COMMAND ${CLI} embed --source ${MESH} --target ${MESH} --center-vertex 297 --radius 0.55
+          --source-center-vertex 297 --fair-passes 2 --out ${OUT}/bad)
+run_checked(WHAT "--fair-passes out of range" EXPECT_FAILURE "--fair-passes must be 0"
+  COMMAND ${CLI} embed --source ${MESH} --target ${MESH} --center-vertex 297 --radius 0.55
+          --source-center-vertex 297 --cut-guides --fair-passes -1 --out ${OUT}/bad)

@@ -61,6 +61,21 @@ if(NOT n_snap GREATER n_default)
 endif()
 run_checked(EXPECT_FAILURE "--snap must be in \\[0, 0.45\\]" COMMAND ${CLI} demo --out ${OUT}/snap --cut-guides --snap 0.5)
 run_checked(EXPECT_FAILURE "--snap needs --cut-guides or --whole-host" COMMAND ${CLI} demo --out ${OUT}/snap --snap 0.1)
+# --fair-passes reaches the cut: with 0 the chains keep the cut's positions (same faces, other
+# vertex positions); out of [0, 100], or without a cut, it is refused.
+run_checked(WHAT "macrocon demo --cut-guides --fair-passes 0" COMMAND ${CLI} demo --out ${OUT}/unfaired --cut-guides --fair-passes 0)
+file(STRINGS ${OUT}/cut/nose_cut.obj faired_faces REGEX "^f ")
+file(STRINGS ${OUT}/unfaired/nose_cut.obj unfaired_faces REGEX "^f ")
+if(NOT faired_faces STREQUAL unfaired_faces)
+  message(FATAL_ERROR "--fair-passes 0 changed the triangles of nose_cut.obj (fairing only moves vertices)")
+endif()
+file(READ ${OUT}/cut/nose_cut.obj faired_text)
+file(READ ${OUT}/unfaired/nose_cut.obj unfaired_text)
+if(faired_text STREQUAL unfaired_text)
+  message(FATAL_ERROR "--fair-passes 0 did not change nose_cut.obj: fairing moved no vertex by default")
+endif()
+run_checked(EXPECT_FAILURE "--fair-passes must be 0" COMMAND ${CLI} demo --out ${OUT}/snap --cut-guides --fair-passes 101)
+run_checked(EXPECT_FAILURE "--fair-passes needs --cut-guides or --whole-host" COMMAND ${CLI} demo --out ${OUT}/snap --fair-passes 2)
 
 # --whole-host: every region's guides (and the other eye's) in one mesh of the whole body: more
 # faces than the body's 26,756 triangles, one direction per face, the five regions' guide edges.

@@ -283,12 +283,13 @@ bool run_region(const macrocon::Context& ctx, const macrocon::Mesh& body, mcon_l
 
 const char* kUsage =
     "usage: macrocon demo [--data DIR] [--library FILE.mclb] [--out DIR] [--cut-guides] [--whole-host] [--snap F]\n"
-    "                     [--quiet | --progress]\n"
+    "                     [--fair-passes N] [--quiet | --progress]\n"
     "Queries the bundled MakeHuman body at a few regions against the starter constraint library,\n"
     "re-embeds the best match and writes PLY/OBJ/.rosy results to --out (default demo-out).\n"
     "--cut-guides also cuts the transferred guides into each region and writes QuadWild's inputs\n"
     "<region>_cut.obj, .rosy and .sharp (guides on mesh edges, as feature edges); crossings closer than\n"
-    "--snap F (default 0.25) edge lengths to a vertex snap to it.\n"
+    "--snap F (default 0.25) edge lengths to a vertex snap to it; --fair-passes N (default 3, 0 = off)\n"
+    "passes of fairing then straighten the chains on the surface.\n"
     "--whole-host also queries the other eye and cuts every region's guides into the whole body:\n"
     "body_whole.obj, .rosy (one field over every face), .sharp and .quadwild.json.\n"
     "Each map draws a progress bar on stderr when it is a terminal; --quiet hides it, --progress draws\n"
@@ -300,10 +301,11 @@ int run_demo(const Args& args) {
       {"out", "output folder (default demo-out)"},
       {"library", "the constraint library to query (default: the starter library)"},
       {"snap", "with --cut-guides / --whole-host: crossings this close to a vertex snap to it (default 0.25)"},
+      {"fair-passes", "with --cut-guides / --whole-host: passes of chain fairing, 0 = off (default 3)"},
       {"cut-guides", "also cut each region's guides into it and write QuadWild's inputs"},
       {"whole-host", "also cut every region's guides into the whole body"},
   };
-  const ArgParser p(args, {"data", "out", "library", "snap"}, {"cut-guides", "whole-host", "quiet", "progress"},
+  const ArgParser p(args, {"data", "out", "library", "snap", "fair-passes"}, {"cut-guides", "whole-host", "quiet", "progress"},
                     kUsage, help);
   mcon_guide_cut_options cut_options;
   check(mcon_guide_cut_options_init(&cut_options));
@@ -312,6 +314,12 @@ int run_demo(const Args& args) {
   cut_options.snap_fraction = p.number("snap", cut_options.snap_fraction);
   require(cut_options.snap_fraction >= 0 && cut_options.snap_fraction <= 0.45, MCON_ERROR_INVALID_ARGUMENT,
           "--snap must be in [0, 0.45] (a fraction of an edge length)");
+  require(p.flag("cut-guides") || p.flag("whole-host") || !p.has("fair-passes"), MCON_ERROR_INVALID_ARGUMENT,
+          "--fair-passes needs --cut-guides or --whole-host");
+  const long fair_passes = p.integer("fair-passes", cut_options.fair_passes);
+  require(fair_passes >= 0 && fair_passes <= 100, MCON_ERROR_INVALID_ARGUMENT,
+          "--fair-passes must be 0 (no chain fairing) to 100");
+  cut_options.fair_passes = static_cast<std::uint32_t>(fair_passes);
   const mcon_guide_cut_options* cut = p.flag("cut-guides") ? &cut_options : nullptr;
   const std::string data = p.get("data", MACROCON_SAMPLE_DATA_DIR);
   const std::string out_dir = p.get("out", "demo-out");

@@ -34,7 +34,7 @@ const char* kUsage =
     "                      [--source-face-range A:B] [--seed S] [--samples K] [--iterations I]\n"
     "                      [--orientation auto|preserve|reverse] [--landmarks S:T,S:T,...]\n"
     "                      [--up X,Y,Z | --source-up X,Y,Z --target-up X,Y,Z] [--cut-guides]\n"
-    "                      [--snap F] [--out DIR] [--json] [--quiet | --progress]\n"
+    "                      [--snap F] [--fair-passes N] [--out DIR] [--json] [--quiet | --progress]\n"
     "Maps a source patch onto the geodesic disk of radius R around vertex N of the target mesh and\n"
     "transfers the source's constraints. With --source-center-vertex the source patch is cut the same\n"
     "way from the source mesh (radius Q, default R); without it the source file must already be one\n"
@@ -70,7 +70,8 @@ const char* kUsage =
     "doubles), target_cut.ply (with the transferred fields), target_cut.sharp (the guide edges as\n"
     "feature edges) and target_cut.rosy (a cross field that follows the guide edges exactly).\n"
     "Crossings closer than --snap F (default 0.25) edge lengths to a vertex snap to it and guides that\n"
-    "close merge, so no sliver is made; the summary's 'cut' reports the smallest angle created.\n"
+    "close merge, so no sliver is made; --fair-passes N (default 3, 0 = off) passes of fairing then\n"
+    "straighten the chains on the surface. The summary's 'cut' reports the smallest angle created.\n"
     "A progress bar for the map is drawn on stderr when it is a terminal; --quiet hides it, --progress\n"
     "draws it anyway (e.g. into a log).\n" MACROCON_HELP_NUMBERING;
 
@@ -176,6 +177,10 @@ EmbedOptions embed_options(const ArgParser& p) {
   o.snap = p.number("snap", defaults.snap_fraction);
   require(o.snap >= 0 && o.snap <= 0.45, MCON_ERROR_INVALID_ARGUMENT,
           "--snap must be in [0, 0.45] (a fraction of an edge length)");
+  require(o.cut_guides || !p.has("fair-passes"), MCON_ERROR_INVALID_ARGUMENT, "--fair-passes needs --cut-guides");
+  o.fair_passes = p.integer("fair-passes", defaults.fair_passes);
+  require(o.fair_passes >= 0 && o.fair_passes <= 100, MCON_ERROR_INVALID_ARGUMENT,
+          "--fair-passes must be 0 (no chain fairing) to 100");
   return o;
 }
 
@@ -408,12 +413,13 @@ int run_embed(const Args& args) {
       {"target-up", "up direction of the target mesh (with --source-up)"},
       {"out", "output folder (default embed-out)"},
       {"snap", "with --cut-guides: snap crossings this close to a vertex (edge fraction, default 0.25)"},
+      {"fair-passes", "with --cut-guides: passes of chain fairing, 0 = off (default 3)"},
       {"cut-guides", "also cut the guides into the target patch and write QuadWild's inputs"},
   };
   const ArgParser p(args,
                     {"source", "target", "center-vertex", "radius", "source-center-vertex", "source-radius",
                      "face-range", "source-face-range", "seed", "samples", "iterations", "orientation", "landmarks",
-                     "up", "source-up", "target-up", "out", "snap", "entry"},
+                     "up", "source-up", "target-up", "out", "snap", "fair-passes", "entry"},
                     {"json", "cut-guides", "quiet", "progress"}, kUsage, help);
   const auto t_start = std::chrono::steady_clock::now();
   EmbedOptions o = embed_options(p);

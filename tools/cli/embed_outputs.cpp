@@ -118,7 +118,7 @@ std::vector<bool> closed_flags(const std::vector<macrocon::Polyline>& lines) {
 
 void compute_cut(const EmbedOptions& o, const EmbedPatches& e, const EmbedTransfer& x, EmbedCut& c) {
   const auto t0 = std::chrono::steady_clock::now();
-  c.cut = macrocon::CutMesh::cut(e.target, x.traced.set, o.snap);
+  c.cut = macrocon::CutMesh::cut(e.target, x.traced.set, o.snap, std::nullopt, static_cast<std::uint32_t>(o.fair_passes));
   c.info = c.cut.info();
   const std::vector<double> xyz = c.cut.positions();
   const std::vector<std::uint32_t> triangles = c.cut.triangles(), edges = c.cut.guide_edges();
@@ -169,6 +169,7 @@ tools::Json cut_summary(const EmbedCut& c) {
   j.set("dropped_points", c.info.dropped_points);
   j.set("shortcuts", c.info.shortcuts);
   j.set("moved_vertices", c.info.moved_vertices);
+  j.set("faired_vertices", c.info.faired_vertices);
   j.set("seconds", c.seconds);
   return j;
 }

@@ -30,6 +30,7 @@ struct EmbedOptions {
   bool up_from_entry = false;  // the source's up is the library entry's own
   bool cut_guides = false;
   double snap = 0;
+  long fair_passes = 0;
 };
 
 // A patch's normalized triangles and its frame (host = center + radius * p), read once.

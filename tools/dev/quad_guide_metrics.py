@@ -128,7 +128,9 @@ def metrics(cut_obj, cut_sharp, quads_obj, samples_per_edge=4):
     s = (np.arange(samples_per_edge) + 0.5) / samples_per_edge
     a, b = cv[guides[:, 0]], cv[guides[:, 1]]
     points = (a[:, None, :] + s[None, :, None] * (b - a)[:, None, :]).reshape(-1, 3)
-    directions = np.repeat((b - a) / np.linalg.norm(b - a, axis=1)[:, None], samples_per_edge, axis=0)
+    lengths = np.linalg.norm(b - a, axis=1)
+    directions = np.repeat((b - a) / lengths[:, None], samples_per_edge, axis=0)
+    weights = np.repeat(lengths, samples_per_edge)  # per unit of guide length
     edge, dist = nearest_edges(points, qv, qe, vertex_edges)
     qd = qv[qe[edge, 1]] - qv[qe[edge, 0]]
     qd /= np.linalg.norm(qd, axis=1)[:, None]
@@ -161,6 +163,8 @@ def metrics(cut_obj, cut_sharp, quads_obj, samples_per_edge=4):
         "angle_mean": float(angle.mean()),
         "angle_median": float(np.median(angle)),
         "angle_p90": float(np.percentile(angle, 90)),
+        "angle_length_mean": float((angle * weights).sum() / weights.sum()),
+        "tangent_angle_length_mean": float((smooth_angle * weights).sum() / weights.sum()),
         "tangent_angle_mean": float(smooth_angle.mean()),
         "tangent_angle_median": float(np.median(smooth_angle)),
         "quads_near_guides": len(near_min),

@@ -751,6 +751,11 @@ static class Tests
                 var other = Expect<MacroconException>(() => source.CutGuides(guides));
                 Check(other.Status == Status.InvalidArgument && other.Message.Contains("another patch"), "guides of another patch: " + other.Message);
                 Expect<ArgumentNullException>(() => target.CutGuides(null));
+                // Fairing is on by default; 0 passes cuts the same triangles with unmoved chains.
+                using (var raw = target.CutGuides(guides, fairPasses: 0))
+                    Check(raw.Info.FairedVertices == 0 && cut.Info.FairedVertices > 0 && raw.Info.TriangleCount == cut.Info.TriangleCount,
+                          "fairing: " + cut.Info.FairedVertices + " faired by default, " + raw.Info.FairedVertices + " with 0 passes");
+                Check(Expect<MacroconException>(() => target.CutGuides(guides, fairPasses: 101)).Message.Contains("fair_passes"), "fair_passes 101");
                 // Explicit fractions give a valid cut too; a disposed cut mesh throws.
                 using (var fine = target.CutGuides(guides, snapFraction: 0.0, simplifyFraction: 0.0))
                     Check(fine.Info.GuideEdgeCount.ToUInt64() > 0, "explicit fractions");

@@ -322,6 +322,8 @@ class GuideCutOptions(Struct):
         ("struct_size", ctypes.c_uint32),
         ("snap_fraction", ctypes.c_double),
         ("simplify_fraction", ctypes.c_double),
+        ("fair_passes", ctypes.c_uint32),
+        ("fair_max_shift", ctypes.c_double),
     ]
 
 
@@ -343,6 +345,7 @@ class CutMeshInfo(Struct):
         ("moved_vertices", ctypes.c_uint32),
         ("unplaced_points", ctypes.c_uint32),
         ("split_guides", ctypes.c_uint32),
+        ("faired_vertices", ctypes.c_uint32),
     ]
 
 

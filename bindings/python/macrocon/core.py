@@ -294,7 +294,8 @@ _INDEX_FORMATS = {np.dtype(np.uint32): _native.INDEX_FORMAT_UINT32, np.dtype(np.
                   np.dtype(np.int64): _native.INDEX_FORMAT_INT64}
 
 
-def _guide_cut_options(snap_fraction: Optional[float], simplify_fraction: Optional[float]):
+def _guide_cut_options(snap_fraction: Optional[float], simplify_fraction: Optional[float],
+                       fair_passes: Optional[int] = None, fair_max_shift: Optional[float] = None):
     """mcon_guide_cut_options with the defaults, overridden where given."""
     o = _native.GuideCutOptions()
     check(_native.lib.mcon_guide_cut_options_init(ctypes.byref(o)))
@@ -302,6 +303,13 @@ def _guide_cut_options(snap_fraction: Optional[float], simplify_fraction: Option
         o.snap_fraction = float(snap_fraction)
     if simplify_fraction is not None:
         o.simplify_fraction = float(simplify_fraction)
+    if fair_passes is not None:
+        n = int(fair_passes)
+        if not 0 <= n <= 0xFFFFFFFF:  # ctypes would wrap a negative count
+            raise ValueError(f"fair_passes must be 0 (off) to 100, got {fair_passes}")
+        o.fair_passes = n
+    if fair_max_shift is not None:
+        o.fair_max_shift = float(fair_max_shift)
     return o
 
 
@@ -368,7 +376,8 @@ class Mesh(_Handle):
         return _closest_points(_native.lib.mcon_mesh_closest_points, self.handle, points)
 
     def cut_guides(self, guide_sets, snap_fraction: Optional[float] = None,
-                   simplify_fraction: Optional[float] = None):
+                   simplify_fraction: Optional[float] = None, fair_passes: Optional[int] = None,
+                   fair_max_shift: Optional[float] = None):
         """Cuts the guides of several macro constraints into this whole mesh: ``guide_sets`` is a
         list of PolylineSets, each transferred onto a patch extracted from this mesh. Returns a
         :class:`CutMesh` covering every face, so its cross field and QuadWild files cover the
@@ -378,7 +387,7 @@ class Mesh(_Handle):
         sets = list(guide_sets)
         for i, s in enumerate(sets):
             require_type(s, PolylineSet, f"guide_sets[{i}]")
-        o = _guide_cut_options(snap_fraction, simplify_fraction)
+        o = _guide_cut_options(snap_fraction, simplify_fraction, fair_passes, fair_max_shift)
         handles = (ctypes.c_void_p * max(len(sets), 1))(*[s.handle for s in sets])
         out = ctypes.c_void_p()
         check(_native.lib.mcon_mesh_cut_guides(self.handle, handles, len(sets), ctypes.byref(o), ctypes.byref(out)))
@@ -567,16 +576,18 @@ class Patch(_Handle):
                                                          confidence.ctypes.data, m))
         return directions, confidence
 
-    def cut_guides(self, guides, snap_fraction: Optional[float] = None, simplify_fraction: Optional[float] = None):
+    def cut_guides(self, guides, snap_fraction: Optional[float] = None, simplify_fraction: Optional[float] = None,
+                   fair_passes: Optional[int] = None, fair_max_shift: Optional[float] = None):
         """Cuts ``guides`` (a PolylineSet transferred onto this patch) into the patch: returns a
         :class:`CutMesh` in which every guide is a chain of edges (for a quad mesher's features).
 
         ``snap_fraction`` (default 0.25) and ``simplify_fraction`` (default 0.05) are fractions of an
-        edge length; see mcon_guide_cut_options."""
+        edge length; ``fair_passes`` (default 3, 0 = off) passes of chain fairing move chain vertices
+        at most ``fair_max_shift`` (default 0.1) edge lengths; see mcon_guide_cut_options."""
         from .mapping import CutMesh, PolylineSet  # mapping imports this module
 
         require_type(guides, PolylineSet, "guides")
-        o = _guide_cut_options(snap_fraction, simplify_fraction)
+        o = _guide_cut_options(snap_fraction, simplify_fraction, fair_passes, fair_max_shift)
         out = ctypes.c_void_p()
         check(_native.lib.mcon_patch_cut_guides(self.handle, guides.handle, ctypes.byref(o), ctypes.byref(out)))
         return CutMesh(out)

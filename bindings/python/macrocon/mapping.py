@@ -138,6 +138,7 @@ class CutMeshInfo:
     moved_vertices: int
     unplaced_points: int  # Mesh.cut_guides only: points on hole-filling triangles, dropped
     split_guides: int  # Mesh.cut_guides only: guides split into pieces there
+    faired_vertices: int  # chain vertices moved by fairing (fair_passes)
 
 
 class CutMesh(_Handle):

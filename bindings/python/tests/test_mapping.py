@@ -480,6 +480,15 @@ def test_cut_guides_gives_edge_chains_and_quadwild_files(phi, source, target, tm
         assert int((tmp_path / "nose.sharp").read_text().split()[0]) == info.guide_edge_count
         with pytest.raises(macrocon.InvalidArgumentError, match="snap_fraction"):
             target.cut_guides(lines, snap_fraction=0.6)
+        # Fairing (on by default) moves chain vertices only; 0 passes turns it off.
+        with target.cut_guides(lines, fair_passes=0) as raw:
+            assert raw.info.faired_vertices == 0
+            assert np.array_equal(raw.triangles, cut.triangles)
+            assert info.faired_vertices > 0 and not np.array_equal(raw.positions, cut.positions)
+        with pytest.raises(macrocon.InvalidArgumentError, match="fair_max_shift"):
+            target.cut_guides(lines, fair_max_shift=0.9)
+        with pytest.raises(ValueError, match="fair_passes"):
+            target.cut_guides(lines, fair_passes=-1)
         with pytest.raises(macrocon.InvalidArgumentError, match="another patch"):
             source.cut_guides(lines)
         with pytest.raises(FileNotFoundError):
