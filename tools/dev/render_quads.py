@@ -3,6 +3,7 @@
     blender -b --factory-startup -P tools/dev/render_quads.py -- QUADS.obj CUT.obj CUT.sharp OUT.png
             [--focus CUT.obj CUT.sharp] [--margin 0.25] [--size 1200x900] [--view front|left|right]
 
+OUT.png, or OUT.jpg for a smaller file.
 QUADS.obj is QuadWild's quad mesh; CUT.obj / CUT.sharp are what mcon_cut_mesh_write_quadwild wrote
 (the guides are the .sharp edges, drawn as red tubes). The camera is orthographic along the view
 (front: looking down -Z, the MakeHuman body's facing direction) and frames the guides of the
@@ -153,9 +154,13 @@ def main():
     scene.render.resolution_percentage = 100
     scene.render.film_transparent = False
     scene.world = bpy.data.worlds.new("world")
-    scene.render.image_settings.file_format = "PNG"
+    if o["out"].lower().endswith((".jpg", ".jpeg")):  # smaller files for the docs
+        scene.render.image_settings.file_format = "JPEG"
+        scene.render.image_settings.quality = 88
+    else:
+        scene.render.image_settings.file_format = "PNG"
+        scene.render.image_settings.compression = 90
     scene.render.image_settings.color_mode = "RGB"
-    scene.render.image_settings.compression = 90
     scene.render.filepath = o["out"]
     bpy.ops.render.render(write_still=True)
     print("render_quads: %s (%d quads, %d guide edges, view %s, ortho scale %.3f)" % (
