@@ -50,6 +50,16 @@ double min_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
   return std::min({angle(a, b, c), angle(b, c, a), angle(c, a, b)});
 }
 
+// Smallest angle (degrees) over the given triangles of `m` (180 for none).
+double smallest_angle_of(const TriMesh& m, const std::vector<int>& triangles) {
+  double a = 180;
+  for (int t : triangles) {
+    const Tri& tri = m.triangles[t];
+    a = std::min(a, min_angle(m.positions[tri[0]], m.positions[tri[1]], m.positions[tri[2]]));
+  }
+  return a;
+}
+
 // One input triangle's points in its own isometric 2D frame (corner 0 at the origin, corner 1
 // on +x, counterclockwise), with the edges that must appear in its retriangulation.
 struct LocalPoints {
@@ -575,14 +585,7 @@ void GuideCutter::relocate_snapped_vertices(const std::vector<std::vector<Surfac
   for (int t = 0; t < out_.mesh.num_triangles(); ++t)
     for (int v : out_.mesh.triangles[t])
       if (v < n) star[v].push_back(t);
-  auto star_min_angle = [&](int v) {
-    double a = 180;
-    for (int t : star[v]) {
-      const Tri& tri = out_.mesh.triangles[t];
-      a = std::min(a, min_angle(out_.mesh.positions[tri[0]], out_.mesh.positions[tri[1]], out_.mesh.positions[tri[2]]));
-    }
-    return a;
-  };
+  auto star_min_angle = [&](int v) { return smallest_angle_of(out_.mesh, star[v]); };
   for (int v = 0; v < n; ++v) {
     if (owner[v] < 0 || boundary[v]) continue;
     const auto& line = polylines[static_cast<std::size_t>(owner[v])];
@@ -672,14 +675,7 @@ void GuideCutter::fair_chains() {
   std::vector<Vec3>& x = out_.mesh.positions;
   const std::vector<Vec3> cut_position = x;
   std::vector<bool> faired(static_cast<std::size_t>(nv), false);
-  auto star_min_angle = [&](int v) {
-    double a = 180;
-    for (int t : star[v]) {
-      const Tri& tri = out_.mesh.triangles[t];
-      a = std::min(a, min_angle(x[tri[0]], x[tri[1]], x[tri[2]]));
-    }
-    return a;
-  };
+  auto star_min_angle = [&](int v) { return smallest_angle_of(out_.mesh, star[v]); };
   for (int pass = 0; pass < options_.fair_passes; ++pass)
     for (std::size_t g = 0; g < out_.guides.size(); ++g)
       for (int v : out_.guides[g]) {
