@@ -270,25 +270,31 @@ namespace Macrocon
         [DllImport(Lib)] internal static extern Status mcon_get_status_name(Status status, out IntPtr name);
         [DllImport(Lib)] internal static extern Status mcon_get_last_error(IntPtr context, out IntPtr message);
         [DllImport(Lib)] internal static extern Status mcon_shutdown();
-        [DllImport(Lib)] internal static extern Status mcon_context_options_init(ref ContextOptions options);
+        [DllImport(Lib)] internal static extern Status mcon_context_options_init_sized(ref ContextOptions options, UIntPtr structSize);
+        internal static Status mcon_context_options_init(ref ContextOptions options) => mcon_context_options_init_sized(ref options, (UIntPtr)Marshal.SizeOf<ContextOptions>());
         [DllImport(Lib)] internal static extern Status mcon_context_create(ref ContextOptions options, out ContextHandle context);
         [DllImport(Lib)] internal static extern Status mcon_context_release(IntPtr context);
-        [DllImport(Lib)] internal static extern Status mcon_mesh_desc_init(ref MeshDesc desc);
+        [DllImport(Lib)] internal static extern Status mcon_mesh_desc_init_sized(ref MeshDesc desc, UIntPtr structSize);
+        internal static Status mcon_mesh_desc_init(ref MeshDesc desc) => mcon_mesh_desc_init_sized(ref desc, (UIntPtr)Marshal.SizeOf<MeshDesc>());
         [DllImport(Lib)] internal static extern Status mcon_mesh_create(ContextHandle context, ref MeshDesc desc, out MeshHandle mesh);
         [DllImport(Lib)] internal static extern Status mcon_mesh_release(IntPtr mesh);
         [DllImport(Lib)] internal static extern Status mcon_mesh_get_counts(MeshHandle mesh, out UIntPtr vertices, out UIntPtr triangles);
-        [DllImport(Lib)] internal static extern Status mcon_mesh_orientation_info_init(ref MeshOrientationInfo info);
+        [DllImport(Lib)] internal static extern Status mcon_mesh_orientation_info_init_sized(ref MeshOrientationInfo info, UIntPtr structSize);
+        internal static Status mcon_mesh_orientation_info_init(ref MeshOrientationInfo info) => mcon_mesh_orientation_info_init_sized(ref info, (UIntPtr)Marshal.SizeOf<MeshOrientationInfo>());
         [DllImport(Lib)] internal static extern Status mcon_mesh_get_orientation(MeshHandle mesh, ref MeshOrientationInfo info);
         [DllImport(Lib)] internal static extern Status mcon_mesh_get_reoriented_triangles(MeshHandle mesh, [Out] byte[] flags, UIntPtr capacity);
         [DllImport(Lib)] internal static extern Status mcon_mesh_get_triangles(MeshHandle mesh, [Out] uint[] indices, UIntPtr capacity);
         [DllImport(Lib)] internal static extern Status mcon_mesh_closest_points(MeshHandle mesh, double[] xyz, UIntPtr count,
             [Out] uint[] triangles, [Out] double[] barycentric, [Out] double[] distances);
-        [DllImport(Lib)] internal static extern Status mcon_patch_options_init(ref PatchOptions options);
+        [DllImport(Lib)] internal static extern Status mcon_patch_options_init_sized(ref PatchOptions options, UIntPtr structSize);
+        internal static Status mcon_patch_options_init(ref PatchOptions options) => mcon_patch_options_init_sized(ref options, (UIntPtr)Marshal.SizeOf<PatchOptions>());
         [DllImport(Lib)] internal static extern Status mcon_patch_extract(MeshHandle mesh, ref PatchOptions options, out PatchHandle patch);
         [DllImport(Lib)] internal static extern Status mcon_patch_release(IntPtr patch);
-        [DllImport(Lib)] internal static extern Status mcon_patch_info_init(ref PatchInfo info);
+        [DllImport(Lib)] internal static extern Status mcon_patch_info_init_sized(ref PatchInfo info, UIntPtr structSize);
+        internal static Status mcon_patch_info_init(ref PatchInfo info) => mcon_patch_info_init_sized(ref info, (UIntPtr)Marshal.SizeOf<PatchInfo>());
         [DllImport(Lib)] internal static extern Status mcon_patch_get_info(PatchHandle patch, ref PatchInfo info);
-        [DllImport(Lib)] internal static extern Status mcon_patch_repair_info_init(ref PatchRepairInfo info);
+        [DllImport(Lib)] internal static extern Status mcon_patch_repair_info_init_sized(ref PatchRepairInfo info, UIntPtr structSize);
+        internal static Status mcon_patch_repair_info_init(ref PatchRepairInfo info) => mcon_patch_repair_info_init_sized(ref info, (UIntPtr)Marshal.SizeOf<PatchRepairInfo>());
         [DllImport(Lib)] internal static extern Status mcon_patch_get_repairs(PatchHandle patch, ref PatchRepairInfo info);
         [DllImport(Lib)] internal static extern Status mcon_patch_get_positions(PatchHandle patch, [Out] double[] xyz, UIntPtr capacity);
         [DllImport(Lib)] internal static extern Status mcon_patch_get_triangles(PatchHandle patch, [Out] uint[] indices, UIntPtr capacity);
@@ -328,14 +334,17 @@ namespace Macrocon
             public ulong seed; public IntPtr progress; public IntPtr progress_user_data;
         }
 
-        [DllImport(Lib)] internal static extern Status mcon_library_entry_desc_init(ref EntryDesc desc);
+        [DllImport(Lib)] internal static extern Status mcon_library_entry_desc_init_sized(ref EntryDesc desc, UIntPtr structSize);
+
+        internal static Status mcon_library_entry_desc_init(ref EntryDesc desc) => mcon_library_entry_desc_init_sized(ref desc, (UIntPtr)Marshal.SizeOf<EntryDesc>());
         [DllImport(Lib)] internal static extern Status mcon_library_create(ContextHandle context, out LibraryHandle library);
         [DllImport(Lib)] internal static extern Status mcon_library_open(ContextHandle context, byte[] path, out LibraryHandle library);
         [DllImport(Lib)] internal static extern Status mcon_library_open_memory(ContextHandle context, IntPtr data, UIntPtr size, out LibraryHandle library);
         [DllImport(Lib)] internal static extern Status mcon_library_release(IntPtr library);
         [DllImport(Lib)] internal static extern Status mcon_library_save(LibraryHandle library, byte[] path);
         [DllImport(Lib)] internal static extern Status mcon_library_save_memory(LibraryHandle library, IntPtr data, UIntPtr capacity, out UIntPtr size);
-        [DllImport(Lib)] internal static extern Status mcon_library_info_init(ref LibraryInfo info);
+        [DllImport(Lib)] internal static extern Status mcon_library_info_init_sized(ref LibraryInfo info, UIntPtr structSize);
+        internal static Status mcon_library_info_init(ref LibraryInfo info) => mcon_library_info_init_sized(ref info, (UIntPtr)Marshal.SizeOf<LibraryInfo>());
         [DllImport(Lib)] internal static extern Status mcon_library_get_info(LibraryHandle library, ref LibraryInfo info);
         [DllImport(Lib)] internal static extern Status mcon_library_get_count(LibraryHandle library, out UIntPtr count);
         [DllImport(Lib)] internal static extern Status mcon_library_get_string(LibraryHandle library, LibraryString which,
@@ -346,14 +355,16 @@ namespace Macrocon
         [DllImport(Lib)] internal static extern Status mcon_library_remove_entry(LibraryHandle library, ulong id);
         [DllImport(Lib)] internal static extern Status mcon_library_find_entry(LibraryHandle library, ulong id, out UIntPtr index);
         [DllImport(Lib)] internal static extern Status mcon_library_merge(LibraryHandle library, LibraryHandle other);
-        [DllImport(Lib)] internal static extern Status mcon_retrieval_options_init(ref RetrievalOptions options);
+        [DllImport(Lib)] internal static extern Status mcon_retrieval_options_init_sized(ref RetrievalOptions options, UIntPtr structSize);
+        internal static Status mcon_retrieval_options_init(ref RetrievalOptions options) => mcon_retrieval_options_init_sized(ref options, (UIntPtr)Marshal.SizeOf<RetrievalOptions>());
         [DllImport(Lib)] internal static extern Status mcon_library_build_retrieval(LibraryHandle library, ref RetrievalOptions options);
         [DllImport(Lib)] internal static extern Status mcon_library_query(LibraryHandle library, PatchHandle patch, UIntPtr n, [Out] ulong[] ids,
             [Out] uint[] indices, [Out] double[] distances, UIntPtr capacity, out UIntPtr count);
         [DllImport(Lib)] internal static extern Status mcon_library_query_descriptors(LibraryHandle library, PatchHandle patch, IntPtr descriptors,
             uint dimension, UIntPtr stride, UIntPtr n, [Out] ulong[] ids, [Out] uint[] indices, [Out] double[] distances, UIntPtr capacity,
             out UIntPtr count);
-        [DllImport(Lib)] internal static extern Status mcon_library_entry_info_init(ref EntryInfo info);
+        [DllImport(Lib)] internal static extern Status mcon_library_entry_info_init_sized(ref EntryInfo info, UIntPtr structSize);
+        internal static Status mcon_library_entry_info_init(ref EntryInfo info) => mcon_library_entry_info_init_sized(ref info, (UIntPtr)Marshal.SizeOf<EntryInfo>());
         [DllImport(Lib)] internal static extern Status mcon_library_get_entry_info(LibraryHandle library, UIntPtr index, ref EntryInfo info);
         [DllImport(Lib)] internal static extern Status mcon_library_get_entry_string(LibraryHandle library, UIntPtr index, EntryString which,
             UIntPtr item, [Out] byte[] text, UIntPtr capacity, out UIntPtr size);
@@ -396,12 +407,16 @@ namespace Macrocon
         [StructLayout(LayoutKind.Sequential)]
         internal struct CrossFieldOptions { public uint struct_size; public double alignment_weight; public uint align_to_boundary; public double boundary_weight; }
 
-        [DllImport(Lib)] internal static extern Status mcon_patch_frame_init(ref PatchFrame frame);
+        [DllImport(Lib)] internal static extern Status mcon_patch_frame_init_sized(ref PatchFrame frame, UIntPtr structSize);
+
+        internal static Status mcon_patch_frame_init(ref PatchFrame frame) => mcon_patch_frame_init_sized(ref frame, (UIntPtr)Marshal.SizeOf<PatchFrame>());
         [DllImport(Lib)] internal static extern Status mcon_patch_create_from_arrays(ContextHandle context, ref MeshDesc mesh, ref PatchFrame frame, out PatchHandle patch);
-        [DllImport(Lib)] internal static extern Status mcon_map_options_init(ref MapOptions options);
+        [DllImport(Lib)] internal static extern Status mcon_map_options_init_sized(ref MapOptions options, UIntPtr structSize);
+        internal static Status mcon_map_options_init(ref MapOptions options) => mcon_map_options_init_sized(ref options, (UIntPtr)Marshal.SizeOf<MapOptions>());
         [DllImport(Lib)] internal static extern Status mcon_map_compute(PatchHandle source, PatchHandle target, ref MapOptions options, out MapHandle map);
         [DllImport(Lib)] internal static extern Status mcon_map_release(IntPtr map);
-        [DllImport(Lib)] internal static extern Status mcon_map_info_init(ref MapInfo info);
+        [DllImport(Lib)] internal static extern Status mcon_map_info_init_sized(ref MapInfo info, UIntPtr structSize);
+        internal static Status mcon_map_info_init(ref MapInfo info) => mcon_map_info_init_sized(ref info, (UIntPtr)Marshal.SizeOf<MapInfo>());
         [DllImport(Lib)] internal static extern Status mcon_map_get_info(MapHandle map, ref MapInfo info);
         [DllImport(Lib)] internal static extern Status mcon_map_get_energy_term_count(MapHandle map, out uint count);
         [DllImport(Lib)] internal static extern Status mcon_map_get_energy_term(MapHandle map, uint index, out IntPtr name, out double value);
@@ -425,7 +440,8 @@ namespace Macrocon
             UIntPtr valueCount, [Out] float[] outValues, UIntPtr capacity);
         [DllImport(Lib)] internal static extern Status mcon_map_transfer_labels(MapHandle map, uint dimension, IntPtr labels, UIntPtr labelCount,
             int outsideLabel, [Out] int[] outLabels, UIntPtr capacity);
-        [DllImport(Lib)] internal static extern Status mcon_cross_field_options_init(ref CrossFieldOptions options);
+        [DllImport(Lib)] internal static extern Status mcon_cross_field_options_init_sized(ref CrossFieldOptions options, UIntPtr structSize);
+        internal static Status mcon_cross_field_options_init(ref CrossFieldOptions options) => mcon_cross_field_options_init_sized(ref options, (UIntPtr)Marshal.SizeOf<CrossFieldOptions>());
         [DllImport(Lib)] internal static extern Status mcon_patch_compute_cross_field(PatchHandle patch, IntPtr guides, ref CrossFieldOptions options,
             [Out] double[] directions, [Out] double[] confidence, UIntPtr capacity);
         [DllImport(Lib)] internal static extern Status mcon_patch_write_rosy(PatchHandle patch, IntPtr directions, UIntPtr triangleCount, byte[] path);
@@ -438,8 +454,11 @@ namespace Macrocon
             public uint fair_passes; public double fair_max_shift;
         }
 
-        [DllImport(Lib)] internal static extern Status mcon_guide_cut_options_init(ref GuideCutOptions options);
-        [DllImport(Lib)] internal static extern Status mcon_cut_mesh_info_init(ref CutMeshInfo info);
+        [DllImport(Lib)] internal static extern Status mcon_guide_cut_options_init_sized(ref GuideCutOptions options, UIntPtr structSize);
+
+        internal static Status mcon_guide_cut_options_init(ref GuideCutOptions options) => mcon_guide_cut_options_init_sized(ref options, (UIntPtr)Marshal.SizeOf<GuideCutOptions>());
+        [DllImport(Lib)] internal static extern Status mcon_cut_mesh_info_init_sized(ref CutMeshInfo info, UIntPtr structSize);
+        internal static Status mcon_cut_mesh_info_init(ref CutMeshInfo info) => mcon_cut_mesh_info_init_sized(ref info, (UIntPtr)Marshal.SizeOf<CutMeshInfo>());
         [DllImport(Lib)] internal static extern Status mcon_patch_cut_guides(PatchHandle patch, PolylineSetHandle guides, ref GuideCutOptions options,
             out CutMeshHandle cut);
         [DllImport(Lib)] internal static extern Status mcon_mesh_cut_guides(MeshHandle mesh, IntPtr[] guideSets, UIntPtr setCount,

@@ -12,7 +12,9 @@
  *  - Coordinates: every |coordinate| <= 1e15 and a bounding-box diagonal >= 1e-15.
  *  - Options structs start with `uint32_t struct_size`; fill them with the matching *_init
  *    function, then change what you need. The library reads only the fields that fit inside
- *    struct_size, so code compiled against an older header keeps working.
+ *    struct_size, so code compiled against an older header keeps working. Each *_init is inline
+ *    and passes sizeof the struct to the exported *_init_sized, which writes only that many bytes
+ *    (bindings call *_init_sized with their struct's size).
  *  - Input arrays are pointer + byte stride + count and are copied: the caller may free them
  *    as soon as the call returns. A stride of 0 means tightly packed.
  *  - Output arrays are caller-owned; the caller passes their capacity in elements and gets
@@ -125,7 +127,10 @@ typedef struct mcon_context_options {
   void* log_user_data;
 } mcon_context_options;
 
-MCON_API mcon_status mcon_context_options_init(mcon_context_options* options);
+MCON_API mcon_status mcon_context_options_init_sized(mcon_context_options* options, size_t struct_size);
+static inline mcon_status mcon_context_options_init(mcon_context_options* options) {
+  return mcon_context_options_init_sized(options, sizeof(*options));
+}
 /** `options` may be NULL for the defaults. */
 MCON_API mcon_status mcon_context_create(const mcon_context_options* options, mcon_context* out_context);
 MCON_API mcon_status mcon_context_retain(mcon_context context);
@@ -174,7 +179,10 @@ typedef struct mcon_mesh_desc {
   uint32_t flags;
 } mcon_mesh_desc;
 
-MCON_API mcon_status mcon_mesh_desc_init(mcon_mesh_desc* desc);
+MCON_API mcon_status mcon_mesh_desc_init_sized(mcon_mesh_desc* desc, size_t struct_size);
+static inline mcon_status mcon_mesh_desc_init(mcon_mesh_desc* desc) {
+  return mcon_mesh_desc_init_sized(desc, sizeof(*desc));
+}
 
 /** Validates, copies and orients: each connected component is made consistent and outward
  * (docs/api.md "Input orientation"; mcon_mesh_get_orientation reports what changed). Errors:
@@ -198,7 +206,10 @@ typedef struct mcon_mesh_orientation_info {
   uint32_t outward_turned_component_count; /**< components that faced inward and were turned */
 } mcon_mesh_orientation_info;
 
-MCON_API mcon_status mcon_mesh_orientation_info_init(mcon_mesh_orientation_info* info);
+MCON_API mcon_status mcon_mesh_orientation_info_init_sized(mcon_mesh_orientation_info* info, size_t struct_size);
+static inline mcon_status mcon_mesh_orientation_info_init(mcon_mesh_orientation_info* info) {
+  return mcon_mesh_orientation_info_init_sized(info, sizeof(*info));
+}
 MCON_API mcon_status mcon_mesh_get_orientation(mcon_mesh mesh, mcon_mesh_orientation_info* info);
 /** Per input triangle: 1 if its corners 1 and 2 were swapped (its normal reversed), else 0; the
  * mesh's barycentric inputs (mcon_patch_options.center_barycentric) stay in the caller's corner
@@ -247,7 +258,10 @@ typedef struct mcon_patch_options {
   void* progress_user_data;
 } mcon_patch_options;
 
-MCON_API mcon_status mcon_patch_options_init(mcon_patch_options* options);
+MCON_API mcon_status mcon_patch_options_init_sized(mcon_patch_options* options, size_t struct_size);
+static inline mcon_status mcon_patch_options_init(mcon_patch_options* options) {
+  return mcon_patch_options_init_sized(options, sizeof(*options));
+}
 
 /** Cuts the geodesic disk exactly at the iso-line, keeps the center's component, fills inner
  * holes, verifies it is a disk (else MCON_ERROR_NOT_A_DISK with the reason), scales it so the
@@ -278,7 +292,10 @@ typedef struct mcon_patch_info {
   size_t reoriented_triangles;
 } mcon_patch_info;
 
-MCON_API mcon_status mcon_patch_info_init(mcon_patch_info* info);
+MCON_API mcon_status mcon_patch_info_init_sized(mcon_patch_info* info, size_t struct_size);
+static inline mcon_status mcon_patch_info_init(mcon_patch_info* info) {
+  return mcon_patch_info_init_sized(info, sizeof(*info));
+}
 MCON_API mcon_status mcon_patch_get_info(mcon_patch patch, mcon_patch_info* info);
 
 /** What MCON_PATCH_REPAIR_REGION changed in the part of the host the patch read (all 0 without it). */
@@ -290,7 +307,10 @@ typedef struct mcon_patch_repair_info {
   uint32_t pinched_vertices_split;      /**< host vertices of the patch that joined separate fans */
 } mcon_patch_repair_info;
 
-MCON_API mcon_status mcon_patch_repair_info_init(mcon_patch_repair_info* info);
+MCON_API mcon_status mcon_patch_repair_info_init_sized(mcon_patch_repair_info* info, size_t struct_size);
+static inline mcon_status mcon_patch_repair_info_init(mcon_patch_repair_info* info) {
+  return mcon_patch_repair_info_init_sized(info, sizeof(*info));
+}
 MCON_API mcon_status mcon_patch_get_repairs(mcon_patch patch, mcon_patch_repair_info* info);
 
 /** Normalized positions (host = center + radius * p), 3 doubles per vertex. capacity in doubles. */
@@ -437,7 +457,10 @@ typedef struct mcon_library_entry_desc {
   double up[3];
 } mcon_library_entry_desc;
 
-MCON_API mcon_status mcon_library_entry_desc_init(mcon_library_entry_desc* desc);
+MCON_API mcon_status mcon_library_entry_desc_init_sized(mcon_library_entry_desc* desc, size_t struct_size);
+static inline mcon_status mcon_library_entry_desc_init(mcon_library_entry_desc* desc) {
+  return mcon_library_entry_desc_init_sized(desc, sizeof(*desc));
+}
 
 /** An empty library (descriptor CURV9, no vocabulary yet). */
 MCON_API mcon_status mcon_library_create(mcon_context context, mcon_library* out_library);
@@ -474,7 +497,10 @@ typedef struct mcon_library_info {
   uint32_t checksum_verified;     /**< 1: its content checksum was verified; 0: none (format 1, or in memory) */
 } mcon_library_info;
 
-MCON_API mcon_status mcon_library_info_init(mcon_library_info* info);
+MCON_API mcon_status mcon_library_info_init_sized(mcon_library_info* info, size_t struct_size);
+static inline mcon_status mcon_library_info_init(mcon_library_info* info) {
+  return mcon_library_info_init_sized(info, sizeof(*info));
+}
 MCON_API mcon_status mcon_library_get_info(mcon_library library, mcon_library_info* info);
 MCON_API mcon_status mcon_library_get_count(mcon_library library, size_t* out_count);
 
@@ -523,7 +549,10 @@ typedef struct mcon_retrieval_options {
   void* progress_user_data;
 } mcon_retrieval_options;
 
-MCON_API mcon_status mcon_retrieval_options_init(mcon_retrieval_options* options);
+MCON_API mcon_status mcon_retrieval_options_init_sized(mcon_retrieval_options* options, size_t struct_size);
+static inline mcon_status mcon_retrieval_options_init(mcon_retrieval_options* options) {
+  return mcon_retrieval_options_init_sized(options, sizeof(*options));
+}
 /** (Re)computes the descriptors if the descriptor changed, the normalization, the vocabulary
  * (k-means++) and every entry's histogram. Needs at least one entry. On error or cancel the
  * library is unchanged. */
@@ -570,7 +599,10 @@ typedef struct mcon_library_entry_info {
   double up[3];
 } mcon_library_entry_info;
 
-MCON_API mcon_status mcon_library_entry_info_init(mcon_library_entry_info* info);
+MCON_API mcon_status mcon_library_entry_info_init_sized(mcon_library_entry_info* info, size_t struct_size);
+static inline mcon_status mcon_library_entry_info_init(mcon_library_entry_info* info) {
+  return mcon_library_entry_info_init_sized(info, sizeof(*info));
+}
 MCON_API mcon_status mcon_library_get_entry_info(mcon_library library, size_t index, mcon_library_entry_info* info);
 
 typedef enum mcon_entry_string {
@@ -630,7 +662,10 @@ typedef struct mcon_patch_frame {
   double scale;
 } mcon_patch_frame;
 
-MCON_API mcon_status mcon_patch_frame_init(mcon_patch_frame* frame);
+MCON_API mcon_status mcon_patch_frame_init_sized(mcon_patch_frame* frame, size_t struct_size);
+static inline mcon_status mcon_patch_frame_init(mcon_patch_frame* frame) {
+  return mcon_patch_frame_init_sized(frame, sizeof(*frame));
+}
 /** Validates and copies the mesh (errors as mcon_mesh_create; triangles that disagree are reversed
  * to agree with the majority, frame.center_barycentric stays in the caller's corner order),
  * requires one disk (else MCON_ERROR_NOT_A_DISK naming the reason: several pieces, a closed
@@ -712,7 +747,10 @@ typedef struct mcon_map_options {
   double target_up[3];
 } mcon_map_options;
 
-MCON_API mcon_status mcon_map_options_init(mcon_map_options* options);
+MCON_API mcon_status mcon_map_options_init_sized(mcon_map_options* options, size_t struct_size);
+static inline mcon_status mcon_map_options_init(mcon_map_options* options) {
+  return mcon_map_options_init_sized(options, sizeof(*options));
+}
 
 /** The re-embedding map Phi from `source` onto `target` (both patches of any tessellation; the
  * source is typically a library entry made with mcon_patch_create_from_arrays). Locally
@@ -766,7 +804,10 @@ typedef struct mcon_map_info {
   uint32_t frame_decided;
 } mcon_map_info;
 
-MCON_API mcon_status mcon_map_info_init(mcon_map_info* info);
+MCON_API mcon_status mcon_map_info_init_sized(mcon_map_info* info, size_t struct_size);
+static inline mcon_status mcon_map_info_init(mcon_map_info* info) {
+  return mcon_map_info_init_sized(info, sizeof(*info));
+}
 MCON_API mcon_status mcon_map_get_info(mcon_map map, mcon_map_info* info);
 /** The map's energy terms in evaluation order (descriptor, distortion, area, injectivity, then any
  * later term): their number, and term `index`'s name (static storage) and final unweighted value. */
@@ -863,7 +904,10 @@ typedef struct mcon_cross_field_options {
   double boundary_weight;
 } mcon_cross_field_options;
 
-MCON_API mcon_status mcon_cross_field_options_init(mcon_cross_field_options* options);
+MCON_API mcon_status mcon_cross_field_options_init_sized(mcon_cross_field_options* options, size_t struct_size);
+static inline mcon_status mcon_cross_field_options_init(mcon_cross_field_options* options) {
+  return mcon_cross_field_options_init_sized(options, sizeof(*options));
+}
 /* (`options` may be NULL for the defaults.) */
 /** A smooth per-face 4-RoSy cross field on `patch` that follows the polylines (e.g. the guides of
  * mcon_map_transfer_polylines onto this patch; NULL or an empty set gives the smoothest field).
@@ -898,7 +942,10 @@ typedef struct mcon_guide_cut_options {
   double fair_max_shift;
 } mcon_guide_cut_options;
 
-MCON_API mcon_status mcon_guide_cut_options_init(mcon_guide_cut_options* options);
+MCON_API mcon_status mcon_guide_cut_options_init_sized(mcon_guide_cut_options* options, size_t struct_size);
+static inline mcon_status mcon_guide_cut_options_init(mcon_guide_cut_options* options) {
+  return mcon_guide_cut_options_init_sized(options, sizeof(*options));
+}
 
 typedef struct mcon_cut_mesh_info {
   uint32_t struct_size;
@@ -922,7 +969,10 @@ typedef struct mcon_cut_mesh_info {
   uint32_t faired_vertices;      /**< chain vertices moved by fairing (mcon_guide_cut_options.fair_passes) */
 } mcon_cut_mesh_info;
 
-MCON_API mcon_status mcon_cut_mesh_info_init(mcon_cut_mesh_info* info);
+MCON_API mcon_status mcon_cut_mesh_info_init_sized(mcon_cut_mesh_info* info, size_t struct_size);
+static inline mcon_status mcon_cut_mesh_info_init(mcon_cut_mesh_info* info) {
+  return mcon_cut_mesh_info_init_sized(info, sizeof(*info));
+}
 /** Cuts `guides` (polylines transferred onto `patch`) into the patch. `options` may be NULL.
  * INVALID_ARGUMENT if the guides lie on another patch or a guide crosses itself. The cut mesh keeps
  * a reference on the patch. */

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <atomic>
+#include <cstddef>
 #include <cstdint>
 #include <algorithm>
 #include <cstring>
@@ -187,13 +188,30 @@ T zeroed_struct() {
   return value;
 }
 
-// The whole body of an mcon_*_init function: `out` (called `name` in the message) must not be NULL
-// and receives `defaults`.
+// Largest struct_size an mcon_*_init_sized accepts: far above any struct's size (all are under
+// 200 bytes) yet small enough that a wrong value (a count, a pointer) is refused, not zeroed into.
+constexpr std::size_t kMaxStructSize = 4096;
+
+// The whole body of an mcon_*_init_sized function. `out` (called `name` in the message) must not
+// be NULL and `size`, the caller's sizeof, must cover the first published version (`min_size`).
+// Only `size` bytes are written: a struct from an older header gets the defaults of the fields it
+// has, one from a newer header (larger than this library's) gets zeros beyond the fields this
+// library knows, which it never reads (docs/api.md "Growing structs").
 template <typename T>
-mcon_status init_struct(const char* function, T* out, const char* name, const T& defaults) noexcept {
+mcon_status init_struct(const char* function, T* out, std::size_t size, std::size_t min_size, const char* name,
+                        const T& defaults) noexcept {
+  static_assert(std::is_trivially_copyable_v<T>, "options and info must be plain structs");
   return guard(function, [&] {
     require_pointer(out, name);
-    *out = defaults;
+    require(size >= min_size && size <= kMaxStructSize, MCON_ERROR_STRUCT_SIZE,
+            std::string(name) + " struct_size " + std::to_string(size) + " is outside [" +
+                std::to_string(min_size) + ", " + std::to_string(kMaxStructSize) +
+                "]; pass sizeof the struct (the inline *_init in macrocon.h does)");
+    unsigned char* bytes = reinterpret_cast<unsigned char*>(out);
+    std::memcpy(bytes, &defaults, std::min(size, sizeof(T)));
+    if (size > sizeof(T)) std::memset(bytes + sizeof(T), 0, size - sizeof(T));
+    const auto caller_size = static_cast<std::uint32_t>(size);
+    std::memcpy(bytes + offsetof(T, struct_size), &caller_size, sizeof caller_size);
   });
 }
 

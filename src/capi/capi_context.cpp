@@ -152,8 +152,9 @@ mcon_status mcon_shutdown(void) {
   });
 }
 
-mcon_status mcon_context_options_init(mcon_context_options* options) {
-  return init_struct("mcon_context_options_init", options, "options", zeroed_struct<mcon_context_options>());
+mcon_status mcon_context_options_init_sized(mcon_context_options* options, size_t struct_size) {
+  return init_struct("mcon_context_options_init_sized", options, struct_size, sizeof(mcon_context_options), "options",
+                     zeroed_struct<mcon_context_options>());
 }
 
 mcon_status mcon_context_create(const mcon_context_options* options, mcon_context* out_context) {

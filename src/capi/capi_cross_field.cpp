@@ -23,8 +23,9 @@ mcon_cross_field_options default_cross_field_options() {
 
 extern "C" {
 
-mcon_status mcon_cross_field_options_init(mcon_cross_field_options* options) {
-  return init_struct("mcon_cross_field_options_init", options, "options", default_cross_field_options());
+mcon_status mcon_cross_field_options_init_sized(mcon_cross_field_options* options, size_t struct_size) {
+  return init_struct("mcon_cross_field_options_init_sized", options, struct_size, sizeof(mcon_cross_field_options),
+                     "options", default_cross_field_options());
 }
 
 mcon_status mcon_patch_compute_cross_field(mcon_patch patch, mcon_polyline_set guides,

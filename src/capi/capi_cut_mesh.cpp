@@ -45,6 +45,8 @@ namespace {
 
 // First-version struct sizes (docs/api.md "Growing structs"): fields appended later keep defaults.
 constexpr std::size_t kCutOptionsMinSize = offsetof(mcon_guide_cut_options, fair_passes);
+// An older caller's struct has no tail padding the appended field could be read from (docs/api.md).
+static_assert(kCutOptionsMinSize % alignof(mcon_guide_cut_options) == 0);
 constexpr std::size_t kCutInfoMinSize = offsetof(mcon_cut_mesh_info, faired_vertices);
 
 mcon_guide_cut_options default_cut_options() {
@@ -179,12 +181,14 @@ void validate_whole_host(const TriMesh& mesh) {
 
 extern "C" {
 
-mcon_status mcon_guide_cut_options_init(mcon_guide_cut_options* options) {
-  return init_struct("mcon_guide_cut_options_init", options, "options", default_cut_options());
+mcon_status mcon_guide_cut_options_init_sized(mcon_guide_cut_options* options, size_t struct_size) {
+  return init_struct("mcon_guide_cut_options_init_sized", options, struct_size, kCutOptionsMinSize, "options",
+                     default_cut_options());
 }
 
-mcon_status mcon_cut_mesh_info_init(mcon_cut_mesh_info* info) {
-  return init_struct("mcon_cut_mesh_info_init", info, "info", zeroed_struct<mcon_cut_mesh_info>());
+mcon_status mcon_cut_mesh_info_init_sized(mcon_cut_mesh_info* info, size_t struct_size) {
+  return init_struct("mcon_cut_mesh_info_init_sized", info, struct_size, kCutInfoMinSize, "info",
+                     zeroed_struct<mcon_cut_mesh_info>());
 }
 
 mcon_status mcon_patch_cut_guides(mcon_patch patch, mcon_polyline_set guides, const mcon_guide_cut_options* options,

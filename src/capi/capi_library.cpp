@@ -151,8 +151,9 @@ mcon_status mcon_library_save_memory(mcon_library library, void* out_data, size_
   });
 }
 
-mcon_status mcon_library_info_init(mcon_library_info* info) {
-  return init_struct("mcon_library_info_init", info, "info", zeroed_struct<mcon_library_info>());
+mcon_status mcon_library_info_init_sized(mcon_library_info* info, size_t struct_size) {
+  return init_struct("mcon_library_info_init_sized", info, struct_size, sizeof(mcon_library_info), "info",
+                     zeroed_struct<mcon_library_info>());
 }
 
 mcon_status mcon_library_get_info(mcon_library library, mcon_library_info* info) {
@@ -274,8 +275,9 @@ mcon_status mcon_library_merge(mcon_library library, mcon_library other) {
   });
 }
 
-mcon_status mcon_retrieval_options_init(mcon_retrieval_options* options) {
-  return init_struct("mcon_retrieval_options_init", options, "options", default_retrieval_options());
+mcon_status mcon_retrieval_options_init_sized(mcon_retrieval_options* options, size_t struct_size) {
+  return init_struct("mcon_retrieval_options_init_sized", options, struct_size, sizeof(mcon_retrieval_options),
+                     "options", default_retrieval_options());
 }
 
 mcon_status mcon_library_build_retrieval(mcon_library library, const mcon_retrieval_options* options) {

@@ -15,6 +15,8 @@ namespace {
 
 // The first published versions of the entry structs (before has_up): older callers pass these sizes.
 constexpr std::size_t kEntryDescMinSize = offsetof(mcon_library_entry_desc, has_up);
+// An older caller's struct has no tail padding the appended field could be read from (docs/api.md).
+static_assert(kEntryDescMinSize % alignof(mcon_library_entry_desc) == 0);
 constexpr std::size_t kEntryInfoMinSize = offsetof(mcon_library_entry_info, has_up);
 
 mcon_library_entry_desc default_entry_desc() {
@@ -129,8 +131,9 @@ mcon_surface_point to_c(const SurfacePoint& p) {
 
 extern "C" {
 
-mcon_status mcon_library_entry_desc_init(mcon_library_entry_desc* desc) {
-  return init_struct("mcon_library_entry_desc_init", desc, "desc", default_entry_desc());
+mcon_status mcon_library_entry_desc_init_sized(mcon_library_entry_desc* desc, size_t struct_size) {
+  return init_struct("mcon_library_entry_desc_init_sized", desc, struct_size, kEntryDescMinSize, "desc",
+                     default_entry_desc());
 }
 
 mcon_status mcon_library_add_entry(mcon_library library, const mcon_library_entry_desc* desc, uint64_t* out_id) {
@@ -179,8 +182,9 @@ mcon_status mcon_library_find_entry(mcon_library library, uint64_t id, size_t* o
   });
 }
 
-mcon_status mcon_library_entry_info_init(mcon_library_entry_info* info) {
-  return init_struct("mcon_library_entry_info_init", info, "info", zeroed_struct<mcon_library_entry_info>());
+mcon_status mcon_library_entry_info_init_sized(mcon_library_entry_info* info, size_t struct_size) {
+  return init_struct("mcon_library_entry_info_init_sized", info, struct_size, kEntryInfoMinSize, "info",
+                     zeroed_struct<mcon_library_entry_info>());
 }
 
 mcon_status mcon_library_get_entry_info(mcon_library library, size_t index, mcon_library_entry_info* info) {

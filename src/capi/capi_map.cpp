@@ -25,6 +25,8 @@ namespace {
 // with optimization_seconds. Callers compiled against that header keep working (the appended
 // fields keep their defaults, or are not written).
 constexpr std::size_t kMapOptionsMinSize = offsetof(mcon_map_options, orientation);
+// An older caller's struct has no tail padding the appended field could be read from (docs/api.md).
+static_assert(kMapOptionsMinSize % alignof(mcon_map_options) == 0);
 constexpr std::size_t kMapInfoMinSize = offsetof(mcon_map_info, alignment_score_unreflected);
 
 mcon_patch_frame default_frame() {
@@ -62,8 +64,9 @@ std::uint32_t stop_reason_code(StopReason r) {
 
 extern "C" {
 
-mcon_status mcon_patch_frame_init(mcon_patch_frame* frame) {
-  return init_struct("mcon_patch_frame_init", frame, "frame", default_frame());
+mcon_status mcon_patch_frame_init_sized(mcon_patch_frame* frame, size_t struct_size) {
+  return init_struct("mcon_patch_frame_init_sized", frame, struct_size, sizeof(mcon_patch_frame), "frame",
+                     default_frame());
 }
 
 mcon_status mcon_patch_create_from_arrays(mcon_context context, const mcon_mesh_desc* mesh,
@@ -110,8 +113,9 @@ mcon_status mcon_patch_create_from_arrays(mcon_context context, const mcon_mesh_
   });
 }
 
-mcon_status mcon_map_options_init(mcon_map_options* options) {
-  return init_struct("mcon_map_options_init", options, "options", default_map_options());
+mcon_status mcon_map_options_init_sized(mcon_map_options* options, size_t struct_size) {
+  return init_struct("mcon_map_options_init_sized", options, struct_size, kMapOptionsMinSize, "options",
+                     default_map_options());
 }
 
 mcon_status mcon_map_compute(mcon_patch source, mcon_patch target, const mcon_map_options* options,
@@ -201,8 +205,9 @@ mcon_status mcon_map_release(mcon_map map) {
   return guard("mcon_map_release", [&] { release(map, "map"); });
 }
 
-mcon_status mcon_map_info_init(mcon_map_info* info) {
-  return init_struct("mcon_map_info_init", info, "info", zeroed_struct<mcon_map_info>());
+mcon_status mcon_map_info_init_sized(mcon_map_info* info, size_t struct_size) {
+  return init_struct("mcon_map_info_init_sized", info, struct_size, kMapInfoMinSize, "info",
+                     zeroed_struct<mcon_map_info>());
 }
 
 mcon_status mcon_map_get_info(mcon_map map, mcon_map_info* info) {

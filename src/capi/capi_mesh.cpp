@@ -18,6 +18,8 @@ namespace {
 
 // The first published mcon_mesh_desc ended with triangle_count; index_format was appended.
 constexpr std::size_t kMeshDescMinSize = offsetof(mcon_mesh_desc, index_format);
+// An older caller's struct has no tail padding the appended field could be read from (docs/api.md).
+static_assert(kMeshDescMinSize % alignof(mcon_mesh_desc) == 0);
 
 // The last byte read is (count - 1) * stride + element bytes: it must be addressable.
 void require_addressable(std::size_t count, std::size_t stride, std::size_t element, const char* what) {
@@ -77,9 +79,10 @@ std::unique_ptr<mcon_mesh_t> mcon::capi::make_mesh(mcon_context context, const m
 
 extern "C" {
 
-mcon_status mcon_mesh_desc_init(mcon_mesh_desc* desc) {
+mcon_status mcon_mesh_desc_init_sized(mcon_mesh_desc* desc, size_t struct_size) {
   // position_type stays 0: the caller must say whether positions are floats or doubles.
-  return init_struct("mcon_mesh_desc_init", desc, "desc", zeroed_struct<mcon_mesh_desc>());
+  return init_struct("mcon_mesh_desc_init_sized", desc, struct_size, kMeshDescMinSize, "desc",
+                     zeroed_struct<mcon_mesh_desc>());
 }
 
 mcon_status mcon_mesh_create(mcon_context context, const mcon_mesh_desc* desc, mcon_mesh* out_mesh) {
@@ -108,8 +111,9 @@ mcon_status mcon_mesh_get_counts(mcon_mesh mesh, size_t* vertex_count, size_t* t
   });
 }
 
-mcon_status mcon_mesh_orientation_info_init(mcon_mesh_orientation_info* info) {
-  return init_struct("mcon_mesh_orientation_info_init", info, "info", zeroed_struct<mcon_mesh_orientation_info>());
+mcon_status mcon_mesh_orientation_info_init_sized(mcon_mesh_orientation_info* info, size_t struct_size) {
+  return init_struct("mcon_mesh_orientation_info_init_sized", info, struct_size, sizeof(mcon_mesh_orientation_info),
+                     "info", zeroed_struct<mcon_mesh_orientation_info>());
 }
 
 mcon_status mcon_mesh_get_orientation(mcon_mesh mesh, mcon_mesh_orientation_info* info) {

@@ -120,8 +120,9 @@ constexpr std::size_t kPatchInfoMinSize = offsetof(mcon_patch_info, host_reorien
 
 extern "C" {
 
-mcon_status mcon_patch_options_init(mcon_patch_options* options) {
-  return init_struct("mcon_patch_options_init", options, "options", default_patch_options());
+mcon_status mcon_patch_options_init_sized(mcon_patch_options* options, size_t struct_size) {
+  return init_struct("mcon_patch_options_init_sized", options, struct_size, sizeof(mcon_patch_options), "options",
+                     default_patch_options());
 }
 
 mcon_status mcon_patch_extract(mcon_mesh host, const mcon_patch_options* options, mcon_patch* out_patch) {
@@ -166,8 +167,9 @@ mcon_status mcon_patch_release(mcon_patch patch) {
   return guard("mcon_patch_release", [&] { release(patch, "patch"); });
 }
 
-mcon_status mcon_patch_info_init(mcon_patch_info* info) {
-  return init_struct("mcon_patch_info_init", info, "info", zeroed_struct<mcon_patch_info>());
+mcon_status mcon_patch_info_init_sized(mcon_patch_info* info, size_t struct_size) {
+  return init_struct("mcon_patch_info_init_sized", info, struct_size, kPatchInfoMinSize, "info",
+                     zeroed_struct<mcon_patch_info>());
 }
 
 mcon_status mcon_patch_get_info(mcon_patch patch, mcon_patch_info* info) {
@@ -195,8 +197,9 @@ mcon_status mcon_patch_get_info(mcon_patch patch, mcon_patch_info* info) {
   });
 }
 
-mcon_status mcon_patch_repair_info_init(mcon_patch_repair_info* info) {
-  return init_struct("mcon_patch_repair_info_init", info, "info", zeroed_struct<mcon_patch_repair_info>());
+mcon_status mcon_patch_repair_info_init_sized(mcon_patch_repair_info* info, size_t struct_size) {
+  return init_struct("mcon_patch_repair_info_init_sized", info, struct_size, sizeof(mcon_patch_repair_info), "info",
+                     zeroed_struct<mcon_patch_repair_info>());
 }
 
 mcon_status mcon_patch_get_repairs(mcon_patch patch, mcon_patch_repair_info* info) {

@@ -12,18 +12,18 @@
 
 #include <macrocon/macrocon.h>
 
-typedef mcon_status (*context_options_init_fn)(mcon_context_options*);
+typedef mcon_status (*context_options_init_fn)(mcon_context_options*, size_t);
 typedef mcon_status (*context_create_fn)(const mcon_context_options*, mcon_context*);
 typedef mcon_status (*context_release_fn)(mcon_context);
-typedef mcon_status (*mesh_desc_init_fn)(mcon_mesh_desc*);
+typedef mcon_status (*mesh_desc_init_fn)(mcon_mesh_desc*, size_t);
 typedef mcon_status (*mesh_create_fn)(mcon_context, const mcon_mesh_desc*, mcon_mesh*);
 typedef mcon_status (*mesh_release_fn)(mcon_mesh);
-typedef mcon_status (*patch_options_init_fn)(mcon_patch_options*);
+typedef mcon_status (*patch_options_init_fn)(mcon_patch_options*, size_t);
 typedef mcon_status (*patch_extract_fn)(mcon_mesh, const mcon_patch_options*, mcon_patch*);
 typedef mcon_status (*patch_release_fn)(mcon_patch);
 typedef mcon_status (*patch_compute_descriptors_fn)(mcon_patch, mcon_descriptor, double*, size_t);
 typedef mcon_status (*patch_get_info_fn)(mcon_patch, mcon_patch_info*);
-typedef mcon_status (*patch_info_init_fn)(mcon_patch_info*);
+typedef mcon_status (*patch_info_init_fn)(mcon_patch_info*, size_t);
 typedef mcon_status (*get_last_error_fn)(mcon_context, const char**);
 typedef mcon_status (*shutdown_fn)(void);
 
@@ -76,18 +76,18 @@ static int cycle(const char* path, int round, double* positions, uint32_t* indic
     return 1;
   }
   {
-    LOAD(context_options_init_fn, context_options_init, "mcon_context_options_init");
+    LOAD(context_options_init_fn, context_options_init, "mcon_context_options_init_sized");
     LOAD(context_create_fn, context_create, "mcon_context_create");
     LOAD(context_release_fn, context_release, "mcon_context_release");
-    LOAD(mesh_desc_init_fn, mesh_desc_init, "mcon_mesh_desc_init");
+    LOAD(mesh_desc_init_fn, mesh_desc_init, "mcon_mesh_desc_init_sized");
     LOAD(mesh_create_fn, mesh_create, "mcon_mesh_create");
     LOAD(mesh_release_fn, mesh_release, "mcon_mesh_release");
-    LOAD(patch_options_init_fn, patch_options_init, "mcon_patch_options_init");
+    LOAD(patch_options_init_fn, patch_options_init, "mcon_patch_options_init_sized");
     LOAD(patch_extract_fn, patch_extract, "mcon_patch_extract");
     LOAD(patch_release_fn, patch_release, "mcon_patch_release");
     LOAD(patch_compute_descriptors_fn, compute_descriptors, "mcon_patch_compute_descriptors");
     LOAD(patch_get_info_fn, patch_get_info, "mcon_patch_get_info");
-    LOAD(patch_info_init_fn, patch_info_init, "mcon_patch_info_init");
+    LOAD(patch_info_init_fn, patch_info_init, "mcon_patch_info_init_sized");
     LOAD(get_last_error_fn, last_error, "mcon_get_last_error");
     LOAD(shutdown_fn, shutdown, "mcon_shutdown");
 
@@ -96,10 +96,10 @@ static int cycle(const char* path, int round, double* positions, uint32_t* indic
       mcon_context context = NULL;
       mcon_mesh_desc desc;
       mcon_mesh mesh = NULL;
-      context_options_init(&co);
+      context_options_init(&co, sizeof co);
       co.max_threads = (uint32_t)(2 * c); /* 0 = all, then 2 */
       if (context_create(&co, &context) != MCON_OK) return fail("mcon_context_create", last_error);
-      mesh_desc_init(&desc);
+      mesh_desc_init(&desc, sizeof desc);
       desc.positions = positions;
       desc.position_type = MCON_SCALAR_FLOAT64;
       desc.vertex_count = GRID * GRID;
@@ -111,11 +111,11 @@ static int cycle(const char* path, int round, double* positions, uint32_t* indic
         mcon_patch_options po;
         mcon_patch patch = NULL;
         mcon_patch_info info;
-        patch_options_init(&po);
+        patch_options_init(&po, sizeof po);
         po.center_vertex = (uint32_t)((GRID / 2) * GRID + GRID / 2 + k - 1);
         po.radius = 0.2 + 0.05 * k;
         if (patch_extract(mesh, &po, &patch) != MCON_OK) return fail("mcon_patch_extract", last_error);
-        patch_info_init(&info);
+        patch_info_init(&info, sizeof info);
         if (patch_get_info(patch, &info) != MCON_OK) return fail("mcon_patch_get_info", last_error);
         if (info.vertex_count > (size_t)GRID * GRID * 4) return fail("patch size", last_error);
         if (compute_descriptors(patch, MCON_DESCRIPTOR_CURV9, values, (size_t)GRID * GRID * 4 * 9) != MCON_OK)

@@ -227,7 +227,7 @@ class Context(_Handle):
         if log is not None and not callable(log):
             raise TypeError(f"log must be callable(status: int, message: str), got {type(log).__name__}")
         options = _native.ContextOptions()
-        check(_native.lib.mcon_context_options_init(ctypes.byref(options)))
+        check(_native.lib.mcon_context_options_init_sized(ctypes.byref(options), ctypes.sizeof(options)))
         options.max_threads = int(max_threads)
         self.max_threads = int(max_threads)  # as requested; 0 = every hardware thread
         self._log: Optional[_Log] = None
@@ -278,7 +278,7 @@ def _mesh_desc(positions, triangles) -> tuple:
     p, p_stride = strided_rows("positions", positions, (np.float32, np.float64), 3)
     t, t_stride = strided_rows("triangles", triangles, tuple(_INDEX_FORMATS), 3)
     desc = _native.MeshDesc()
-    check(_native.lib.mcon_mesh_desc_init(ctypes.byref(desc)))
+    check(_native.lib.mcon_mesh_desc_init_sized(ctypes.byref(desc), ctypes.sizeof(desc)))
     desc.positions, desc.position_type = p.ctypes.data, 1 if p.dtype == np.float32 else 2
     desc.position_stride, desc.vertex_count = p_stride, p.shape[0]
     desc.indices, desc.index_stride, desc.triangle_count = t.ctypes.data, t_stride, t.shape[0]
@@ -298,7 +298,7 @@ def _guide_cut_options(snap_fraction: Optional[float], simplify_fraction: Option
                        fair_passes: Optional[int] = None, fair_max_shift: Optional[float] = None):
     """mcon_guide_cut_options with the defaults, overridden where given."""
     o = _native.GuideCutOptions()
-    check(_native.lib.mcon_guide_cut_options_init(ctypes.byref(o)))
+    check(_native.lib.mcon_guide_cut_options_init_sized(ctypes.byref(o), ctypes.sizeof(o)))
     if snap_fraction is not None:
         o.snap_fraction = float(snap_fraction)
     if simplify_fraction is not None:
@@ -351,7 +351,7 @@ class Mesh(_Handle):
     def orientation(self) -> _native.MeshOrientationInfo:
         """What creating the mesh changed to orient it consistently and outward."""
         info = _native.MeshOrientationInfo()
-        check(_native.lib.mcon_mesh_orientation_info_init(ctypes.byref(info)))
+        check(_native.lib.mcon_mesh_orientation_info_init_sized(ctypes.byref(info), ctypes.sizeof(info)))
         check(_native.lib.mcon_mesh_get_orientation(self.handle, ctypes.byref(info)))
         return info
 
@@ -479,7 +479,7 @@ class Patch(_Handle):
         """
         require_type(mesh, Mesh, "mesh")
         options = _native.PatchOptions()
-        check(_native.lib.mcon_patch_options_init(ctypes.byref(options)))
+        check(_native.lib.mcon_patch_options_init_sized(ctypes.byref(options), ctypes.sizeof(options)))
         if (center_vertex is None) == (center_triangle is None):
             raise ValueError("give exactly one of center_vertex and center_triangle")
         if center_vertex is not None:
@@ -531,7 +531,7 @@ class Patch(_Handle):
         require_type(context, Context, "context")
         desc, keep = _mesh_desc(positions, triangles)
         frame = _native.PatchFrame()
-        check(_native.lib.mcon_patch_frame_init(ctypes.byref(frame)))
+        check(_native.lib.mcon_patch_frame_init_sized(ctypes.byref(frame), ctypes.sizeof(frame)))
         frame.center_triangle = int(center_triangle)
         if len(center_barycentric) != 3 or len(origin) != 3:
             raise ValueError("center_barycentric and origin need 3 values each")
@@ -563,7 +563,7 @@ class Patch(_Handle):
         if guides is not None:
             require_type(guides, PolylineSet, "guides")
         o = _native.CrossFieldOptions()
-        check(_native.lib.mcon_cross_field_options_init(ctypes.byref(o)))
+        check(_native.lib.mcon_cross_field_options_init_sized(ctypes.byref(o), ctypes.sizeof(o)))
         if alignment_weight is not None:
             o.alignment_weight = float(alignment_weight)
         o.align_to_boundary = 1 if align_to_boundary else 0
@@ -609,7 +609,7 @@ class Patch(_Handle):
         """A :class:`PatchInfo` (frozen dataclass): sizes, center, radius and checks of the cut."""
         if self._info is None:
             info = _native.PatchInfo()
-            check(_native.lib.mcon_patch_info_init(ctypes.byref(info)))
+            check(_native.lib.mcon_patch_info_init_sized(ctypes.byref(info), ctypes.sizeof(info)))
             check(_native.lib.mcon_patch_get_info(self.handle, ctypes.byref(info)))
             self._info = PatchInfo._from_c(info)
         return self._info
@@ -618,7 +618,7 @@ class Patch(_Handle):
     def repairs(self) -> "PatchRepairs":
         """A :class:`PatchRepairs`: what ``repair=True`` changed (all 0 otherwise)."""
         r = _native.PatchRepairInfo()
-        check(_native.lib.mcon_patch_repair_info_init(ctypes.byref(r)))
+        check(_native.lib.mcon_patch_repair_info_init_sized(ctypes.byref(r), ctypes.sizeof(r)))
         check(_native.lib.mcon_patch_get_repairs(self.handle, ctypes.byref(r)))
         return PatchRepairs(r.zero_area_triangles_removed, r.triangles_split, r.vertices_merged,
                             r.pinched_vertices_split)

@@ -381,7 +381,7 @@ class Library(_Handle):
     def info(self) -> LibraryInfo:
         """A :class:`LibraryInfo` (frozen dataclass): entry count and retrieval configuration."""
         i = _native.LibraryInfo()
-        check(_native.lib.mcon_library_info_init(ctypes.byref(i)))
+        check(_native.lib.mcon_library_info_init_sized(ctypes.byref(i), ctypes.sizeof(i)))
         check(_native.lib.mcon_library_get_info(self.handle, ctypes.byref(i)))
         return LibraryInfo(i.entry_count, RetrievalDescriptor(i.descriptor), i.descriptor_dimension, i.vocabulary_size,
                            i.rings, i.histogram_length, i.sigma_bof, i.seed, i.format_version,
@@ -414,7 +414,7 @@ class Library(_Handle):
         require_type(patch, Patch, "patch")
         keep: list = []  # everything the C side reads during the call
         desc = _native.LibraryEntryDesc()
-        check(_native.lib.mcon_library_entry_desc_init(ctypes.byref(desc)))
+        check(_native.lib.mcon_library_entry_desc_init_sized(ctypes.byref(desc), ctypes.sizeof(desc)))
         desc.patch = patch.handle
         desc.id = int(id)
         desc.name, desc.class_label = _utf8("name", name), _utf8("class_label", class_label)
@@ -532,7 +532,7 @@ class Library(_Handle):
     ) -> None:
         """Descriptors, normalization, vocabulary and histograms; None keeps the library default."""
         o = _native.RetrievalOptions()
-        check(_native.lib.mcon_retrieval_options_init(ctypes.byref(o)))
+        check(_native.lib.mcon_retrieval_options_init_sized(ctypes.byref(o), ctypes.sizeof(o)))
         o.descriptor = int(RetrievalDescriptor(descriptor))
         if vocabulary_size is not None:
             o.vocabulary_size = int(vocabulary_size)
@@ -589,7 +589,7 @@ class Library(_Handle):
 
     def _entry_info(self, index: int) -> EntryInfo:
         i = _native.LibraryEntryInfo()
-        check(_native.lib.mcon_library_entry_info_init(ctypes.byref(i)))
+        check(_native.lib.mcon_library_entry_info_init_sized(ctypes.byref(i), ctypes.sizeof(i)))
         check(_native.lib.mcon_library_get_entry_info(self.handle, int(index), ctypes.byref(i)))
         return EntryInfo(i.id, i.vertex_count, i.triangle_count, i.tag_count, i.polyline_count, i.singularity_count,
                          i.field_count, i.center.face, tuple(i.center.barycentric), i.source_scale,

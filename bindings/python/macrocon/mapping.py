@@ -154,7 +154,7 @@ class CutMesh(_Handle):
     def info(self) -> CutMeshInfo:
         """A :class:`CutMeshInfo` (frozen dataclass): sizes and the smallest angle the cut made."""
         i = _native.CutMeshInfo()
-        check(_native.lib.mcon_cut_mesh_info_init(ctypes.byref(i)))
+        check(_native.lib.mcon_cut_mesh_info_init_sized(ctypes.byref(i), ctypes.sizeof(i)))
         check(_native.lib.mcon_cut_mesh_get_info(self.handle, ctypes.byref(i)))
         return CutMeshInfo(*(getattr(i, f) for f, _ in _native.CutMeshInfo._fields_[1:]))
 
@@ -328,7 +328,7 @@ class Map(_Handle):
         if not isinstance(orientation, str) or orientation not in _ORIENTATIONS:
             raise ValueError(f"orientation must be one of {sorted(_ORIENTATIONS)}, got {orientation!r}")
         o = _native.MapOptions()
-        check(_native.lib.mcon_map_options_init(ctypes.byref(o)))
+        check(_native.lib.mcon_map_options_init_sized(ctypes.byref(o), ctypes.sizeof(o)))
         o.seed = int(seed)
         if alignment_samples is not None:
             o.alignment_samples = int(alignment_samples)
@@ -381,7 +381,7 @@ class Map(_Handle):
     def info(self) -> MapInfo:
         """A :class:`MapInfo` (frozen dataclass) of the computed map."""
         i = _native.MapInfo()
-        check(_native.lib.mcon_map_info_init(ctypes.byref(i)))
+        check(_native.lib.mcon_map_info_init_sized(ctypes.byref(i), ctypes.sizeof(i)))
         check(_native.lib.mcon_map_get_info(self.handle, ctypes.byref(i)))
         return MapInfo(i.source_vertex_count, i.target_vertex_count, i.source_vertices_inside, i.target_vertices_inside,
                        i.overlap_ratio, i.matching_score, i.energy_total, i.energy_descriptor, i.energy_distortion,

@@ -63,6 +63,6 @@ def test_the_appended_mesh_desc_fields_are_mirrored_last():
     assert [f for f, _ in _native.MeshDesc._fields_][-3:] == ["triangle_count", "index_format", "flags"]
     assert _native.MeshDesc in STRUCTS
     d = _native.MeshDesc()
-    assert _native.lib.mcon_mesh_desc_init(ctypes.byref(d)) == 0
+    assert _native.lib.mcon_mesh_desc_init_sized(ctypes.byref(d), ctypes.sizeof(d)) == 0
     assert d.struct_size == ctypes.sizeof(_native.MeshDesc) and d.index_format == _native.INDEX_FORMAT_UINT32
     assert d.flags == 0
