@@ -180,6 +180,8 @@ class GuideCutter {
   SurfacePoint closest_guide_point(int v, const std::vector<SurfacePoint>& line, bool closed, Vec3& x, double& distance) const;
   void relocate_snapped_vertices(const std::vector<std::vector<SurfacePoint>>& polylines, const std::vector<bool>& closed);
   void fair_chains();
+  void build_stars();
+  bool try_move(int v, const Vec3& q);
   void measure_min_angle();
   std::vector<int> triangles_of(const Node& n) const;
   int edge_of(int a, int b) const {
@@ -207,6 +209,7 @@ class GuideCutter {
   std::vector<std::vector<Segment>> segments_;                // per guide
   std::map<int, std::vector<std::pair<int, int>>> in_triangle_;  // triangle -> (guide, segment)
   std::vector<std::vector<Tri>> pieces_;                      // per input triangle, its new triangles (if cut)
+  std::vector<std::vector<int>> star_;                        // per cut-mesh vertex, its cut-mesh triangles
   CutMesh out_;
 };
 
@@ -581,11 +584,6 @@ void GuideCutter::relocate_snapped_vertices(const std::vector<std::vector<Surfac
   std::vector<bool> boundary(static_cast<std::size_t>(n), false);
   for (int e = 0; e < topology_.num_edges(); ++e)
     if (topology_.is_boundary_edge(e)) boundary[topology_.edges[e][0]] = boundary[topology_.edges[e][1]] = true;
-  std::vector<std::vector<int>> star(static_cast<std::size_t>(n));
-  for (int t = 0; t < out_.mesh.num_triangles(); ++t)
-    for (int v : out_.mesh.triangles[t])
-      if (v < n) star[v].push_back(t);
-  auto star_min_angle = [&](int v) { return smallest_angle_of(out_.mesh, star[v]); };
   for (int v = 0; v < n; ++v) {
     if (owner[v] < 0 || boundary[v]) continue;
     const auto& line = polylines[static_cast<std::size_t>(owner[v])];
@@ -595,26 +593,14 @@ void GuideCutter::relocate_snapped_vertices(const std::vector<std::vector<Surfac
     SurfacePoint target = closest_guide_point(v, line, closed[static_cast<std::size_t>(owner[v])], target_x, best);
     // A crossing exactly at the vertex needs no move.
     if (!(best > 1e-12 * mean_side(mesh_, topology_.vertex_triangles[v].front()))) continue;
-    std::vector<Vec3> normals;
-    for (int t : star[v]) normals.push_back(triangle_normal(out_.mesh, t));
-    const double before = star_min_angle(v);
     // All the way onto the guide, else halfway (the host point moves with it, on the same line).
-    bool ok = false;
     double moved = 0;
-    for (double fraction : {1.0, 0.5}) {
-      out_.mesh.positions[v] = x + fraction * (target_x - x);
-      ok = star_min_angle(v) >= 0.8 * before;
-      for (std::size_t k = 0; k < star[v].size() && ok; ++k)
-        ok = triangle_normal(out_.mesh, star[v][k]).dot(normals[k]) > 0.5;
-      if (ok) {
+    for (double fraction : {1.0, 0.5})
+      if (try_move(v, x + fraction * (target_x - x))) {
         moved = fraction;
         break;
       }
-    }
-    if (!ok) {
-      out_.mesh.positions[v] = x;
-      continue;
-    }
+    if (moved == 0) continue;
     if (moved < 1) {
       // Halfway between the vertex and its target point, in the target's triangle (v is a corner
       // of it or of a neighbour sharing the segment's plane): interpolate the weights.
@@ -660,14 +646,10 @@ void GuideCutter::fair_chains() {
         neighbours[v] = {chain[k - 1], chain[k + 1]};
     }
   }
-  std::vector<std::vector<int>> star(static_cast<std::size_t>(nv));
   std::map<std::pair<int, int>, int> edge_uses;
   for (int t = 0; t < out_.mesh.num_triangles(); ++t) {
     const Tri& tri = out_.mesh.triangles[t];
-    for (int k = 0; k < 3; ++k) {
-      star[tri[k]].push_back(t);
-      ++edge_uses[{std::min(tri[k], tri[(k + 1) % 3]), std::max(tri[k], tri[(k + 1) % 3])}];
-    }
+    for (int k = 0; k < 3; ++k) ++edge_uses[{std::min(tri[k], tri[(k + 1) % 3]), std::max(tri[k], tri[(k + 1) % 3])}];
   }
   std::vector<bool> border(static_cast<std::size_t>(nv), false);
   for (const auto& [e, uses] : edge_uses)
@@ -675,7 +657,6 @@ void GuideCutter::fair_chains() {
   std::vector<Vec3>& x = out_.mesh.positions;
   const std::vector<Vec3> cut_position = x;
   std::vector<bool> faired(static_cast<std::size_t>(nv), false);
-  auto star_min_angle = [&](int v) { return smallest_angle_of(out_.mesh, star[v]); };
   for (int pass = 0; pass < options_.fair_passes; ++pass)
     for (std::size_t g = 0; g < out_.guides.size(); ++g)
       for (int v : out_.guides[g]) {
@@ -685,7 +666,7 @@ void GuideCutter::fair_chains() {
         double best = std::numeric_limits<double>::infinity();
         SurfacePoint to;
         Vec3 q = x[v];
-        for (int t : star[v]) {
+        for (int t : star_[v]) {
           const int origin = out_.triangle_origin[t];
           const Tri& tri = mesh_.triangles[origin];
           Vec3 bary;
@@ -698,22 +679,33 @@ void GuideCutter::fair_chains() {
           }
         }
         if (!((q - cut_position[v]).norm() <= options_.fair_max_shift * mean_side(mesh_, to.triangle))) continue;
-        std::vector<Vec3> normals;
-        for (int t : star[v]) normals.push_back(triangle_normal(out_.mesh, t));
-        const double before = star_min_angle(v);
-        const Vec3 was = x[v];
-        x[v] = q;
-        bool ok = star_min_angle(v) >= 0.8 * before;
-        for (std::size_t k = 0; k < star[v].size() && ok; ++k)
-          ok = triangle_normal(out_.mesh, star[v][k]).dot(normals[k]) > 0.5;
-        if (!ok) {
-          x[v] = was;
-          continue;
-        }
+        if (!try_move(v, q)) continue;
         out_.host[v] = to;
         faired[v] = true;
       }
   out_.faired_vertices = static_cast<int>(std::count(faired.begin(), faired.end(), true));
+}
+
+// Every cut-mesh vertex's triangles; the moves after the cut change positions, never triangles.
+void GuideCutter::build_stars() {
+  star_.assign(static_cast<std::size_t>(out_.mesh.num_vertices()), {});
+  for (int t = 0; t < out_.mesh.num_triangles(); ++t)
+    for (int v : out_.mesh.triangles[t]) star_[v].push_back(t);
+}
+
+// Moves cut-mesh vertex v to q, unless that turns a triangle of its star by more than 60 degrees
+// (a fold or near-fold) or shrinks the star's smallest angle below 0.8 of what it was; then v stays.
+bool GuideCutter::try_move(int v, const Vec3& q) {
+  const std::vector<int>& star = star_[v];
+  std::vector<Vec3> normals;
+  for (int t : star) normals.push_back(triangle_normal(out_.mesh, t));
+  const double before = smallest_angle_of(out_.mesh, star);
+  const Vec3 was = out_.mesh.positions[v];
+  out_.mesh.positions[v] = q;
+  bool ok = smallest_angle_of(out_.mesh, star) >= 0.8 * before;
+  for (std::size_t k = 0; k < star.size() && ok; ++k) ok = triangle_normal(out_.mesh, star[k]).dot(normals[k]) > 0.5;
+  if (!ok) out_.mesh.positions[v] = was;
+  return ok;
 }
 
 // The smallest angle made: over the cut pieces and the stars of moved input vertices.
@@ -763,6 +755,7 @@ CutMesh GuideCutter::run(const std::vector<std::vector<SurfacePoint>>& polylines
     if (cut[t]) cut_triangle(t);
   assemble_mesh(cut);
   chain_guides();
+  build_stars();
   relocate_snapped_vertices(polylines, closed);
   fair_chains();
   measure_min_angle();
