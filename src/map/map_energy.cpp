@@ -1,5 +1,6 @@
 #include "map/map_energy.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -193,6 +194,50 @@ Eigen::Matrix4d project_psd(const Eigen::Matrix4d& h) {
   return es.eigenvectors() * ev.cwiseMax(0.0).asDiagonal() * es.eigenvectors().transpose();
 }
 
+// J = U diag(s1, s2) V^T with U, V rotations (s2 < 0 when det J < 0): the closed form of the 2x2
+// SVD through the rotation and reflection parts of J (Blinn, "Consider the lowly 2x2 matrix").
+void rotations_of_svd(const Eigen::Matrix2d& J, Eigen::Matrix2d& U, Eigen::Matrix2d& Vt) {
+  const double e = 0.5 * (J(0, 0) + J(1, 1)), f = 0.5 * (J(0, 0) - J(1, 1));
+  const double g = 0.5 * (J(1, 0) + J(0, 1)), h = 0.5 * (J(1, 0) - J(0, 1));
+  const double a1 = std::atan2(g, f), a2 = std::atan2(h, e);
+  const double phi = 0.5 * (a2 + a1), theta = 0.5 * (a2 - a1);
+  U << std::cos(phi), -std::sin(phi), std::sin(phi), std::cos(phi);
+  Vt << std::cos(theta), -std::sin(theta), std::sin(theta), std::cos(theta);
+}
+
+bool project_psd_isotropic(const Eigen::Matrix2d& J, Eigen::Matrix4d& h) {
+  // Smith, de Goes, Kim 2019, "Analytic eigensystems for isotropic distortion energies" (2D): the
+  // Hessian of an energy of the singular values of J has the eigenvectors U M V^T for M the twist
+  // [0 -1; 1 0] / sqrt 2 and the flip [0 1; 1 0] / sqrt 2, and two in the span of the scalings
+  // diag(1, 0), diag(0, 1). Rotated into that basis it is diagonal, diagonal, and a 2x2 block.
+  Eigen::Matrix2d U, Vt;
+  rotations_of_svd(J, U, Vt);
+  const double r = std::sqrt(0.5);
+  const Eigen::Matrix2d modes[4] = {(Eigen::Matrix2d() << 0, -r, r, 0).finished(),
+                                    (Eigen::Matrix2d() << 0, r, r, 0).finished(),
+                                    (Eigen::Matrix2d() << 1, 0, 0, 0).finished(),
+                                    (Eigen::Matrix2d() << 0, 0, 0, 1).finished()};
+  Eigen::Matrix4d Q;
+  for (int k = 0; k < 4; ++k) Q.col(k) = vec(U * modes[k] * Vt);
+  const Eigen::Matrix4d d = Q.transpose() * h * Q;
+  const double off = std::max({std::abs(d(0, 1)), std::abs(d(0, 2)), std::abs(d(0, 3)), std::abs(d(1, 2)),
+                               std::abs(d(1, 3))});
+  if (!(off <= 1e-9 * d.cwiseAbs().maxCoeff())) return false;  // not isotropic (or not finite)
+  Eigen::Matrix4d clamped = Eigen::Matrix4d::Zero();
+  clamped(0, 0) = std::max(d(0, 0), 0.0);
+  clamped(1, 1) = std::max(d(1, 1), 0.0);
+  clamped.block<2, 2>(2, 2) = project_psd(Eigen::Matrix2d(0.5 * (d.block<2, 2>(2, 2) + d.block<2, 2>(2, 2).transpose())));
+  h = Q * clamped * Q.transpose();
+  return true;
+}
+
+Eigen::Matrix4d project_psd_element(const Eigen::Matrix4d& h, const Eigen::Matrix2d& J) {
+  if (Eigen::LLT<Eigen::Matrix4d>(h).info() == Eigen::Success) return h;  // the common case, as in project_psd
+  Eigen::Matrix4d p = h;
+  if (project_psd_isotropic(J, p)) return p;
+  return project_psd(h);
+}
+
 Eigen::Matrix2d project_psd(const Eigen::Matrix2d& h) {
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es;
   es.computeDirect(h);
@@ -331,7 +376,7 @@ void MapEnergy::derivatives(const Eigen::VectorXd& x, Derivatives& out) const {
         h_sum += tt.weight[j] * h;
       }
       const Eigen::Vector4d grad = w * g_sum;
-      const Eigen::Matrix4d hess = project_psd(Eigen::Matrix4d(w * h_sum));
+      const Eigen::Matrix4d hess = project_psd_element(Eigen::Matrix4d(w * h_sum), J);
       const Eigen::Matrix<double, 4, 6> B = jacobian_map(s.rest_inverse[t]);
       tri_grad[t] = B.transpose() * grad;
       out.triangle_hessians[t] = B.transpose() * hess * B;

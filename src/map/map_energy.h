@@ -122,6 +122,15 @@ Eigen::Matrix<double, 4, 6> jacobian_map(const Eigen::Matrix2d& rest_inverse);
 Eigen::Matrix4d project_psd(const Eigen::Matrix4d& h);
 Eigen::Matrix2d project_psd(const Eigen::Matrix2d& h);
 
+// J = U diag(s1, s2) V^T with U and V^T rotations (closed form; s2 < 0 if det J < 0).
+void rotations_of_svd(const Eigen::Matrix2d& J, Eigen::Matrix2d& U, Eigen::Matrix2d& Vt);
+// project_psd for the Hessian h (in vec(J)) of an isotropic energy at J, in closed form: false (h
+// unchanged) if h is not block diagonal in J's twist / flip / scaling basis, i.e. not isotropic.
+bool project_psd_isotropic(const Eigen::Matrix2d& J, Eigen::Matrix4d& h);
+// An element Hessian's projection: h if positive definite, else project_psd_isotropic, else
+// project_psd.
+Eigen::Matrix4d project_psd_element(const Eigen::Matrix4d& h, const Eigen::Matrix2d& J);
+
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 

@@ -92,6 +92,56 @@ TEST(MapEnergy, ElementDerivativesMatchFiniteDifferences) {
   }
 }
 
+TEST(MapEnergy, TheSvdRotationsReconstructJ) {
+  CounterRng rng(5, 0);
+  for (int trial = 0; trial < 200; ++trial) {
+    Eigen::Matrix2d J;
+    for (int i = 0; i < 4; ++i) J(i / 2, i % 2) = 4 * (rng.uniform() - 0.5);
+    Eigen::Matrix2d U, Vt;
+    rotations_of_svd(J, U, Vt);
+    const Eigen::Matrix2d S = U.transpose() * J * Vt.transpose();
+    EXPECT_NEAR(S(0, 1), 0, 1e-12) << J;
+    EXPECT_NEAR(S(1, 0), 0, 1e-12) << J;
+    EXPECT_GE(S(0, 0), std::abs(S(1, 1)) - 1e-12) << J;
+    EXPECT_NEAR(U.determinant(), 1, 1e-12);
+    EXPECT_NEAR(Vt.determinant(), 1, 1e-12);
+  }
+}
+
+// The closed-form projection of the weighted element Hessian (every term isotropic) equals the
+// eigendecomposition's, on Jacobians near and far from the identity, near-conformal ones
+// (s1 = s2) and ones inside the barrier; a Hessian that is not isotropic is refused unchanged.
+TEST(MapEnergy, IsotropicProjectionMatchesTheEigendecomposition) {
+  CounterRng rng(7, 0);
+  int indefinite = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    Eigen::Matrix2d J = rotation(6 * rng.uniform()) * Eigen::Vector2d(0.2 + 2 * rng.uniform(), 0.2 + 2 * rng.uniform()).asDiagonal() *
+                        rotation(6 * rng.uniform());
+    if (trial % 4 == 0) J = (0.3 + rng.uniform()) * rotation(6 * rng.uniform());  // conformal: s1 = s2
+    Eigen::Vector4d g;
+    Eigen::Matrix4d h1, h2, h3;
+    conformal_distortion(J, &g, &h1);
+    area_distortion(J, &g, &h2);
+    injectivity_barrier(J, 2.0, &g, &h3);
+    const Eigen::Matrix4d h = h1 + 0.5 * h2 + 0.01 * h3;
+    Eigen::Matrix4d p = h;
+    ASSERT_TRUE(project_psd_isotropic(J, p)) << J;
+    const Eigen::Matrix4d expected = project_psd(h);
+    EXPECT_LE((p - expected).cwiseAbs().maxCoeff(), 1e-9 * std::max(1.0, h.cwiseAbs().maxCoeff())) << J;
+    EXPECT_GE(Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d>(p).eigenvalues().minCoeff(), -1e-9 * h.norm());
+    EXPECT_LE((project_psd_element(h, J) - expected).cwiseAbs().maxCoeff(), 1e-9 * std::max(1.0, h.cwiseAbs().maxCoeff()));
+    indefinite += Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d>(h).eigenvalues().minCoeff() < 0;
+  }
+  EXPECT_GT(indefinite, 50);  // the comparison covered projections that clamp
+  Eigen::Matrix4d a;
+  for (int i = 0; i < 16; ++i) a(i / 4, i % 4) = rng.uniform() - 0.5;
+  const Eigen::Matrix4d not_isotropic = a + a.transpose();
+  Eigen::Matrix4d p = not_isotropic;
+  EXPECT_FALSE(project_psd_isotropic(rotation(0.3) * Eigen::Vector2d(1.5, 0.7).asDiagonal(), p));
+  EXPECT_EQ(p, not_isotropic);
+  EXPECT_LE((project_psd_element(not_isotropic, Eigen::Matrix2d::Identity()) - project_psd(not_isotropic)).norm(), 0);
+}
+
 TEST(MapEnergy, JacobianMapIsTheDerivativeOfJ) {
   Eigen::Matrix2d rest;
   rest << 1.0, 0.2, 0.1, 0.9;
