@@ -239,11 +239,20 @@ Eigen::Matrix4d project_psd_element(const Eigen::Matrix4d& h, const Eigen::Matri
 }
 
 Eigen::Matrix2d project_psd(const Eigen::Matrix2d& h) {
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es;
-  es.computeDirect(h);
-  const Eigen::Vector2d ev = es.eigenvalues();
-  if (ev.minCoeff() >= 0) return h;
-  return es.eigenvectors() * ev.cwiseMax(0.0).asDiagonal() * es.eigenvectors().transpose();
+  // Closed form of the symmetric [a b; b c] (its lower triangle, as an eigensolver reads it): the
+  // eigenvalues are m +- r, m = (a + c) / 2, r = sqrt(((a - c) / 2)^2 + b^2). With exactly one
+  // negative one, the projection keeps hi v v^T, and v v^T = (H - lo I) / (hi - lo) is the
+  // spectral projector of hi, so no eigenvector is needed.
+  const double a = h(0, 0), b = h(1, 0), c = h(1, 1);
+  const double m = 0.5 * (a + c), half_gap = 0.5 * (a - c);
+  const double r = std::sqrt(half_gap * half_gap + b * b);
+  const double hi = m + r, lo = m - r;
+  if (lo >= 0) return h;
+  if (hi <= 0) return Eigen::Matrix2d::Zero();
+  if (!std::isfinite(lo)) return h;  // NaN in, NaN out (the caller's finiteness checks see it)
+  Eigen::Matrix2d p;
+  p << a - lo, b, b, c - lo;
+  return (hi / (hi - lo)) * p;
 }
 
 MapEnergy::MapEnergy(const SourceDisk& source, const DescriptorField2D& target_field,

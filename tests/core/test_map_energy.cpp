@@ -108,6 +108,29 @@ TEST(MapEnergy, TheSvdRotationsReconstructJ) {
   }
 }
 
+TEST(MapEnergy, TwoByTwoProjectionMatchesTheEigendecomposition) {
+  CounterRng rng(9, 0);
+  int cases[3] = {0, 0, 0};  // kept as is, one eigenvalue clamped, both clamped
+  for (int trial = 0; trial < 600; ++trial) {
+    Eigen::Matrix2d h;
+    h(0, 0) = 4 * (rng.uniform() - 0.5);
+    h(1, 1) = 4 * (rng.uniform() - 0.5);
+    h(0, 1) = h(1, 0) = 2 * (rng.uniform() - 0.5);
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(h);
+    const Eigen::Vector2d ev = es.eigenvalues();
+    const Eigen::Matrix2d expected = es.eigenvectors() * ev.cwiseMax(0.0).asDiagonal() * es.eigenvectors().transpose();
+    const Eigen::Matrix2d p = project_psd(h);
+    EXPECT_LE((p - expected).cwiseAbs().maxCoeff(), 1e-12) << h;
+    ++cases[(ev[0] < 0) + (ev[1] < 0)];
+    if (ev.minCoeff() >= 0) {
+      EXPECT_EQ(p, h);  // untouched, bit for bit
+    }
+  }
+  for (int n : cases) EXPECT_GT(n, 50);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_TRUE(project_psd(Eigen::Matrix2d(Eigen::Matrix2d::Constant(nan))).array().isNaN().all());
+}
+
 // The closed-form projection of the weighted element Hessian (every term isotropic) equals the
 // eigendecomposition's, on Jacobians near and far from the identity, near-conformal ones
 // (s1 = s2) and ones inside the barrier; a Hessian that is not isotropic is refused unchanged.
