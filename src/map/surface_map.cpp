@@ -5,6 +5,7 @@
 #include <cmath>
 #include <memory>
 
+#include "map/coarse_source.h"
 #include "map/descriptor_field_2d.h"
 #include "base/error.h"
 #include "map/injective_step.h"
@@ -148,7 +149,7 @@ void report_progress(const SurfaceMapOptions& options, double f) {
 // The descriptor levels as the score reads them: the target's fields, the source's values (and
 // the source as a mirrored map sees it, if chiral columns change sign) and the Gaussian widths.
 struct Levels {
-  std::vector<std::unique_ptr<DescriptorField2D>> fields;
+  std::vector<std::shared_ptr<const DescriptorField2D>> fields;  // shared with a coarse copy
   std::vector<Eigen::MatrixXd> reflected;  // the source as a mirrored map sees it
   std::vector<MatchLevel> match;
 };
@@ -169,7 +170,7 @@ Levels match_levels(const MapDomain& source, const MapDomain& target, const Surf
     }
   for (int l = 0; l < L; ++l) {
     MatchLevel& level = levels.match[l];
-    levels.fields.push_back(std::make_unique<DescriptorField2D>(target_locator, target.descriptor_levels[l]));
+    levels.fields.push_back(std::make_shared<DescriptorField2D>(target_locator, target.descriptor_levels[l]));
     level.source_values = &source.descriptor_levels[l];
     if (!levels.reflected.empty()) level.source_values_reflected = &levels.reflected[l];
     level.target_field = levels.fields.back().get();
@@ -290,6 +291,7 @@ Eigen::VectorXd start_from(const MapDomain& source, const RigidTransform2D& T) {
 // One orientation's optimization: its disk, iterate and per-level reports.
 struct Candidate {
   const SourceDisk* disk;
+  RigidTransform2D start;
   Eigen::VectorXd x;
   std::vector<NewtonReport> reports;
   double energy_scale = 0;
@@ -299,7 +301,7 @@ struct Candidate {
 
 // A candidate from its rigid start (and, with start_anchor > 0, that start as its anchor).
 Candidate make_candidate(const Stages& st, const SourceDisk* disk, const RigidTransform2D& T) {
-  Candidate c{disk, start_from(st.source, T), {}, 0, {}, {}};
+  Candidate c{disk, T, start_from(st.source, T), {}, 0, {}, {}};
   if (st.options.start_anchor > 0) {
     const int n = static_cast<int>(c.x.size() / 2);
     c.start_anchor.position.resize(n);
@@ -337,6 +339,73 @@ Candidate better_orientation(const Stages& st, const RigidAlignmentResult& init,
   out.alignment.transform = mirror_wins ? init.best_reflected : init.best_unreflected;
   out.alignment.score = mirror_wins ? init.score_reflected : init.score_unreflected;
   return mirror_wins ? std::move(cm) : std::move(cp);
+}
+
+// The coarse copy of the source and everything its stages read in place of the full source's:
+// the descriptor rows (and their mirrored copies) and anchor positions of its vertices, its rest
+// disks; the target fields are shared.
+struct CoarseStages {
+  CoarseSource coarse;
+  std::vector<Eigen::MatrixXd> descriptor_levels;
+  MapDomain domain;
+  Levels levels;
+  SurfaceMapOptions options;
+  SourceDisk plain, mirrored;
+  Stages stages;
+
+  CoarseStages(const Stages& fine, CoarseSource c)
+      : coarse(std::move(c)),
+        descriptor_levels(restricted(fine.source.descriptor_levels)),
+        domain{coarse.mesh, coarse.uv, descriptor_levels},
+        levels(restricted_levels(fine.levels)),
+        options(restricted_options(fine.options)),
+        plain(make_source_disk(coarse.mesh, coarse.uv, false)),
+        mirrored(make_source_disk(coarse.mesh, coarse.uv, true)),
+        stages{domain, levels, options, fine.sigma, fine.L, fine.R, fine.level_share} {}
+
+ private:
+  std::vector<Eigen::MatrixXd> restricted(const std::vector<Eigen::MatrixXd>& rows) const {
+    std::vector<Eigen::MatrixXd> out;
+    for (const Eigen::MatrixXd& m : rows) out.push_back(coarse.restrict_rows(m));
+    return out;
+  }
+  Levels restricted_levels(const Levels& fine) const {
+    Levels l;
+    l.fields = fine.fields;
+    l.reflected = restricted(fine.reflected);
+    l.match = fine.match;  // the stages read only its score settings
+    return l;
+  }
+  SurfaceMapOptions restricted_options(const SurfaceMapOptions& fine) const {
+    SurfaceMapOptions o = fine;
+    if (!fine.anchor.position.empty()) {
+      o.anchor.position.clear();
+      o.anchor.weight.clear();
+      for (int v : coarse.to_fine) {
+        o.anchor.position.push_back(fine.anchor.position[v]);
+        o.anchor.weight.push_back(fine.anchor.weight[v]);
+      }
+    }
+    return o;
+  }
+};
+
+// Hands a candidate from the coarse stages to the full source: its iterate prolonged, or, if that
+// folds a triangle, its rigid start with the coarse stages to be run again.
+void prolong_candidate(const Stages& fine, const CoarseStages& cs, const SourceDisk& plain, const SourceDisk& mirrored,
+                       Candidate& c, SurfaceMap& out) {
+  const SourceDisk* disk = c.disk->reflected ? &mirrored : &plain;
+  Eigen::VectorXd x = cs.coarse.prolong(c.x);
+  if (count_inverted(disk->triangles, x) > 0) {
+    out.coarse_fallback = true;
+    c = make_candidate(fine, disk, c.start);
+    return;
+  }
+  Candidate f = make_candidate(fine, disk, c.start);  // its start anchor on the full source
+  f.x = std::move(x);
+  f.reports = std::move(c.reports);
+  f.energy_scale = c.energy_scale;
+  c = std::move(f);
 }
 
 // The stages' Newton reports into the map's per-level reports, energy history and totals.
@@ -436,8 +505,34 @@ SurfaceMap compute_surface_map(const MapDomain& source, const MapDomain& target,
   // The mirrored rest disk only where a mirrored candidate runs.
   const SourceDisk mirrored = (compare || init.transform.reflected) ? make_source_disk(source.mesh, source.uv, true)
                                                                     : SourceDisk{};
-  Candidate chosen = compare ? better_orientation(stages, init, plain, mirrored, out)
-                             : make_candidate(stages, init.transform.reflected ? &mirrored : &plain, init.transform);
+  // The first stages on a coarse copy of the source (at least the compared ones, never the last).
+  const int n = source.mesh.num_vertices();
+  int coarse_count = std::min(std::max(options.coarse_stages, compare ? options.compared_levels : 0), L + R - 1);
+  if (options.coarse_stages <= 0 || n < 2 * options.coarse_vertices) coarse_count = 0;
+  std::unique_ptr<CoarseStages> cs;
+  if (coarse_count > 0) {
+    // 0.6: a coarse disk with more vertices than that does not pay for itself.
+    std::optional<CoarseSource> coarse =
+        coarsen_source(source.mesh, source.uv, std::max(options.coarse_vertices, n / 4), 0.6);
+    if (coarse) {
+      cs = std::make_unique<CoarseStages>(stages, std::move(*coarse));
+      out.coarse_vertices = cs->coarse.num_vertices();
+      out.coarse_stages = coarse_count;
+    }
+  }
+  const Stages& first = cs ? cs->stages : stages;
+  const SourceDisk& first_plain = cs ? cs->plain : plain;
+  const SourceDisk& first_mirrored = cs ? cs->mirrored : mirrored;
+  Candidate chosen =
+      compare ? better_orientation(first, init, first_plain, first_mirrored, out)
+              : make_candidate(first, init.transform.reflected ? &first_mirrored : &first_plain, init.transform);
+  if (cs) {
+    while (static_cast<int>(chosen.reports.size()) < coarse_count) {
+      const int l = static_cast<int>(chosen.reports.size());
+      advance(first, chosen, first.level_from(l), first.level_from(l + 1));
+    }
+    prolong_candidate(stages, *cs, plain, mirrored, chosen, out);
+  }
   const SourceDisk& disk = *chosen.disk;
   out.reflected = disk.reflected;
   run_remaining_levels(stages, chosen);

@@ -88,6 +88,14 @@ struct SurfaceMapOptions {
   // candidate's own rigid start (0 = off), with the same decay; keeps the optimization in the
   // start's basin when the start is trusted (up hints, PatchMapOptions::up_start_anchor).
   double start_anchor = 0.0;
+  // Coarse to fine in mesh resolution (docs/design.md §13): the first coarse_stages stages (at
+  // least compared_levels, at most all but the last) run on a copy of the source disk coarsened
+  // to max(coarse_vertices, n / 4) vertices (coarse_source.h), whose result is prolonged to the
+  // full source for the rest; only for sources of at least 2 * coarse_vertices vertices, and if
+  // the prolonged map would fold a triangle those stages run again on the full source.
+  // coarse_stages 0 = off.
+  int coarse_stages = 2;
+  int coarse_vertices = 2500;
   // Progress in [0, 1] on the calling thread; returning false throws MCON_ERROR_CANCELLED.
   std::function<bool(double)> progress;
 };
@@ -127,6 +135,9 @@ struct SurfaceMap {
   std::vector<int> energy_history_level;          // stage (index into levels) of each history entry
   double alignment_seconds = 0;                   // wall time of the rigid initialization
   double optimization_seconds = 0;                // wall time of the non-rigid optimization
+  int coarse_vertices = 0;                        // vertices of the coarse source (0: not used)
+  int coarse_stages = 0;                          // stages run on it
+  bool coarse_fallback = false;                   // its prolonged map folded: rerun on the full source
 };
 
 // Throws mcon::Error: INVALID_ARGUMENT (sizes, dimensions, no levels, inverted uv triangles, a

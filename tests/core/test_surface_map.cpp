@@ -412,3 +412,36 @@ TEST(SurfaceMap, ReusedFactorizationsGiveTheSameMapWithFewerFactorizations) {
   bad.newton.inexact_tolerance = 1.5;
   EXPECT_EQ(status_of([&] { run(pr, bad); }), MCON_ERROR_INVALID_ARGUMENT);
 }
+
+// Coarse to fine in mesh resolution: a 1,261-vertex source with coarse_vertices 300 runs its first
+// two stages on a coarse copy; the map is as good as the full-resolution one, flip-free, and
+// bit-identical on any thread count. Below 2 * coarse_vertices the full source is used.
+TEST(SurfaceMap, CoarseSourceStagesKeepTheQualityOfTheFullResolutionMap) {
+  synthetic::GroundTruth truth = warped_partial_overlap();
+  const synthetic::Problem pr = synthetic::make_problem(20, 11, truth, 2, {0.2, 0.1, 0.0});
+  SurfaceMapOptions full, coarse;
+  full.coarse_stages = 0;
+  coarse.coarse_vertices = 300;
+  const SurfaceMap f = run(pr, full);
+  SurfaceMap c;
+  tbb::task_arena(1).execute([&] { c = run(pr, coarse); });
+  EXPECT_EQ(f.coarse_vertices, 0);
+  EXPECT_EQ(c.coarse_stages, 2);
+  EXPECT_GE(c.coarse_vertices, 300);
+  EXPECT_LE(c.coarse_vertices, 0.6 * pr.source.num_vertices());
+  EXPECT_FALSE(c.coarse_fallback);
+  EXPECT_EQ(inverted(pr, c), 0);
+  const double ef = synthetic::mean_error(pr, f.phi), ec = synthetic::mean_error(pr, c.phi);
+  // Measured 0.00980 against 0.00979 at full resolution (315 coarse vertices).
+  EXPECT_LT(ec, 0.025);
+  EXPECT_NEAR(ec, ef, 0.003) << "coarse " << ec << " full " << ef;
+  EXPECT_NEAR(c.overlap_ratio, f.overlap_ratio, 0.01);
+  expect_consistent_directions(pr, c);
+  SurfaceMap c2;
+  tbb::task_arena(2).execute([&] { c2 = run(pr, coarse); });
+  EXPECT_EQ(c2.energy_history, c.energy_history);
+  for (std::size_t v = 0; v < c.phi.size(); ++v) ASSERT_EQ(c2.phi[v], c.phi[v]) << v;
+  SurfaceMapOptions small = coarse;
+  small.coarse_vertices = 700;  // 1,261 < 2 * 700
+  EXPECT_EQ(run(pr, small).coarse_vertices, 0);
+}

@@ -4,6 +4,7 @@
 // numbering of the original vertices, so the bench centers stay valid.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <map>
@@ -26,20 +27,26 @@ namespace {
 
 const char* kUsage =
     "usage: macrocon-eval bench --shared DIR [--runs N] [--threads T] [--seed S] [--large] [--cases a,b]\n"
-    "                            [--no-plain-newton] [--json]\n"
+    "                            [--no-plain-newton] [--full-resolution] [--json]\n"
     "Times the re-embedding map (map_patches: descriptors, rigid initialization, optimization) and heat\n"
     "geodesics on MakeHuman patches between two random people: hand and face (about 1,700 and 2,800\n"
     "vertices) on the body, and the same classes on the body subdivided once (about 6,700 and 11,000);\n"
     "--large adds the face on the body subdivided twice (about 46,000). Each map runs with the default\n"
     "inexact Newton (factorizations reused) and, side by side, with plain Newton (one factorization per\n"
     "iteration; --no-plain-newton skips it). --cases restricts to the named cases (hand_r, face,\n"
-    "hand_r_subdivided, face_subdivided, face_subdivided_twice). Medians over --runs runs (default 3) in a --threads arena (default 2). --json prints\n"
+    "hand_r_subdivided, face_subdivided, face_subdivided_twice). Sources of 5,000 vertices and more run their\n"
+    "first stages on a coarsened copy; --full-resolution also maps them without it, side by side. Medians\n"
+    "over --runs runs (default 3) in a --threads arena (default 2). --json prints\n"
     "{\"map\": [{\"case\", \"source_vertices\", \"target_vertices\", \"seconds_median\", \"init_seconds_median\",\n"
     "\"optimization_seconds_median\", \"cpu_seconds_median\", \"iterations\", \"factorizations\",\n"
     "\"inner_iterations\" (conjugate gradients), \"stop_reason\", \"orientation_compared\", \"level_iterations\"\n"
-    "(per coarse-to-fine level), \"flips\", \"peak_rss_mib\" (the case's peak resident memory; \"peak_rss_scope\"\n"
+    "(per coarse-to-fine level), \"flips\", \"chordal_eps100\" (mean distance from each source vertex's image to\n"
+    "the target vertex of the same host vertex, over sqrt(target area), x 100), \"coarse_vertices\",\n"
+    "\"coarse_stages\", \"coarse_fallback\", \"peak_rss_mib\" (the case's peak resident memory; \"peak_rss_scope\"\n"
     "\"case\", or \"process\" where the kernel cannot reset the peak), \"plain_newton_seconds_median\",\n"
-    "\"plain_newton_iterations\", \"plain_newton_factorizations\", \"speedup_vs_plain_newton\"}, ...],\n"
+    "\"plain_newton_iterations\", \"plain_newton_factorizations\", \"speedup_vs_plain_newton\",\n"
+    "\"full_resolution_seconds_median\", \"full_resolution_iterations\", \"full_resolution_chordal_eps100\",\n"
+    "\"full_resolution_flips\", \"speedup_vs_full_resolution\"}, ...],\n"
     "\"heat_geodesics\": [{\"vertices\", \"factor_seconds_median\", \"solve_seconds_median\"}, ...], \"threads\", \"load_average\"}.\n";
 
 double median(std::vector<double> v) {
@@ -105,32 +112,71 @@ int count_flips(const TriMesh& mesh, const std::vector<Vec2>& phi, bool reflecte
   return n;
 }
 
-// Medians of one map case: the default map, then (unless skipped) plain Newton side by side.
+// The map's error on the shared connectivity of the two people: for each source vertex on a host
+// vertex that the target patch also has, the distance between where the map puts it and that
+// target vertex, over sqrt(target patch area), x 100 (both in the normalized patch frame), and
+// the mean over those vertices. Chordal, not geodesic like eval-mapping's eps: for the
+// high-resolution cases eval-mapping does not reach.
+double chordal_eps100(const Patch& src, const Patch& dst, const SurfaceMap& map) {
+  std::map<int, int> target_of_host;
+  for (std::size_t w = 0; w < dst.host_vertex.size(); ++w)
+    if (dst.host_vertex[w].v0 >= 0 && dst.host_vertex[w].v0 == dst.host_vertex[w].v1)
+      target_of_host[dst.host_vertex[w].v0] = static_cast<int>(w);
+  double area = 0;
+  for (int t = 0; t < dst.mesh.num_triangles(); ++t) area += triangle_area(dst.mesh, t);
+  double sum = 0;
+  int count = 0;
+  for (std::size_t v = 0; v < src.host_vertex.size(); ++v) {
+    const HostPoint& h = src.host_vertex[v];
+    const auto it = target_of_host.find(h.v0);
+    if (h.v0 < 0 || h.v0 != h.v1 || it == target_of_host.end() || !map.source_to_target[v].valid()) continue;
+    const SurfacePoint& p = map.source_to_target[v];
+    const Tri& tri = dst.mesh.triangles[p.triangle];
+    Vec3 x = Vec3::Zero();
+    for (int k = 0; k < 3; ++k) x += p.barycentric[k] * dst.mesh.positions[tri[k]];
+    sum += (x - dst.mesh.positions[it->second]).norm();
+    ++count;
+  }
+  return count > 0 ? 100 * sum / count / std::sqrt(area) : -1;
+}
+
+// Maps src onto dst `runs` times in the arena: wall times into `total` (and the rigid
+// initialization's and the optimization's), the last map into `map`.
+void timed_maps(const Patch& src, const Patch& dst, const PatchMapOptions& options, int runs, tbb::task_arena& arena,
+                std::vector<double>& total, std::vector<double>* init, std::vector<double>* opt,
+                std::vector<double>* cpu, SurfaceMap& map) {
+  for (int r = 0; r < runs; ++r) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::clock_t c0 = std::clock();
+    arena.execute([&] { map = map_patches(src, dst, options); });
+    if (cpu) cpu->push_back(static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC);
+    total.push_back(since(t0));
+    if (init) init->push_back(map.alignment_seconds);
+    if (opt) opt->push_back(map.optimization_seconds);
+  }
+}
+
+// Medians of one map case: the default map, then (unless skipped) plain Newton side by side, and
+// (if asked) the map without the coarse source stages.
 tools::Json map_case_row(const std::string& case_name, const Patch& src, const Patch& dst, int runs,
-                         bool plain_newton, tbb::task_arena& arena, bool quiet) {
+                         bool plain_newton, bool full_resolution, tbb::task_arena& arena, bool quiet) {
   std::vector<double> total, init, opt, cpu;
   SurfaceMap map;
   PatchMapOptions map_options;
   const bool case_peak = reset_peak_rss();
-  for (int r = 0; r < runs; ++r) {
-    const auto t0 = std::chrono::steady_clock::now();
-    const std::clock_t c0 = std::clock();
-    arena.execute([&] { map = map_patches(src, dst, map_options); });
-    cpu.push_back(static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC);
-    total.push_back(since(t0));
-    init.push_back(map.alignment_seconds);
-    opt.push_back(map.optimization_seconds);
-  }
+  timed_maps(src, dst, map_options, runs, arena, total, &init, &opt, &cpu, map);
   const double peak = peak_rss_mib();
   PatchMapOptions plain_options = map_options;
   plain_options.map.newton.reuse_factorization = false;
   std::vector<double> plain_total;
   SurfaceMap plain;
-  for (int r = 0; r < (plain_newton ? runs : 0); ++r) {
-    const auto t0 = std::chrono::steady_clock::now();
-    arena.execute([&] { plain = map_patches(src, dst, plain_options); });
-    plain_total.push_back(since(t0));
-  }
+  if (plain_newton) timed_maps(src, dst, plain_options, runs, arena, plain_total, nullptr, nullptr, nullptr, plain);
+  PatchMapOptions full_options = map_options;
+  full_options.map.coarse_stages = 0;
+  std::vector<double> full_total;
+  SurfaceMap full;
+  if (full_resolution && map.coarse_stages > 0)
+    timed_maps(src, dst, full_options, runs, arena, full_total, nullptr, nullptr, nullptr, full);
   tools::Json row = tools::Json::object();
   row.set("case", case_name);
   row.set("source_vertices", src.mesh.num_vertices());
@@ -148,6 +194,17 @@ tools::Json map_case_row(const std::string& case_name, const Patch& src, const P
   for (const LevelReport& lr : map.levels) level_iterations.push_back(lr.iterations);
   row.set("level_iterations", level_iterations);
   row.set("flips", count_flips(src.mesh, map.phi, map.reflected));
+  row.set("chordal_eps100", chordal_eps100(src, dst, map));
+  row.set("coarse_vertices", map.coarse_vertices);
+  row.set("coarse_stages", map.coarse_stages);
+  row.set("coarse_fallback", map.coarse_fallback);
+  if (!full_total.empty()) {
+    row.set("full_resolution_seconds_median", median(full_total));
+    row.set("full_resolution_iterations", full.iterations);
+    row.set("full_resolution_chordal_eps100", chordal_eps100(src, dst, full));
+    row.set("full_resolution_flips", count_flips(src.mesh, full.phi, full.reflected));
+    row.set("speedup_vs_full_resolution", median(full_total) / median(total));
+  }
   row.set("peak_rss_mib", peak);
   row.set("peak_rss_scope", case_peak ? "case" : "process");
   if (!plain_total.empty()) {
@@ -198,8 +255,9 @@ int run_bench(const Args& args) {
       {"cases", "only these cases (hand_r, face, hand_r_subdivided, face_subdivided, face_subdivided_twice)"},
       {"large", "add the face on the body subdivided twice (about 46,000 vertices)"},
       {"no-plain-newton", "skip the side-by-side plain Newton runs"},
+      {"full-resolution", "also map without the coarse source stages, side by side (where the default uses them)"},
   };
-  const ArgParser p(args, {"shared", "runs", "threads", "seed", "cases"}, {"json", "large", "no-plain-newton"}, kUsage,
+  const ArgParser p(args, {"shared", "runs", "threads", "seed", "cases"}, {"json", "large", "no-plain-newton", "full-resolution"}, kUsage,
                     help);
   const std::string shared = p.required("shared");
   const int runs = static_cast<int>(p.integer("runs", 3));
@@ -235,7 +293,8 @@ int run_bench(const Args& args) {
         return extract_geodesic_disk(host, po);
       };
       const Patch src = cut(a, fine == 0 ? a : fine == 1 ? a2 : a4), dst = cut(b, fine == 0 ? b : fine == 1 ? b2 : b4);
-      map_rows.push_back(map_case_row(case_name, src, dst, runs, !p.flag("no-plain-newton"), arena, p.flag("json")));
+      map_rows.push_back(map_case_row(case_name, src, dst, runs, !p.flag("no-plain-newton"), p.flag("full-resolution"),
+                                      arena, p.flag("json")));
       heat_rows.push_back(heat_row(dst, runs, arena));
     }
   }
