@@ -5,6 +5,8 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <map>
+#include <set>
 #include <queue>
 #include <tuple>
 
@@ -170,6 +172,66 @@ std::optional<CoarseSource> coarsen_source(const TriMesh& mesh, const std::vecto
     c.prolong_weights[v] = at.barycentric;
   }
   return c;
+}
+
+namespace {
+
+bool folded(const Tri& tri, const Eigen::VectorXd& x) {
+  const int i = 2 * tri[0], j = 2 * tri[1], k = 2 * tri[2];
+  return !((x[j] - x[i]) * (x[k + 1] - x[i + 1]) - (x[j + 1] - x[i + 1]) * (x[k] - x[i]) > 0);
+}
+
+}  // namespace
+
+bool untangle_folds(const std::vector<Tri>& triangles, Eigen::VectorXd& x, int sweeps, int rings) {
+  const int n = static_cast<int>(x.size() / 2);
+  std::vector<std::vector<int>> star(static_cast<std::size_t>(n)), neighbours(static_cast<std::size_t>(n));
+  std::map<std::pair<int, int>, int> edge_uses;
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const int a = triangles[t][k], b = triangles[t][(k + 1) % 3];
+      star[a].push_back(static_cast<int>(t));
+      neighbours[a].push_back(b);
+      neighbours[b].push_back(a);
+      ++edge_uses[{std::min(a, b), std::max(a, b)}];
+    }
+  std::vector<bool> border(static_cast<std::size_t>(n), false);
+  for (const auto& [e, uses] : edge_uses)
+    if (uses == 1) border[e.first] = border[e.second] = true;
+  for (auto& list : neighbours) {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+  }
+  std::set<int> moved;
+  for (const Tri& tri : triangles)
+    if (folded(tri, x))
+      for (int v : tri)
+        if (!border[v]) moved.insert(v);
+  auto any_folded = [&] {
+    for (int v : moved)
+      for (int t : star[v])
+        if (folded(triangles[t], x)) return true;
+    return false;
+  };
+  for (int ring = 0; ring <= rings; ++ring) {
+    for (int sweep = 0; sweep < sweeps; ++sweep) {
+      for (int v : moved) {
+        Vec2 mean = Vec2::Zero();
+        for (int w : neighbours[v]) mean += x.segment<2>(2 * w);
+        x.segment<2>(2 * v) = mean / static_cast<double>(neighbours[v].size());
+      }
+      if (!any_folded()) break;
+    }
+    if (!any_folded()) break;
+    std::set<int> grown = moved;
+    for (int v : moved)
+      for (int w : neighbours[v])
+        if (!border[w]) grown.insert(w);
+    moved.swap(grown);
+  }
+  for (const Tri& tri : triangles)
+    if (folded(tri, x)) return false;
+  return true;
 }
 
 Eigen::MatrixXd CoarseSource::restrict_rows(const Eigen::MatrixXd& fine) const {

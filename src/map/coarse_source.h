@@ -39,4 +39,11 @@ struct CoarseSource {
 std::optional<CoarseSource> coarsen_source(const TriMesh& mesh, const std::vector<Vec2>& uv, int target_vertices,
                                            double max_kept_fraction = 1.0, double min_angle_degrees = 15);
 
+// Untangles the few triangles a prolonged iterate x folds (det <= 0 with the triangles' winding):
+// every interior vertex of a folded triangle moves to the mean of its neighbours (Gauss-Seidel
+// sweeps, a local Tutte embedding inside an unfolded ring); if folds remain after `sweeps` sweeps
+// the moved set grows by one ring, up to `rings` times. Returns whether no triangle is folded
+// (x may have moved either way). Deterministic.
+bool untangle_folds(const std::vector<Tri>& triangles, Eigen::VectorXd& x, int sweeps = 20, int rings = 3);
+
 }  // namespace mcon

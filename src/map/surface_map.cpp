@@ -396,7 +396,9 @@ void prolong_candidate(const Stages& fine, const CoarseStages& cs, const SourceD
                        Candidate& c, SurfaceMap& out) {
   const SourceDisk* disk = c.disk->reflected ? &mirrored : &plain;
   Eigen::VectorXd x = cs.coarse.prolong(c.x);
-  if (count_inverted(disk->triangles, x) > 0) {
+  // A few fine triangles straddling coarse ones the map bends across may fold: untangle them.
+  out.coarse_folds = count_inverted(disk->triangles, x);
+  if (out.coarse_folds > 0 && !untangle_folds(disk->triangles, x)) {
     out.coarse_fallback = true;
     c = make_candidate(fine, disk, c.start);
     return;

@@ -113,3 +113,29 @@ TEST(CoarseSource, DeterministicAndNothingWhenTooFewCollapses) {
   std::vector<Vec2> short_uv(d.uv.begin(), d.uv.end() - 1);
   EXPECT_EQ(status_of([&] { coarsen_source(d.mesh, short_uv, 600); }), MCON_ERROR_INVALID_ARGUMENT);
 }
+
+TEST(CoarseSource, UntangleFoldsMendsALocalFoldAndReportsWhatItCannot) {
+  const Disk d;
+  Eigen::VectorXd x(2 * d.mesh.num_vertices());
+  for (int v = 0; v < d.mesh.num_vertices(); ++v) x.segment<2>(2 * v) = 0.9 * d.uv[v];
+  Eigen::VectorXd ok = x;
+  EXPECT_TRUE(untangle_folds(d.mesh.triangles, ok));
+  EXPECT_EQ(ok, x);  // nothing folded, nothing moved
+  // Push vertex 0 (the center) across its ring: its whole star folds or flips.
+  x.segment<2>(0) = Vec2(0.2, 0.1);
+  int folded_before = 0;
+  for (const Tri& t : d.mesh.triangles) {
+    const Vec2 a = x.segment<2>(2 * t[1]) - x.segment<2>(2 * t[0]), b = x.segment<2>(2 * t[2]) - x.segment<2>(2 * t[0]);
+    folded_before += !(a.x() * b.y() - a.y() * b.x() > 0);
+  }
+  ASSERT_GT(folded_before, 0);
+  EXPECT_TRUE(untangle_folds(d.mesh.triangles, x));
+  for (const Tri& t : d.mesh.triangles) {
+    const Vec2 a = x.segment<2>(2 * t[1]) - x.segment<2>(2 * t[0]), b = x.segment<2>(2 * t[2]) - x.segment<2>(2 * t[0]);
+    ASSERT_GT(a.x() * b.y() - a.y() * b.x(), 0);
+  }
+  // Everything on one line: no interior move can open it.
+  Eigen::VectorXd flat = Eigen::VectorXd::Zero(2 * d.mesh.num_vertices());
+  for (int v = 0; v < d.mesh.num_vertices(); ++v) flat[2 * v] = d.uv[v].x();
+  EXPECT_FALSE(untangle_folds(d.mesh.triangles, flat));
+}

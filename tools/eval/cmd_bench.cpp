@@ -42,7 +42,7 @@ const char* kUsage =
     "\"inner_iterations\" (conjugate gradients), \"stop_reason\", \"orientation_compared\", \"level_iterations\"\n"
     "(per coarse-to-fine level), \"flips\", \"chordal_eps100\" (mean distance from each source vertex's image to\n"
     "the target vertex of the same host vertex, over sqrt(target area), x 100), \"coarse_vertices\",\n"
-    "\"coarse_stages\", \"coarse_fallback\", \"peak_rss_mib\" (the case's peak resident memory; \"peak_rss_scope\"\n"
+    "\"coarse_stages\", \"coarse_folds\" (untangled), \"coarse_fallback\", \"peak_rss_mib\" (the case's peak resident memory; \"peak_rss_scope\"\n"
     "\"case\", or \"process\" where the kernel cannot reset the peak), \"plain_newton_seconds_median\",\n"
     "\"plain_newton_iterations\", \"plain_newton_factorizations\", \"speedup_vs_plain_newton\",\n"
     "\"full_resolution_seconds_median\", \"full_resolution_iterations\", \"full_resolution_chordal_eps100\",\n"
@@ -197,6 +197,7 @@ tools::Json map_case_row(const std::string& case_name, const Patch& src, const P
   row.set("chordal_eps100", chordal_eps100(src, dst, map));
   row.set("coarse_vertices", map.coarse_vertices);
   row.set("coarse_stages", map.coarse_stages);
+  row.set("coarse_folds", map.coarse_folds);
   row.set("coarse_fallback", map.coarse_fallback);
   if (!full_total.empty()) {
     row.set("full_resolution_seconds_median", median(full_total));
