@@ -85,6 +85,9 @@ namespace Macrocon
         public double Level0EnergyUnreflected, Level0EnergyReflected;
         /// <summary>1 if the world-frame start decided the orientation (use_world_frame), 0 if the descriptors did.</summary>
         public uint FrameDecided;
+        /// <summary>Vertices of the coarse source the first CoarseStages stages ran on (0: not used), the folds of its
+        /// prolonged map that were untangled, and 1 if they could not be (those stages then ran again at full resolution).</summary>
+        public uint CoarseVertices, CoarseStages, CoarseFolds, CoarseFallback;
     }
 
     /// <summary>mcon_cut_mesh_info (C layout): sizes of a cut mesh and what the cut changed.</summary>
@@ -402,6 +405,7 @@ namespace Macrocon
             public uint use_up_hints;
             public double source_up_x, source_up_y, source_up_z;
             public double target_up_x, target_up_y, target_up_z;
+            public uint coarse_stages, coarse_vertices;
         }
 
         [StructLayout(LayoutKind.Sequential)]

@@ -40,6 +40,10 @@ namespace Macrocon
         /// <summary>Up directions of the source's and the target's hosts (3 numbers each, own coordinates; both or
         /// neither): a prior of the rigid start, so the map is never upside down.</summary>
         public double[] SourceUp, TargetUp;
+        /// <summary>Coarse to fine in mesh resolution: the first CoarseStages stages (SDK default 2, 0 = off) run on a
+        /// copy of the source coarsened to max(CoarseVertices, n / 4) vertices (default 1000) when the source has at
+        /// least 2 * CoarseVertices (Info.CoarseVertices ...); null keeps the SDK default.</summary>
+        public uint? CoarseStages, CoarseVertices;
     }
 
     /// <summary>Polylines re-traced on a target patch (every segment inside one target triangle).</summary>
@@ -119,6 +123,8 @@ namespace Macrocon
                 o.target_up_x = settings.TargetUp[0]; o.target_up_y = settings.TargetUp[1]; o.target_up_z = settings.TargetUp[2];
             }
             if (settings.RefineSigmaFactor.HasValue) o.refine_sigma_factor = settings.RefineSigmaFactor.Value;
+            if (settings.CoarseStages.HasValue) o.coarse_stages = settings.CoarseStages.Value;
+            if (settings.CoarseVertices.HasValue) o.coarse_vertices = settings.CoarseVertices.Value;
             if ((settings.SourceGuidance == null) != (settings.TargetGuidance == null))
                 throw new ArgumentException("SourceGuidance and TargetGuidance must be given together");
             if (settings.SourceGuidance != null)

@@ -745,6 +745,12 @@ typedef struct mcon_map_options {
   uint32_t use_up_hints;
   double source_up[3];
   double target_up[3];
+  /** Coarse to fine in mesh resolution (docs/api.md): the first coarse_stages optimization stages
+   * run on a copy of the source coarsened to max(coarse_vertices, n / 4) vertices when the source
+   * has n >= 2 * coarse_vertices; default 2 and 1000, coarse_stages in [0, 8] (0 = off),
+   * coarse_vertices >= 100. */
+  uint32_t coarse_stages;
+  uint32_t coarse_vertices;
 } mcon_map_options;
 
 MCON_API mcon_status mcon_map_options_init_sized(mcon_map_options* options, size_t struct_size);
@@ -802,6 +808,13 @@ typedef struct mcon_map_info {
   /** 1 if the world-frame start decided the orientation and the rigid start (use_world_frame), 0
    * if the descriptors did. */
   uint32_t frame_decided;
+  /** Vertices of the coarse source the first coarse_stages stages ran on (0: not used; see
+   * mcon_map_options.coarse_stages); triangles its prolonged map folded and the SDK untangled;
+   * 1 if they could not be untangled and those stages ran again on the full source. */
+  uint32_t coarse_vertices;
+  uint32_t coarse_stages;
+  uint32_t coarse_folds;
+  uint32_t coarse_fallback;
 } mcon_map_info;
 
 MCON_API mcon_status mcon_map_info_init_sized(mcon_map_info* info, size_t struct_size);

@@ -47,6 +47,8 @@ mcon_map_options default_map_options() {
   o.guidance_weight = 1.0;
   o.refine_sigma_factor = 0.5;
   o.world_frame_anchor = PatchMapOptions{}.world_frame_anchor;
+  o.coarse_stages = static_cast<std::uint32_t>(SurfaceMapOptions{}.coarse_stages);
+  o.coarse_vertices = static_cast<std::uint32_t>(SurfaceMapOptions{}.coarse_vertices);
   return o;
 }
 
@@ -141,6 +143,12 @@ mcon_status mcon_map_compute(mcon_patch source, mcon_patch target, const mcon_ma
                          : o.orientation == MCON_MAP_ORIENTATION_REVERSE ? MapOrientation::reverse
                                                                          : MapOrientation::automatic;
     po.map.newton.max_iterations = static_cast<int>(o.max_iterations);
+    require(o.coarse_stages <= 8 && o.coarse_vertices >= 100 && o.coarse_vertices <= 100000000u,
+            MCON_ERROR_INVALID_ARGUMENT,
+            "coarse_stages must be in [0, 8] (0 = off) and coarse_vertices in [100, 1e8] (got " +
+                std::to_string(o.coarse_stages) + ", " + std::to_string(o.coarse_vertices) + ")");
+    po.map.coarse_stages = static_cast<int>(o.coarse_stages);
+    po.map.coarse_vertices = static_cast<int>(o.coarse_vertices);
     require(o.refine_sigma_factor >= 0 && o.refine_sigma_factor <= 1, MCON_ERROR_INVALID_ARGUMENT,
             "refine_sigma_factor must be 0 (no refinement) or in (0, 1] (got " + std::to_string(o.refine_sigma_factor) +
                 ")");
@@ -239,6 +247,10 @@ mcon_status mcon_map_get_info(mcon_map map, mcon_map_info* info) {
     v.level0_energy_unreflected = m.level0_energy_unreflected;
     v.level0_energy_reflected = m.level0_energy_reflected;
     v.frame_decided = m.frame_decided ? 1 : 0;
+    v.coarse_vertices = static_cast<std::uint32_t>(m.coarse_vertices);
+    v.coarse_stages = static_cast<std::uint32_t>(m.coarse_stages);
+    v.coarse_folds = static_cast<std::uint32_t>(m.coarse_folds);
+    v.coarse_fallback = m.coarse_fallback ? 1 : 0;
     write_info(info, kMapInfoMinSize, "mcon_map_info", v);
   });
 }

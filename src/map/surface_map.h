@@ -88,16 +88,16 @@ struct SurfaceMapOptions {
   // candidate's own rigid start (0 = off), with the same decay; keeps the optimization in the
   // start's basin when the start is trusted (up hints, PatchMapOptions::up_start_anchor).
   double start_anchor = 0.0;
-  // Coarse to fine in mesh resolution (docs/design.md §13): the first coarse_stages stages (at
-  // least compared_levels, at most all but the last) run on a copy of the source disk coarsened
-  // to max(coarse_vertices, n / 4) vertices (coarse_source.h), whose result is prolonged to the
+  // Coarse to fine in mesh resolution: the first coarse_stages stages (at least compared_levels,
+  // at most all but the last) run on a copy of the source disk coarsened to
+  // max(coarse_vertices, n / 4) vertices (coarse_source.h), whose result is prolonged to the
   // full source for the rest; only for sources of at least 2 * coarse_vertices vertices. The few
   // triangles a prolonged map folds are untangled (untangle_folds); if that fails, those stages
-  // run again on the full source. coarse_stages 0 = off. Measured (bench, 11.5k-vertex face, seeds
-  // 1-5): 1.4-1.6x faster, chordal eps within -0.005..+0.000 of the full-resolution map; 3 coarse
-  // stages were faster still but folded more than could be untangled on 2 of 4 seeds.
+  // run again on the full source. coarse_stages 0 = off. Measured in docs/design.md §13 (2 stages:
+  // 1.4-1.6x at 11.5k vertices at the same accuracy; 3 folded beyond repair on 2 of 4 seeds;
+  // coarse_vertices 700 cost the face class 0.02 eps x 100 in eval-mapping, 1000 nothing).
   int coarse_stages = 2;
-  int coarse_vertices = 2500;
+  int coarse_vertices = 1000;
   // Progress in [0, 1] on the calling thread; returning false throws MCON_ERROR_CANCELLED.
   std::function<bool(double)> progress;
 };

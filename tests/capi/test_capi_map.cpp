@@ -1,6 +1,7 @@
 // mcon_map_compute and its queries on two nose patches of the MakeHuman sample body; patches from
 // arrays; thread-count independence; cancellation.
 #include <atomic>
+#include <cstddef>
 #include <set>
 
 #include "map_test_util.h"
@@ -323,4 +324,49 @@ TEST(CapiMap, PatchFromArraysIsADiskAndMapsLikeALibraryEntry) {
   const MapPtr map = compute(entry.get(), n.target.get(), fast_options());
   ASSERT_TRUE(map);
   expect_valid_map(map.get(), entry.get(), n.target.get());
+}
+
+// Coarse to fine in mesh resolution (mcon_map_options.coarse_stages / coarse_vertices): the
+// defaults, what the info reports, the switch to turn it off, the range checks and an older
+// struct without the fields.
+TEST(CapiMap, CoarseStagesAreReportedCanBeTurnedOffAndAreChecked) {
+  Noses n = noses();
+  mcon_map_options o = fast_options();
+  EXPECT_EQ(o.coarse_stages, 2u);
+  EXPECT_EQ(o.coarse_vertices, 1000u);
+  mcon_patch_info pi;
+  mcon_patch_info_init(&pi);
+  ASSERT_EQ(mcon_patch_get_info(n.source.get(), &pi), MCON_OK);
+  ASSERT_GE(pi.vertex_count, 400u);  // the test needs a source of >= 2 * 200 vertices
+  auto info_of = [&](const mcon_map_options& options) {
+    const MapPtr m = compute(n.source.get(), n.target.get(), options);
+    mcon_map_info info;
+    mcon_map_info_init(&info);
+    EXPECT_EQ(mcon_map_get_info(m.get(), &info), MCON_OK);
+    EXPECT_EQ(info.flipped_triangles, 0u);
+    return info;
+  };
+  o.coarse_vertices = 200;
+  const mcon_map_info coarse = info_of(o);
+  EXPECT_EQ(coarse.coarse_stages, 2u);
+  EXPECT_GE(coarse.coarse_vertices, 200u);
+  EXPECT_LE(coarse.coarse_vertices, 0.6 * static_cast<double>(pi.vertex_count));
+  EXPECT_EQ(coarse.coarse_fallback, 0u);
+  o.coarse_stages = 0;
+  const mcon_map_info full = info_of(o);
+  EXPECT_EQ(full.coarse_vertices, 0u);
+  EXPECT_EQ(full.coarse_stages, 0u);
+  mcon_map m = nullptr;
+  o.coarse_stages = 9;
+  EXPECT_EQ(mcon_map_compute(n.source.get(), n.target.get(), &o, &m), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(last_message().find("coarse_stages must be in [0, 8]"), std::string::npos) << last_message();
+  o.coarse_stages = 2;
+  o.coarse_vertices = 99;
+  EXPECT_EQ(mcon_map_compute(n.source.get(), n.target.get(), &o, &m), MCON_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(m, nullptr);
+  mcon_map_options older = fast_options();
+  older.struct_size = static_cast<uint32_t>(offsetof(mcon_map_options, coarse_stages));
+  older.coarse_stages = 77;  // beyond the older struct: not read
+  const MapPtr old_map = compute(n.source.get(), n.target.get(), older);
+  EXPECT_TRUE(old_map);
 }

@@ -848,6 +848,17 @@ static class Tests
             settings.RefineSigmaFactor = 1.5;
             Check(Expect<MacroconException>(() => Map.Compute(source, target, settings)).Status == Status.InvalidArgument,
                   "bad refinement factor");
+            // Coarse to fine in mesh resolution: reported in the info, off with CoarseStages 0, range-checked.
+            settings.RefineSigmaFactor = null;
+            settings.CoarseVertices = (uint)Math.Max(100, source.VertexCount / 3);
+            using (var map = Map.Compute(source, target, settings))
+                Check(source.VertexCount < 300 || (map.Info.CoarseStages == 2 && map.Info.CoarseVertices >= settings.CoarseVertices &&
+                      map.Info.CoarseFallback == 0), "coarse stages on a coarse copy: " + map.Info.CoarseVertices);
+            settings.CoarseStages = 0;
+            using (var map = Map.Compute(source, target, settings)) Check(map.Info.CoarseVertices == 0, "coarse stages off");
+            settings.CoarseStages = 9;
+            Check(Expect<MacroconException>(() => Map.Compute(source, target, settings)).Status == Status.InvalidArgument,
+                  "bad coarse stages");
         }
     }
 

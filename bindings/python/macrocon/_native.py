@@ -283,6 +283,8 @@ class MapOptions(Struct):
         ("use_up_hints", ctypes.c_uint32),
         ("source_up", ctypes.c_double * 3),
         ("target_up", ctypes.c_double * 3),
+        ("coarse_stages", ctypes.c_uint32),
+        ("coarse_vertices", ctypes.c_uint32),
     ]
 
 
@@ -314,6 +316,10 @@ class MapInfo(Struct):
         ("level0_energy_unreflected", ctypes.c_double),
         ("level0_energy_reflected", ctypes.c_double),
         ("frame_decided", ctypes.c_uint32),
+        ("coarse_vertices", ctypes.c_uint32),
+        ("coarse_stages", ctypes.c_uint32),
+        ("coarse_folds", ctypes.c_uint32),
+        ("coarse_fallback", ctypes.c_uint32),
     ]
 
 

@@ -75,6 +75,13 @@ class MapInfo:
     level0_energy_unreflected: float
     level0_energy_reflected: float
     frame_decided: bool = False  # the world-frame start decided (use_world_frame)
+    # Coarse to fine in mesh resolution (Map.compute's coarse_stages): the coarse source's vertices
+    # (0: not used), the stages run on it, the folds of its prolonged map that were untangled, and
+    # whether they could not be (those stages then ran again on the full source).
+    coarse_vertices: int = 0
+    coarse_stages: int = 0
+    coarse_folds: int = 0
+    coarse_fallback: bool = False
 
 
 class PolylineSet(_Handle):
@@ -297,6 +304,8 @@ class Map(_Handle):
         world_frame_anchor: Optional[float] = None,
         source_up=None,
         target_up=None,
+        coarse_stages: Optional[int] = None,
+        coarse_vertices: Optional[int] = None,
     ) -> "Map":
         """orientation: "automatic" (the descriptors decide; allow_reflection restricts it),
         "preserve" or "reverse" (forced, e.g. a "flip" that recomputes with the orientation
@@ -321,6 +330,10 @@ class Map(_Handle):
         source_up / target_up: up directions (3 finite numbers each, in each host's own
         coordinates; give both or neither) that the rigid start must respect, so the map is never
         upside down; a vector (nearly) normal to its patch at the center is an InvalidArgumentError.
+
+        coarse_stages / coarse_vertices: the first coarse_stages optimization stages (default 2,
+        0 = off) run on a copy of the source coarsened to max(coarse_vertices, n / 4) vertices
+        (default 1000) when the source has at least 2 * coarse_vertices (info.coarse_*).
 
         Options left at None keep mcon_map_options_init's defaults."""
         require_type(source, Patch, "source")
@@ -348,6 +361,10 @@ class Map(_Handle):
             o.use_up_hints = 1
         if refine_sigma_factor is not None:
             o.refine_sigma_factor = float(refine_sigma_factor)
+        if coarse_stages is not None:
+            o.coarse_stages = int(coarse_stages)
+        if coarse_vertices is not None:
+            o.coarse_vertices = int(coarse_vertices)
         if (source_guidance is None) != (target_guidance is None):
             raise ValueError("source_guidance and target_guidance must be given together")
         if source_guidance is not None:
@@ -388,7 +405,8 @@ class Map(_Handle):
                        i.energy_area, i.energy_injectivity, i.iterations, StopReason(i.stop_reason), bool(i.reflected),
                        i.levels, i.flipped_triangles, i.alignment_score, i.alignment_seconds, i.optimization_seconds,
                        i.alignment_score_unreflected, i.alignment_score_reflected, bool(i.orientation_compared),
-                       i.level0_energy_unreflected, i.level0_energy_reflected, bool(i.frame_decided))
+                       i.level0_energy_unreflected, i.level0_energy_reflected, bool(i.frame_decided),
+                       i.coarse_vertices, i.coarse_stages, i.coarse_folds, bool(i.coarse_fallback))
 
     @property
     def energy_terms(self) -> Dict[str, float]:

@@ -47,13 +47,14 @@ def test_every_ctypes_struct_matches_the_header(tmp_path):
 def test_the_appended_map_fields_are_mirrored_last():
     """The fields appended to mcon_map_options / mcon_map_info must be in the mirrors (so the layout
     test above measures them) and stay at the end, where older struct_size values stop."""
-    assert [f for f, _ in _native.MapOptions._fields_][-14:] == [
+    assert [f for f, _ in _native.MapOptions._fields_][-16:] == [
         "orientation", "source_guidance", "source_guidance_stride", "target_guidance", "target_guidance_stride",
         "guidance_dimension", "guidance_weight", "refine_sigma_factor", "use_world_frame", "world_frame_mirror",
-        "world_frame_anchor", "use_up_hints", "source_up", "target_up"]
-    assert [f for f, _ in _native.MapInfo._fields_][-6:] == [
+        "world_frame_anchor", "use_up_hints", "source_up", "target_up", "coarse_stages", "coarse_vertices"]
+    assert [f for f, _ in _native.MapInfo._fields_][-10:] == [
         "alignment_score_unreflected", "alignment_score_reflected", "orientation_compared",
-        "level0_energy_unreflected", "level0_energy_reflected", "frame_decided"]
+        "level0_energy_unreflected", "level0_energy_reflected", "frame_decided", "coarse_vertices", "coarse_stages",
+        "coarse_folds", "coarse_fallback"]
     assert _native.MapOptions in STRUCTS and _native.MapInfo in STRUCTS
 
 

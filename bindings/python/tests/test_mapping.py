@@ -356,6 +356,22 @@ def test_refinement_pass_is_a_stage_and_can_be_switched_off(source, target):
             macrocon.Map.compute(source, target, refine_sigma_factor=bad, **FAST)
 
 
+def test_coarse_stages_are_reported_and_can_be_switched_off(source, target):
+    """coarse_stages / coarse_vertices: a source of >= 2 * coarse_vertices vertices runs its first two
+    stages on a coarse copy (info.coarse_*); coarse_stages=0 keeps the full source; out of range raises."""
+    n = source.vertex_count
+    assert n >= 300
+    cv = max(100, n // 3)
+    with macrocon.Map.compute(source, target, seed=3, coarse_vertices=cv, **FAST) as coarse, \
+            macrocon.Map.compute(source, target, seed=3, coarse_vertices=cv, coarse_stages=0, **FAST) as full:
+        assert coarse.info.coarse_stages == 2 and cv <= coarse.info.coarse_vertices <= 0.6 * n
+        assert not coarse.info.coarse_fallback and coarse.info.flipped_triangles == 0
+        assert full.info.coarse_vertices == 0 and full.info.coarse_stages == 0
+    for bad in ({"coarse_stages": 9}, {"coarse_vertices": 99}):
+        with pytest.raises(macrocon.InvalidArgumentError, match="coarse_stages must be in"):
+            macrocon.Map.compute(source, target, **bad, **FAST)
+
+
 def test_guidance_decides_what_the_geometry_cannot(context):
     """A flat disk onto itself fits any rotation; guidance pairing p with R p makes it that rotation."""
     from conftest import grid
