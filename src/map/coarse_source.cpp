@@ -2,6 +2,7 @@
 #include "map/coarse_source.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -42,6 +43,7 @@ class Collapser {
         alive_(static_cast<std::size_t>(mesh.num_vertices()), true),
         interior_(static_cast<std::size_t>(mesh.num_vertices()), true),
         star_(static_cast<std::size_t>(mesh.num_vertices())),
+        into_(static_cast<std::size_t>(mesh.num_vertices()), -1),
         min_sin_(std::sin(min_angle_degrees * 3.14159265358979323846 / 180)) {
     const MeshTopology topology = build_topology(mesh);
     for (int e = 0; e < topology.num_edges(); ++e)
@@ -64,6 +66,11 @@ class Collapser {
   }
 
   const std::vector<bool>& alive() const { return alive_; }
+  // The surviving vertex a removed one was collapsed onto, through later collapses.
+  int survivor(int v) const {
+    while (!alive_[v]) v = into_[v];
+    return v;
+  }
   std::vector<Tri> triangles() const {
     std::vector<Tri> out;
     for (std::size_t t = 0; t < tris_.size(); ++t)
@@ -114,6 +121,7 @@ class Collapser {
     }
     star_[v].clear();
     alive_[v] = false;
+    into_[v] = u;
     // Only the edges the collapse created are new candidates (the others are queued already).
     for (int w : nv)
       if (w != u && !std::binary_search(nu.begin(), nu.end(), w)) {
@@ -128,9 +136,67 @@ class Collapser {
   std::vector<Tri> tris_;
   std::vector<bool> alive_tri_, alive_, interior_;
   std::vector<std::vector<int>> star_;
+  std::vector<int> into_;  // per removed vertex, the vertex it was collapsed onto
   double min_sin_;
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue_;
 };
+
+// Prolongation: each fine vertex in the coarse triangle around its uv (the rim is kept, so the
+// coarse triangles cover every fine uv). A walk from the star of the vertex it was collapsed onto,
+// across the edge of the most negative barycentric coordinate, finds it in a few steps; the
+// quadtree locator, whose build is slow on slivers, only if a walk fails.
+void locate_fine_vertices(const std::vector<Vec2>& uv, const std::vector<int>& to_coarse, const Collapser& collapser,
+                          CoarseSource& c) {
+  const std::vector<Tri>& tris = c.mesh.triangles;
+  std::vector<std::array<int, 3>> across(tris.size(), {-1, -1, -1});  // neighbour opposite each corner
+  std::map<std::pair<int, int>, std::pair<int, int>> edge_owner;       // directed edge -> (triangle, corner)
+  std::vector<int> some_triangle(c.uv.size(), -1);
+  for (int t = 0; t < static_cast<int>(tris.size()); ++t)
+    for (int k = 0; k < 3; ++k) {
+      some_triangle[tris[t][k]] = t;
+      edge_owner[{tris[t][(k + 1) % 3], tris[t][(k + 2) % 3]}] = {t, k};
+    }
+  for (int t = 0; t < static_cast<int>(tris.size()); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const auto it = edge_owner.find({tris[t][(k + 2) % 3], tris[t][(k + 1) % 3]});
+      if (it != edge_owner.end()) across[t][k] = it->second.first;
+    }
+  std::optional<TriangleLocator2D> locator;
+  c.prolong_corners.resize(uv.size());
+  c.prolong_weights.resize(uv.size());
+  for (std::size_t v = 0; v < uv.size(); ++v) {
+    if (to_coarse[v] >= 0) {
+      c.prolong_corners[v] = {to_coarse[v], to_coarse[v], to_coarse[v]};
+      c.prolong_weights[v] = Vec3(1, 0, 0);
+      continue;
+    }
+    int t = some_triangle[to_coarse[collapser.survivor(static_cast<int>(v))]];
+    Vec3 b = Vec3::Zero();
+    bool found = false;
+    for (int step = 0; step < static_cast<int>(tris.size()) && t >= 0; ++step) {
+      b = barycentric_2d(uv[v], c.uv[tris[t][0]], c.uv[tris[t][1]], c.uv[tris[t][2]]);
+      int worst = 0;
+      for (int k = 1; k < 3; ++k)
+        if (b[k] < b[worst]) worst = k;
+      if (b[worst] >= -1e-12 || across[t][worst] < 0) {  // inside, or just outside the rim (rounding)
+        found = b[worst] >= -1e-9;
+        break;
+      }
+      t = across[t][worst];
+    }
+    if (!found) {
+      if (!locator) locator.emplace(c.uv, tris);
+      PointLocation at = locator->locate(uv[v]);
+      if (at.triangle < 0) at = locator->locate_nearest(uv[v], std::numeric_limits<double>::infinity());
+      require(at.triangle >= 0, MCON_ERROR_NUMERICAL, "coarsen_source: a fine vertex lies outside the coarse disk");
+      t = at.triangle;
+      b = at.barycentric;
+    }
+    b = b.cwiseMax(0.0);
+    c.prolong_corners[v] = tris[t];
+    c.prolong_weights[v] = b / b.sum();
+  }
+}
 
 }  // namespace
 
@@ -154,23 +220,7 @@ std::optional<CoarseSource> coarsen_source(const TriMesh& mesh, const std::vecto
     for (int& w : t) w = to_coarse[w];
     c.mesh.triangles.push_back(t);
   }
-  // Prolongation: each fine vertex in the coarse triangle around its uv (the rim is kept, so the
-  // coarse triangles cover every fine uv; the nearest one takes rounding at the rim).
-  const TriangleLocator2D locator(c.uv, c.mesh.triangles);
-  c.prolong_corners.resize(mesh.positions.size());
-  c.prolong_weights.resize(mesh.positions.size());
-  for (int v = 0; v < mesh.num_vertices(); ++v) {
-    if (to_coarse[v] >= 0) {
-      c.prolong_corners[v] = {to_coarse[v], to_coarse[v], to_coarse[v]};
-      c.prolong_weights[v] = Vec3(1, 0, 0);
-      continue;
-    }
-    PointLocation at = locator.locate(uv[v]);
-    if (at.triangle < 0) at = locator.locate_nearest(uv[v], std::numeric_limits<double>::infinity());
-    require(at.triangle >= 0, MCON_ERROR_NUMERICAL, "coarsen_source: a fine vertex lies outside the coarse disk");
-    c.prolong_corners[v] = c.mesh.triangles[at.triangle];
-    c.prolong_weights[v] = at.barycentric;
-  }
+  locate_fine_vertices(uv, to_coarse, collapser, c);
   return c;
 }
 

@@ -390,23 +390,30 @@ struct CoarseStages {
   }
 };
 
-// Hands a candidate from the coarse stages to the full source: its iterate prolonged, or, if that
-// folds a triangle, its rigid start with the coarse stages to be run again.
+// Hands a candidate from the coarse stages to the full source: the iterate after the last coarse
+// stage, prolonged, its few folded triangles untangled; if they cannot be, the iterate after an
+// earlier stage (smoother, so it folds less), the later stages to run again on the full source;
+// if none, its rigid start. snapshots: (stages done, iterate), in order.
 void prolong_candidate(const Stages& fine, const CoarseStages& cs, const SourceDisk& plain, const SourceDisk& mirrored,
-                       Candidate& c, SurfaceMap& out) {
+                       const std::vector<std::pair<int, Eigen::VectorXd>>& snapshots, Candidate& c, SurfaceMap& out) {
   const SourceDisk* disk = c.disk->reflected ? &mirrored : &plain;
-  Eigen::VectorXd x = cs.coarse.prolong(c.x);
-  // A few fine triangles straddling coarse ones the map bends across may fold: untangle them.
-  out.coarse_folds = count_inverted(disk->triangles, x);
-  if (out.coarse_folds > 0 && !untangle_folds(disk->triangles, x)) {
-    out.coarse_fallback = true;
-    c = make_candidate(fine, disk, c.start);
-    return;
-  }
   Candidate f = make_candidate(fine, disk, c.start);  // its start anchor on the full source
-  f.x = std::move(x);
-  f.reports = std::move(c.reports);
   f.energy_scale = c.energy_scale;
+  out.coarse_stages = 0;
+  for (auto it = snapshots.rbegin(); it != snapshots.rend(); ++it) {
+    Eigen::VectorXd x = cs.coarse.prolong(it->second);
+    const int folds = count_inverted(disk->triangles, x);
+    if (it == snapshots.rbegin()) out.coarse_folds = folds;
+    if (folds > 0 && !untangle_folds(disk->triangles, x)) {
+      out.coarse_fallback = true;
+      continue;
+    }
+    f.x = std::move(x);
+    f.reports.assign(c.reports.begin(), c.reports.begin() + it->first);
+    out.coarse_stages = it->first;
+    break;
+  }
+  if (out.coarse_stages == 0) f.energy_scale = 0;  // the full source starts over
   c = std::move(f);
 }
 
@@ -519,7 +526,6 @@ SurfaceMap compute_surface_map(const MapDomain& source, const MapDomain& target,
     if (coarse) {
       cs = std::make_unique<CoarseStages>(stages, std::move(*coarse));
       out.coarse_vertices = cs->coarse.num_vertices();
-      out.coarse_stages = coarse_count;
     }
   }
   const Stages& first = cs ? cs->stages : stages;
@@ -529,11 +535,14 @@ SurfaceMap compute_surface_map(const MapDomain& source, const MapDomain& target,
       compare ? better_orientation(first, init, first_plain, first_mirrored, out)
               : make_candidate(first, init.transform.reflected ? &first_mirrored : &first_plain, init.transform);
   if (cs) {
+    std::vector<std::pair<int, Eigen::VectorXd>> snapshots;
+    if (!chosen.reports.empty()) snapshots.emplace_back(static_cast<int>(chosen.reports.size()), chosen.x);
     while (static_cast<int>(chosen.reports.size()) < coarse_count) {
       const int l = static_cast<int>(chosen.reports.size());
       advance(first, chosen, first.level_from(l), first.level_from(l + 1));
+      snapshots.emplace_back(l + 1, chosen.x);
     }
-    prolong_candidate(stages, *cs, plain, mirrored, chosen, out);
+    prolong_candidate(stages, *cs, plain, mirrored, snapshots, chosen, out);
   }
   const SourceDisk& disk = *chosen.disk;
   out.reflected = disk.reflected;

@@ -92,8 +92,9 @@ struct SurfaceMapOptions {
   // at most all but the last) run on a copy of the source disk coarsened to
   // max(coarse_vertices, n / 4) vertices (coarse_source.h), whose result is prolonged to the
   // full source for the rest; only for sources of at least 2 * coarse_vertices vertices. The few
-  // triangles a prolonged map folds are untangled (untangle_folds); if that fails, those stages
-  // run again on the full source. coarse_stages 0 = off. Measured in docs/design.md §13 (2 stages:
+  // triangles a prolonged map folds are untangled (untangle_folds); if that fails, an earlier
+  // coarse stage's map is prolonged and the later stages run again on the full source (all of
+  // them if none untangles). coarse_stages 0 = off. Measured in docs/design.md §13 (2 stages:
   // 1.4-1.6x at 11.5k vertices at the same accuracy; 3 folded beyond repair on 2 of 4 seeds;
   // coarse_vertices 700 cost the face class 0.02 eps x 100 in eval-mapping, 1000 nothing).
   int coarse_stages = 2;
@@ -138,9 +139,10 @@ struct SurfaceMap {
   double alignment_seconds = 0;                   // wall time of the rigid initialization
   double optimization_seconds = 0;                // wall time of the non-rigid optimization
   int coarse_vertices = 0;                        // vertices of the coarse source (0: not used)
-  int coarse_stages = 0;                          // stages run on it
-  int coarse_folds = 0;                           // triangles its prolonged map folded (then untangled)
-  bool coarse_fallback = false;                   // they could not be untangled: rerun on the full source
+  int coarse_stages = 0;                          // stages whose coarse result was kept
+  int coarse_folds = 0;                           // triangles the last coarse stage's prolonged map folded
+  bool coarse_fallback = false;                   // they could not be untangled: an earlier stage's map
+                                                  // (or the rigid start) went on at full resolution
 };
 
 // Throws mcon::Error: INVALID_ARGUMENT (sizes, dimensions, no levels, inverted uv triangles, a

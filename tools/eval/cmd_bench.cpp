@@ -175,7 +175,7 @@ tools::Json map_case_row(const std::string& case_name, const Patch& src, const P
   full_options.map.coarse_stages = 0;
   std::vector<double> full_total;
   SurfaceMap full;
-  if (full_resolution && map.coarse_stages > 0)
+  if (full_resolution && map.coarse_vertices > 0)
     timed_maps(src, dst, full_options, runs, arena, full_total, nullptr, nullptr, nullptr, full);
   tools::Json row = tools::Json::object();
   row.set("case", case_name);
