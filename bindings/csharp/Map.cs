@@ -40,7 +40,7 @@ namespace Macrocon
         /// <summary>Up directions of the source's and the target's hosts (3 numbers each, own coordinates; both or
         /// neither): a prior of the rigid start, so the map is never upside down.</summary>
         public double[] SourceUp, TargetUp;
-        /// <summary>Coarse to fine in mesh resolution: the first CoarseStages stages (SDK default 2, 0 = off) run on a
+        /// <summary>Coarse to fine in mesh resolution: the first CoarseStages stages (SDK default 3, 0 = off) run on a
         /// copy of the source coarsened to max(CoarseVertices, n / 4) vertices (default 1000) when the source has at
         /// least 2 * CoarseVertices (Info.CoarseVertices ...); null keeps the SDK default.</summary>
         public uint? CoarseStages, CoarseVertices;

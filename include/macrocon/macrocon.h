@@ -747,8 +747,8 @@ typedef struct mcon_map_options {
   double target_up[3];
   /** Coarse to fine in mesh resolution (docs/api.md): the first coarse_stages optimization stages
    * run on a copy of the source coarsened to max(coarse_vertices, n / 4) vertices when the source
-   * has n >= 2 * coarse_vertices; default 2 and 1000, coarse_stages in [0, 8] (0 = off),
-   * coarse_vertices >= 100. */
+   * has n >= 2 * coarse_vertices (the last stage always runs on the full source); default 3 and
+   * 1000, coarse_stages in [0, 8] (0 = off), coarse_vertices >= 100. */
   uint32_t coarse_stages;
   uint32_t coarse_vertices;
 } mcon_map_options;
@@ -808,9 +808,9 @@ typedef struct mcon_map_info {
   /** 1 if the world-frame start decided the orientation and the rigid start (use_world_frame), 0
    * if the descriptors did. */
   uint32_t frame_decided;
-  /** Vertices of the coarse source the first coarse_stages stages ran on (0: not used; see
-   * mcon_map_options.coarse_stages); triangles its prolonged map folded and the SDK untangled;
-   * 1 if they could not be untangled and those stages ran again on the full source. */
+  /** Vertices of the coarse source (0: not used; see mcon_map_options.coarse_stages), the stages
+   * whose coarse result was kept, the triangles the last coarse stage's prolonged map folded, and
+   * 1 if those could not be untangled (an earlier stage's map, or the rigid start, went on). */
   uint32_t coarse_vertices;
   uint32_t coarse_stages;
   uint32_t coarse_folds;

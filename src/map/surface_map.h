@@ -94,10 +94,10 @@ struct SurfaceMapOptions {
   // full source for the rest; only for sources of at least 2 * coarse_vertices vertices. The few
   // triangles a prolonged map folds are untangled (untangle_folds); if that fails, an earlier
   // coarse stage's map is prolonged and the later stages run again on the full source (all of
-  // them if none untangles). coarse_stages 0 = off. Measured in docs/design.md §13 (2 stages:
-  // 1.4-1.6x at 11.5k vertices at the same accuracy; 3 folded beyond repair on 2 of 4 seeds;
-  // coarse_vertices 700 cost the face class 0.02 eps x 100 in eval-mapping, 1000 nothing).
-  int coarse_stages = 2;
+  // them if none untangles). coarse_stages 0 = off. Measured in docs/design.md §13 (3 stages,
+  // all but the refinement pass: 1.6-1.9x at 11.5k vertices at the same accuracy; coarse_vertices
+  // 700 cost the face class 0.02 eps x 100 in eval-mapping, 1000 nothing).
+  int coarse_stages = 3;
   int coarse_vertices = 1000;
   // Progress in [0, 1] on the calling thread; returning false throws MCON_ERROR_CANCELLED.
   std::function<bool(double)> progress;

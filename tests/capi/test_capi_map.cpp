@@ -332,7 +332,7 @@ TEST(CapiMap, PatchFromArraysIsADiskAndMapsLikeALibraryEntry) {
 TEST(CapiMap, CoarseStagesAreReportedCanBeTurnedOffAndAreChecked) {
   Noses n = noses();
   mcon_map_options o = fast_options();
-  EXPECT_EQ(o.coarse_stages, 2u);
+  EXPECT_EQ(o.coarse_stages, 3u);
   EXPECT_EQ(o.coarse_vertices, 1000u);
   mcon_patch_info pi;
   mcon_patch_info_init(&pi);
@@ -348,7 +348,7 @@ TEST(CapiMap, CoarseStagesAreReportedCanBeTurnedOffAndAreChecked) {
   };
   o.coarse_vertices = 200;
   const mcon_map_info coarse = info_of(o);
-  EXPECT_EQ(coarse.coarse_stages, 2u);
+  EXPECT_GE(coarse.coarse_stages, 1u);  // 3, or fewer where a later stage's folds could not be untangled
   EXPECT_GE(coarse.coarse_vertices, 200u);
   EXPECT_LE(coarse.coarse_vertices, 0.6 * static_cast<double>(pi.vertex_count));
   EXPECT_EQ(coarse.coarse_fallback, 0u);

@@ -426,7 +426,7 @@ TEST(SurfaceMap, CoarseSourceStagesKeepTheQualityOfTheFullResolutionMap) {
   SurfaceMap c;
   tbb::task_arena(1).execute([&] { c = run(pr, coarse); });
   EXPECT_EQ(f.coarse_vertices, 0);
-  EXPECT_EQ(c.coarse_stages, 2);
+  EXPECT_EQ(c.coarse_stages, 3);
   EXPECT_GE(c.coarse_vertices, 300);
   EXPECT_LE(c.coarse_vertices, 0.6 * pr.source.num_vertices());
   EXPECT_FALSE(c.coarse_fallback);

@@ -331,7 +331,7 @@ class Map(_Handle):
         coordinates; give both or neither) that the rigid start must respect, so the map is never
         upside down; a vector (nearly) normal to its patch at the center is an InvalidArgumentError.
 
-        coarse_stages / coarse_vertices: the first coarse_stages optimization stages (default 2,
+        coarse_stages / coarse_vertices: the first coarse_stages optimization stages (default 3,
         0 = off) run on a copy of the source coarsened to max(coarse_vertices, n / 4) vertices
         (default 1000) when the source has at least 2 * coarse_vertices (info.coarse_*).
 

@@ -364,7 +364,7 @@ def test_coarse_stages_are_reported_and_can_be_switched_off(source, target):
     cv = max(100, n // 3)
     with macrocon.Map.compute(source, target, seed=3, coarse_vertices=cv, **FAST) as coarse, \
             macrocon.Map.compute(source, target, seed=3, coarse_vertices=cv, coarse_stages=0, **FAST) as full:
-        assert coarse.info.coarse_stages == 2 and cv <= coarse.info.coarse_vertices <= 0.6 * n
+        assert coarse.info.coarse_stages >= 1 and cv <= coarse.info.coarse_vertices <= 0.6 * n
         assert not coarse.info.coarse_fallback and coarse.info.flipped_triangles == 0
         assert full.info.coarse_vertices == 0 and full.info.coarse_stages == 0
     for bad in ({"coarse_stages": 9}, {"coarse_vertices": 99}):
