@@ -6,19 +6,18 @@
 #include <cmath>
 #include <functional>
 #include <limits>
-#include <map>
+#include <optional>
 #include <set>
 #include <queue>
 #include <tuple>
 
 #include "base/error.h"
+#include "map/injective_step.h"
 #include "mesh/mesh_topology.h"
 #include "mesh/point_location_2d.h"
 
 namespace mcon {
 namespace {
-
-double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 // Whether (a, b, c) is counter-clockwise with every angle >= the one whose sine is min_sin
 // (the sine of each angle from the doubled area and its two sides; angles above 90 degrees are
@@ -148,19 +147,12 @@ class Collapser {
 void locate_fine_vertices(const std::vector<Vec2>& uv, const std::vector<int>& to_coarse, const Collapser& collapser,
                           CoarseSource& c) {
   const std::vector<Tri>& tris = c.mesh.triangles;
-  std::vector<std::array<int, 3>> across(tris.size(), {-1, -1, -1});  // neighbour opposite each corner
-  std::map<std::pair<int, int>, std::pair<int, int>> edge_owner;       // directed edge -> (triangle, corner)
-  std::vector<int> some_triangle(c.uv.size(), -1);
-  for (int t = 0; t < static_cast<int>(tris.size()); ++t)
-    for (int k = 0; k < 3; ++k) {
-      some_triangle[tris[t][k]] = t;
-      edge_owner[{tris[t][(k + 1) % 3], tris[t][(k + 2) % 3]}] = {t, k};
-    }
-  for (int t = 0; t < static_cast<int>(tris.size()); ++t)
-    for (int k = 0; k < 3; ++k) {
-      const auto it = edge_owner.find({tris[t][(k + 2) % 3], tris[t][(k + 1) % 3]});
-      if (it != edge_owner.end()) across[t][k] = it->second.first;
-    }
+  const MeshTopology topology = build_topology(c.mesh);
+  // The triangle across the edge opposite corner k of t (-1 on the rim).
+  auto across = [&](int t, int k) {
+    const std::array<int, 2>& pair = topology.edge_triangles[topology.triangle_edges[t][k]];
+    return pair[0] == t ? pair[1] : pair[0];
+  };
   std::optional<TriangleLocator2D> locator;
   c.prolong_corners.resize(uv.size());
   c.prolong_weights.resize(uv.size());
@@ -170,7 +162,7 @@ void locate_fine_vertices(const std::vector<Vec2>& uv, const std::vector<int>& t
       c.prolong_weights[v] = Vec3(1, 0, 0);
       continue;
     }
-    int t = some_triangle[to_coarse[collapser.survivor(static_cast<int>(v))]];
+    int t = topology.vertex_triangles[to_coarse[collapser.survivor(static_cast<int>(v))]].back();
     Vec3 b = Vec3::Zero();
     bool found = false;
     for (int step = 0; step < static_cast<int>(tris.size()) && t >= 0; ++step) {
@@ -178,11 +170,11 @@ void locate_fine_vertices(const std::vector<Vec2>& uv, const std::vector<int>& t
       int worst = 0;
       for (int k = 1; k < 3; ++k)
         if (b[k] < b[worst]) worst = k;
-      if (b[worst] >= -1e-12 || across[t][worst] < 0) {  // inside, or just outside the rim (rounding)
+      if (b[worst] >= -1e-12 || across(t, worst) < 0) {  // inside, or just outside the rim (rounding)
         found = b[worst] >= -1e-9;
         break;
       }
-      t = across[t][worst];
+      t = across(t, worst);
     }
     if (!found) {
       if (!locator) locator.emplace(c.uv, tris);
@@ -224,43 +216,25 @@ std::optional<CoarseSource> coarsen_source(const TriMesh& mesh, const std::vecto
   return c;
 }
 
-namespace {
-
-bool folded(const Tri& tri, const Eigen::VectorXd& x) {
-  const int i = 2 * tri[0], j = 2 * tri[1], k = 2 * tri[2];
-  return !((x[j] - x[i]) * (x[k + 1] - x[i + 1]) - (x[j + 1] - x[i + 1]) * (x[k] - x[i]) > 0);
-}
-
-}  // namespace
-
 bool untangle_folds(const std::vector<Tri>& triangles, Eigen::VectorXd& x, int sweeps, int rings) {
-  const int n = static_cast<int>(x.size() / 2);
-  std::vector<std::vector<int>> star(static_cast<std::size_t>(n)), neighbours(static_cast<std::size_t>(n));
-  std::map<std::pair<int, int>, int> edge_uses;
-  for (std::size_t t = 0; t < triangles.size(); ++t)
-    for (int k = 0; k < 3; ++k) {
-      const int a = triangles[t][k], b = triangles[t][(k + 1) % 3];
-      star[a].push_back(static_cast<int>(t));
-      neighbours[a].push_back(b);
-      neighbours[b].push_back(a);
-      ++edge_uses[{std::min(a, b), std::max(a, b)}];
-    }
-  std::vector<bool> border(static_cast<std::size_t>(n), false);
-  for (const auto& [e, uses] : edge_uses)
-    if (uses == 1) border[e.first] = border[e.second] = true;
-  for (auto& list : neighbours) {
-    std::sort(list.begin(), list.end());
-    list.erase(std::unique(list.begin(), list.end()), list.end());
-  }
+  TriMesh connectivity;  // the topology only reads the triangles and the vertex count
+  connectivity.positions.resize(static_cast<std::size_t>(x.size() / 2));
+  connectivity.triangles = triangles;
+  const MeshTopology topology = build_topology(connectivity);
+  const std::vector<std::vector<int>>& star = topology.vertex_triangles;
+  const std::vector<std::vector<int>> neighbours = vertex_neighbors(connectivity, topology);
+  std::vector<bool> border(connectivity.positions.size(), false);
+  for (int e = 0; e < topology.num_edges(); ++e)
+    if (topology.is_boundary_edge(e)) border[topology.edges[e][0]] = border[topology.edges[e][1]] = true;
   std::set<int> moved;
   for (const Tri& tri : triangles)
-    if (folded(tri, x))
+    if (is_inverted(tri, x))
       for (int v : tri)
         if (!border[v]) moved.insert(v);
   auto any_folded = [&] {
     for (int v : moved)
       for (int t : star[v])
-        if (folded(triangles[t], x)) return true;
+        if (is_inverted(triangles[t], x)) return true;
     return false;
   };
   for (int ring = 0; ring <= rings; ++ring) {
@@ -279,20 +253,12 @@ bool untangle_folds(const std::vector<Tri>& triangles, Eigen::VectorXd& x, int s
         if (!border[w]) grown.insert(w);
     moved.swap(grown);
   }
-  for (const Tri& tri : triangles)
-    if (folded(tri, x)) return false;
-  return true;
+  return count_inverted(triangles, x) == 0;
 }
 
 Eigen::MatrixXd CoarseSource::restrict_rows(const Eigen::MatrixXd& fine) const {
   Eigen::MatrixXd out(static_cast<Eigen::Index>(to_fine.size()), fine.cols());
   for (std::size_t k = 0; k < to_fine.size(); ++k) out.row(static_cast<Eigen::Index>(k)) = fine.row(to_fine[k]);
-  return out;
-}
-
-Eigen::VectorXd CoarseSource::restrict_iterate(const Eigen::VectorXd& fine) const {
-  Eigen::VectorXd out(2 * static_cast<Eigen::Index>(to_fine.size()));
-  for (std::size_t k = 0; k < to_fine.size(); ++k) out.segment<2>(2 * k) = fine.segment<2>(2 * to_fine[k]);
   return out;
 }
 

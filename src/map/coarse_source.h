@@ -25,8 +25,7 @@ struct CoarseSource {
   int num_vertices() const { return mesh.num_vertices(); }
   // Per-vertex rows of the fine source, for the coarse one.
   Eigen::MatrixXd restrict_rows(const Eigen::MatrixXd& fine) const;
-  // x (2 values per vertex): the coarse vertices' entries of a fine iterate, and back.
-  Eigen::VectorXd restrict_iterate(const Eigen::VectorXd& fine) const;
+  // A coarse iterate x (2 values per vertex) on every fine vertex.
   Eigen::VectorXd prolong(const Eigen::VectorXd& coarse) const;
 };
 

@@ -58,13 +58,15 @@ double max_injective_step(const std::vector<Tri>& triangles, const Eigen::Vector
   return m;
 }
 
+bool is_inverted(const Tri& tri, const Eigen::VectorXd& x) {
+  const int i = 2 * tri[0], j = 2 * tri[1], k = 2 * tri[2];
+  const double det = (x[j] - x[i]) * (x[k + 1] - x[i + 1]) - (x[j + 1] - x[i + 1]) * (x[k] - x[i]);
+  return !(det > 0);
+}
+
 int count_inverted(const std::vector<Tri>& triangles, const Eigen::VectorXd& x) {
   int count = 0;
-  for (const Tri& tri : triangles) {
-    const int i = 2 * tri[0], j = 2 * tri[1], k = 2 * tri[2];
-    const double det = (x[j] - x[i]) * (x[k + 1] - x[i + 1]) - (x[j + 1] - x[i + 1]) * (x[k] - x[i]);
-    if (!(det > 0)) ++count;
-  }
+  for (const Tri& tri : triangles) count += is_inverted(tri, x);
   return count;
 }
 

@@ -21,6 +21,9 @@ double smallest_positive_root(double a, double b, double c);
 double max_injective_step(const std::vector<Tri>& triangles, const Eigen::VectorXd& x,
                           const Eigen::VectorXd& direction);
 
+// Whether a triangle's signed area at x is <= 0 (or not a number).
+bool is_inverted(const Tri& tri, const Eigen::VectorXd& x);
+
 // Triangles whose signed area at x is <= 0.
 int count_inverted(const std::vector<Tri>& triangles, const Eigen::VectorXd& x);
 
