@@ -15,6 +15,7 @@
 #include "map/injective_step.h"
 #include "mesh/mesh_topology.h"
 #include "mesh/point_location_2d.h"
+#include "patch/disk_parametrization.h"
 
 namespace mcon {
 namespace {
@@ -216,44 +217,44 @@ std::optional<CoarseSource> coarsen_source(const TriMesh& mesh, const std::vecto
   return c;
 }
 
-bool untangle_folds(const std::vector<Tri>& triangles, Eigen::VectorXd& x, int sweeps, int rings) {
-  TriMesh connectivity;  // the topology only reads the triangles and the vertex count
-  connectivity.positions.resize(static_cast<std::size_t>(x.size() / 2));
-  connectivity.triangles = triangles;
-  const MeshTopology topology = build_topology(connectivity);
-  const std::vector<std::vector<int>>& star = topology.vertex_triangles;
-  const std::vector<std::vector<int>> neighbours = vertex_neighbors(connectivity, topology);
-  std::vector<bool> border(connectivity.positions.size(), false);
+bool untangle_folds(const std::vector<Tri>& triangles, const std::vector<Vec2>& rest, Eigen::VectorXd& x, int rings) {
+  const int n = static_cast<int>(rest.size());
+  require(x.size() == 2 * static_cast<Eigen::Index>(n), MCON_ERROR_INVALID_ARGUMENT,
+          "untangle_folds: x needs two entries per rest vertex");
+  if (count_inverted(triangles, x) == 0) return true;
+  TriMesh rest_mesh;  // the weights' shape: the rest disk, flat
+  rest_mesh.positions.reserve(rest.size());
+  for (const Vec2& p : rest) rest_mesh.positions.emplace_back(p.x(), p.y(), 0.0);
+  rest_mesh.triangles = triangles;
+  const MeshTopology topology = build_topology(rest_mesh);
+  const std::vector<std::vector<int>> neighbours = vertex_neighbors(rest_mesh, topology);
+  std::vector<char> border(n, 0), moved(n, 0);
   for (int e = 0; e < topology.num_edges(); ++e)
-    if (topology.is_boundary_edge(e)) border[topology.edges[e][0]] = border[topology.edges[e][1]] = true;
-  std::set<int> moved;
-  for (const Tri& tri : triangles)
-    if (is_inverted(tri, x))
-      for (int v : tri)
-        if (!border[v]) moved.insert(v);
-  auto any_folded = [&] {
-    for (int v : moved)
-      for (int t : star[v])
-        if (is_inverted(triangles[t], x)) return true;
-    return false;
-  };
+    if (topology.is_boundary_edge(e)) border[topology.edges[e][0]] = border[topology.edges[e][1]] = 1;
+  std::vector<Vec2> y(n);
+  for (int v = 0; v < n; ++v) y[v] = x.segment<2>(2 * v);
+  Eigen::VectorXd trial = x;
   for (int ring = 0; ring <= rings; ++ring) {
-    for (int sweep = 0; sweep < sweeps; ++sweep) {
-      for (int v : moved) {
-        Vec2 mean = Vec2::Zero();
-        for (int w : neighbours[v]) mean += x.segment<2>(2 * w);
-        x.segment<2>(2 * v) = mean / static_cast<double>(neighbours[v].size());
-      }
-      if (!any_folded()) break;
-    }
-    if (!any_folded()) break;
-    std::set<int> grown = moved;
-    for (int v : moved)
-      for (int w : neighbours[v])
-        if (!border[w]) grown.insert(w);
+    // The region: the interior corners of every folded triangle, and one more ring each round.
+    std::vector<char> grown = moved;
+    for (const Tri& tri : triangles)
+      if (is_inverted(tri, trial))
+        for (int v : tri)
+          if (!border[v]) grown[v] = 1;
+    for (int v = 0; v < n; ++v)
+      if (moved[v])
+        for (int w : neighbours[v])
+          if (!border[w]) grown[w] = 1;
     moved.swap(grown);
+    mean_value_solve(rest_mesh, moved, y);
+    for (int v = 0; v < n; ++v)
+      if (moved[v]) trial.segment<2>(2 * v) = y[v];
+    if (count_inverted(triangles, trial) == 0) {
+      x = std::move(trial);
+      return true;
+    }
   }
-  return count_inverted(triangles, x) == 0;
+  return false;
 }
 
 Eigen::MatrixXd CoarseSource::restrict_rows(const Eigen::MatrixXd& fine) const {

@@ -39,10 +39,12 @@ std::optional<CoarseSource> coarsen_source(const TriMesh& mesh, const std::vecto
                                            double max_kept_fraction = 1.0, double min_angle_degrees = 15);
 
 // Untangles the few triangles a prolonged iterate x folds (det <= 0 with the triangles' winding):
-// every interior vertex of a folded triangle moves to the mean of its neighbours (Gauss-Seidel
-// sweeps, a local Tutte embedding inside an unfolded ring); if folds remain after `sweeps` sweeps
-// the moved set grows by one ring, up to `rings` times. Returns whether no triangle is folded
-// (x may have moved either way). Deterministic.
-bool untangle_folds(const std::vector<Tri>& triangles, Eigen::VectorXd& x, int sweeps = 20, int rings = 3);
+// the interior corners of the folded triangles move to the mean-value combination of their
+// neighbours with weights from the `rest` disk (a local Tutte embedding inside the unfolded rest
+// of x, which reproduces x wherever x is affine in rest); while folds remain the region grows by
+// one ring, up to `rings` times. Returns whether no triangle is folded; x is unchanged if not.
+// Deterministic. INVALID_ARGUMENT if x does not have two entries per rest vertex.
+bool untangle_folds(const std::vector<Tri>& triangles, const std::vector<Vec2>& rest, Eigen::VectorXd& x,
+                    int rings = 10);
 
 }  // namespace mcon

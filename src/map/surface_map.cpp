@@ -404,7 +404,7 @@ void prolong_candidate(const Stages& fine, const CoarseStages& cs, const SourceD
     Eigen::VectorXd x = cs.coarse.prolong(it->second);
     const int folds = count_inverted(disk->triangles, x);
     if (it == snapshots.rbegin()) out.coarse_folds = folds;
-    if (folds > 0 && !untangle_folds(disk->triangles, x)) {
+    if (folds > 0 && !untangle_folds(disk->triangles, fine.source.uv, x)) {
       out.coarse_fallback = true;
       continue;
     }

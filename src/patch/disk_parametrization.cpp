@@ -319,6 +319,17 @@ std::vector<Vec2> disk_parametrization(const TriMesh& mesh, const std::vector<in
   return uv;
 }
 
+void mean_value_solve(const TriMesh& mesh, const std::vector<char>& movable, std::vector<Vec2>& uv) {
+  const int nv = mesh.num_vertices();
+  require(static_cast<int>(uv.size()) == nv && static_cast<int>(movable.size()) == nv, MCON_ERROR_INVALID_ARGUMENT,
+          "mean_value_solve: uv and movable need one entry per vertex (" + std::to_string(nv) + ")");
+  std::vector<int> unknown(nv, -1);
+  int ni = 0;
+  for (int v = 0; v < nv; ++v)
+    if (movable[v]) unknown[v] = ni++;
+  if (ni > 0) solve_interior(mean_value_weights(mesh, unknown, ni), unknown, ni, uv);
+}
+
 int count_flipped_triangles(const TriMesh& mesh, const std::vector<Vec2>& uv) {
   require(uv.size() == mesh.positions.size(), MCON_ERROR_INVALID_ARGUMENT,
           "uv has " + std::to_string(uv.size()) + " entries but the mesh has " + std::to_string(mesh.positions.size()) +

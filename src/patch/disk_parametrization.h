@@ -39,6 +39,13 @@ struct DiskParametrizationOptions {
 std::vector<Vec2> disk_parametrization(const TriMesh& mesh, const std::vector<int>& boundary_loop,
                                        const DiskParametrizationOptions& options = {});
 
+// Moves the vertices with movable[v] != 0 to the mean-value convex combination of their
+// neighbours (weights from mesh.positions), the others fixed at their `uv`: the Tutte embedding of
+// the movable part inside the rest, one sparse LU. With weights from an embedded rest shape it
+// reproduces every affine map of that shape. INVALID_ARGUMENT if `uv` or `movable` does not have
+// one entry per vertex; NUMERICAL if a movable vertex has no neighbour or the solve fails.
+void mean_value_solve(const TriMesh& mesh, const std::vector<char>& movable, std::vector<Vec2>& uv);
+
 // Triangles whose signed area in `uv` is <= 0 (inverted or degenerate). INVALID_ARGUMENT if `uv`
 // does not have one entry per vertex.
 int count_flipped_triangles(const TriMesh& mesh, const std::vector<Vec2>& uv);

@@ -119,7 +119,7 @@ TEST(CoarseSource, UntangleFoldsMendsALocalFoldAndReportsWhatItCannot) {
   Eigen::VectorXd x(2 * d.mesh.num_vertices());
   for (int v = 0; v < d.mesh.num_vertices(); ++v) x.segment<2>(2 * v) = 0.9 * d.uv[v];
   Eigen::VectorXd ok = x;
-  EXPECT_TRUE(untangle_folds(d.mesh.triangles, ok));
+  EXPECT_TRUE(untangle_folds(d.mesh.triangles, d.uv, ok));
   EXPECT_EQ(ok, x);  // nothing folded, nothing moved
   // Push vertex 0 (the center) across its ring: its whole star folds or flips.
   x.segment<2>(0) = Vec2(0.2, 0.1);
@@ -129,13 +129,28 @@ TEST(CoarseSource, UntangleFoldsMendsALocalFoldAndReportsWhatItCannot) {
     folded_before += !(a.x() * b.y() - a.y() * b.x() > 0);
   }
   ASSERT_GT(folded_before, 0);
-  EXPECT_TRUE(untangle_folds(d.mesh.triangles, x));
+  EXPECT_TRUE(untangle_folds(d.mesh.triangles, d.uv, x));
   for (const Tri& t : d.mesh.triangles) {
     const Vec2 a = x.segment<2>(2 * t[1]) - x.segment<2>(2 * t[0]), b = x.segment<2>(2 * t[2]) - x.segment<2>(2 * t[0]);
     ASSERT_GT(a.x() * b.y() - a.y() * b.x(), 0);
   }
-  // Everything on one line: no interior move can open it.
+  // The mean-value weights of the rest disk reproduce the affine map around the fold: the center
+  // lands back where 0.9 uv puts it (uniform weights would not, on this jittered disk).
+  EXPECT_NEAR((x.segment<2>(0) - 0.9 * d.uv[0]).norm(), 0.0, 1e-12);
+  // The same for a sheared, rotated, translated map.
+  const Eigen::Matrix2d a{{0.8, 0.5}, {-0.3, 1.1}};
+  const Vec2 b(0.25, -0.4);
+  Eigen::VectorXd sheared(2 * d.mesh.num_vertices());
+  for (int v = 0; v < d.mesh.num_vertices(); ++v) sheared.segment<2>(2 * v) = a * d.uv[v] + b;
+  sheared.segment<2>(0) = a * Vec2(0.3, 0.2) + b;
+  EXPECT_TRUE(untangle_folds(d.mesh.triangles, d.uv, sheared, 0));  // the folded corners alone suffice
+  EXPECT_NEAR((sheared.segment<2>(0) - (a * d.uv[0] + b)).norm(), 0.0, 1e-12);
+  // Everything on one line: no interior move can open it, and x is left as it was.
   Eigen::VectorXd flat = Eigen::VectorXd::Zero(2 * d.mesh.num_vertices());
   for (int v = 0; v < d.mesh.num_vertices(); ++v) flat[2 * v] = d.uv[v].x();
-  EXPECT_FALSE(untangle_folds(d.mesh.triangles, flat));
+  const Eigen::VectorXd flat_before = flat;
+  EXPECT_FALSE(untangle_folds(d.mesh.triangles, d.uv, flat));
+  EXPECT_EQ(flat, flat_before);
+  Eigen::VectorXd too_short = ok.head(4);
+  EXPECT_EQ(status_of([&] { untangle_folds(d.mesh.triangles, d.uv, too_short); }), MCON_ERROR_INVALID_ARGUMENT);
 }
