@@ -65,10 +65,11 @@ class TriangleLocator2D {
                         // left, 1 = lower right, 2 = upper left, 3 = upper right); leaf: -1
     int first = 0;      // leaf: range in items_
     int count = 0;
-    int full_first = 0;  // any node: triangles whose box covers the whole cell (range in full_items_)
+    int full_first = 0;  // any node: triangles that cover the whole cell (range in full_items_)
     int full_count = 0;
   };
   void build(int self, const Vec2& lo, const Vec2& hi, std::vector<int> tris, int depth);
+  int cell_relation(int triangle, const Vec2& lo, const Vec2& hi) const;
 
   std::vector<Vec2> points_;
   std::vector<Tri> triangles_;

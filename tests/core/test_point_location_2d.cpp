@@ -155,6 +155,55 @@ TEST(PointLocation2D, SqueezedClusterMatchesBruteForce) {
   EXPECT_GT(inside, 2000);
 }
 
+// locate's rule by brute force: inside the triangle's box, the deepest smallest barycentric
+// coordinate above -1e-10, ties to the lowest index.
+int brute_force_locate(const Planar& d, const Vec2& p) {
+  double best_min = -1e-10;
+  int best = -1;
+  for (int t = 0; t < static_cast<int>(d.triangles.size()); ++t) {
+    const Tri& tri = d.triangles[t];
+    const Vec2 lo = d.points[tri[0]].cwiseMin(d.points[tri[1]]).cwiseMin(d.points[tri[2]]);
+    const Vec2 hi = d.points[tri[0]].cwiseMax(d.points[tri[1]]).cwiseMax(d.points[tri[2]]);
+    if (p.x() < lo.x() || p.y() < lo.y() || p.x() > hi.x() || p.y() > hi.y()) continue;
+    const double m = min_bary(d, t, p);
+    if (m > best_min || (m >= best_min && best < 0)) {
+      best_min = m;
+      best = t;
+    }
+  }
+  return best;
+}
+
+// The tree keeps a triangle only in the cells it meets (not every cell its box meets), so on
+// slivers the borderline points are the risk: on edges, on vertices, and a hair (1e-11 of the
+// edge) to either side, within locate's tolerance or just beyond it, the answer must be
+// exactly the brute force's.
+TEST(PointLocation2D, SliverEdgesMatchBruteForceExactly) {
+  Planar d = jittered_disk();
+  for (Vec2& p : d.points) {
+    p *= std::pow(p.norm(), 5.0);
+    p = Vec2(40 * p.x() + 3 * p.y(), p.y());  // sheared: long thin triangles at every angle
+  }
+  const TriangleLocator2D locator(d.points, d.triangles);
+  CounterRng rng(21, 0);
+  int hits = 0, checked = 0;
+  for (std::size_t t = 0; t < d.triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const Vec2 a = d.points[d.triangles[t][k]], b = d.points[d.triangles[t][(k + 1) % 3]];
+      const Vec2 e = b - a, normal(-e.y(), e.x());
+      const double s = rng.uniform();
+      for (const Vec2& p : {a, Vec2(a + s * e), Vec2(a + s * e + 1e-11 * normal), Vec2(a + s * e - 1e-11 * normal),
+                            Vec2(a + s * e + 1e-9 * normal), Vec2(a + s * e - 1e-9 * normal)}) {
+        const int expected = brute_force_locate(d, p);
+        const PointLocation loc = locator.locate(p);
+        ASSERT_EQ(loc.triangle, expected) << "point " << p.transpose() << " on an edge of triangle " << t;
+        hits += expected >= 0;
+        ++checked;
+      }
+    }
+  EXPECT_GT(hits, checked / 2);
+}
+
 // A walk from a hint must give exactly what the full search gives: same triangle, same
 // barycentric coordinates bit for bit, whatever the hint (a neighbour's answer, a random
 // triangle, -1, out of range), inside, on edges and outside.
