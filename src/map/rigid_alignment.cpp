@@ -241,6 +241,13 @@ std::vector<double> sampled_scores(const std::vector<Vec2>& uv, const std::vecto
   const int m = static_cast<int>(sample.picked.size());
   const double inv_2s2 = 0.5 / (coarse.score.sigma * coarse.score.sigma);
 
+  // The subsample's uv as a plain and as a mirrored candidate sees it.
+  std::vector<Vec2> rest(m), rest_reflected(m);
+  for (int k = 0; k < m; ++k) {
+    rest[k] = uv[sample.picked[k]];
+    rest_reflected[k] = mirror(rest[k], true);
+  }
+  const double band = coarse.score.band;
   std::vector<double> scores(options.samples, 0.0);
   constexpr int kBatch = 1024, kChunk = 32;
   for (int start = 0; start < options.samples; start += kBatch) {
@@ -255,16 +262,19 @@ std::vector<double> sampled_scores(const std::vector<Vec2>& uv, const std::vecto
         }
         const Eigen::Matrix2d R = rotation(T.angle);
         const std::vector<double>& pv = T.reflected ? sample.values_reflected : sample.values;
+        const std::vector<Vec2>& p = T.reflected ? rest_reflected : rest;
         double sum = 0;
         for (int k = 0; k < m; ++k) {
-          const Vec2 x = R * mirror(uv[sample.picked[k]], T.reflected) + T.translation;
-          double w, dw, d2w;
-          rim_window(x.norm(), coarse.score.band, w, dw, d2w);
-          if (w <= 0) continue;
+          const Vec2 x = R * p[k] + T.translation;
+          // rim_window's value (matching_score.h), inlined: this loop is the search's hot spot.
+          const double t = (1.0 - x.norm()) / band;
+          if (t <= 0) continue;
+          const double w = t >= 1 ? 1.0 : t * t * (3 - 2 * t);
           image.sample(x, value.data());
+          const double* pk = &pv[static_cast<std::size_t>(k) * d];
           double r2 = 0;
           for (int c = 0; c < d; ++c) {
-            const double r = value[c] - pv[static_cast<std::size_t>(k) * d + c];
+            const double r = value[c] - pk[c];
             r2 += r * r;
           }
           sum += sample.weight[k] * w * std::exp(-r2 * inv_2s2);
@@ -370,12 +380,18 @@ void refine_transform(const std::vector<Vec2>& rest, const std::vector<double>& 
     for (int k = 0; k < 12; ++k) {
       const double a = T.angle + alpha * step[0];
       const Vec2 t = T.translation + alpha * step.tail<2>();
-      const double Sn = full_score(rest, weight, neutral, a, t, nullptr, nullptr, hints);
+      // Derivatives at every trial: the first trial is nearly always taken, and this saves
+      // scoring it a second time for them.
+      Eigen::Vector3d gn;
+      Eigen::Matrix3d negHn;
+      const double Sn = full_score(rest, weight, neutral, a, t, &gn, &negHn, hints);
       if (Sn > S) {
         const double gain = Sn - S;
         T.angle = a;
         T.translation = t;
-        S = full_score(rest, weight, neutral, T.angle, T.translation, &g, &negH, hints);
+        S = Sn;
+        g = gn;
+        negH = negHn;
         improved = gain > 1e-10 * std::max(S, 1e-12);
         break;
       }
