@@ -8,6 +8,7 @@
 
 #include "descriptors/descriptor_pyramid.h"
 #include "base/error.h"
+#include "base/parallel_blocks.h"
 #include "map/map_channels.h"
 #include "map/similarity_icp.h"
 #include "mesh/mesh_topology.h"
@@ -170,7 +171,10 @@ SurfaceMap map_patches(const Patch& source, const Patch& target, const PatchMapO
   }
   bool center = false;
   for (const MapChannel& channel : map_channels()) center |= channel.center_based && channel.weight(options) > 0;
-  Eigen::MatrixXd s = raw_channels(source, center), t = raw_channels(target, center);
+  // The two patches' channels, and below their pyramids, side by side (independent, so the same
+  // result on any thread count).
+  Eigen::MatrixXd s, t;
+  for_each_block(2, 1, [&](int b, int, int) { (b == 0 ? s : t) = raw_channels(b == 0 ? source : target, center); });
   // Joint normalization (thesis §3.1: every dimension std 1 over both patches), then weights.
   std::vector<double> weights;
   std::vector<int> chiral_columns;
@@ -195,8 +199,13 @@ SurfaceMap map_patches(const Patch& source, const Patch& target, const PatchMapO
     s.col(k) = (s.col(k).array() - mean) * scale;
     t.col(k) = (t.col(k).array() - mean) * scale;
   }
-  const std::vector<Eigen::MatrixXd> source_levels = descriptor_pyramid(source.mesh, s, options.pyramid_sigmas);
-  const std::vector<Eigen::MatrixXd> target_levels = descriptor_pyramid(target.mesh, t, options.pyramid_sigmas);
+  std::vector<Eigen::MatrixXd> source_levels, target_levels;
+  for_each_block(2, 1, [&](int b, int, int) {
+    if (b == 0)
+      source_levels = descriptor_pyramid(source.mesh, s, options.pyramid_sigmas);
+    else
+      target_levels = descriptor_pyramid(target.mesh, t, options.pyramid_sigmas);
+  });
   SurfaceMapOptions map_options = options.map;
   if (!chiral_columns.empty()) map_options.chiral_columns = chiral_columns;
   require(options.source_up.has_value() == options.target_up.has_value(), MCON_ERROR_INVALID_ARGUMENT,
