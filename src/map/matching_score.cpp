@@ -7,13 +7,10 @@ namespace mcon {
 
 void rim_window(double radius, double band, double& w, double& dw, double& d2w) {
   const double t = (1.0 - radius) / band;
-  if (t >= 1) {
-    w = 1;
+  w = rim_window_value(radius, band);
+  if (t >= 1 || t <= 0) {
     dw = d2w = 0;
-  } else if (t <= 0) {
-    w = dw = d2w = 0;
   } else {
-    w = t * t * (3 - 2 * t);
     dw = -(6 * t - 6 * t * t) / band;  // dt/dr = -1 / band
     d2w = (6 - 12 * t) / (band * band);
   }

@@ -42,6 +42,13 @@ struct ScoreSample {
                            // other fields on the same triangulation via `known_location`
 };
 
+// The rim window's value w(|x|): 1 deeper than `band` inside the rim, 0 beyond it, smoothstep
+// between. Inline: the rigid search's cheap score calls it for every point of every candidate.
+inline double rim_window_value(double radius, double band) {
+  const double t = (1.0 - radius) / band;
+  return t >= 1 ? 1.0 : t <= 0 ? 0.0 : t * t * (3 - 2 * t);
+}
+
 // The rim window and its derivatives along the radius: w(|x|), dw/d|x|, d2w/d|x|2.
 void rim_window(double radius, double band, double& w, double& dw, double& d2w);
 

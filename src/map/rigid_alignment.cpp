@@ -266,10 +266,8 @@ std::vector<double> sampled_scores(const std::vector<Vec2>& uv, const std::vecto
         double sum = 0;
         for (int k = 0; k < m; ++k) {
           const Vec2 x = R * p[k] + T.translation;
-          // rim_window's value (matching_score.h), inlined: this loop is the search's hot spot.
-          const double t = (1.0 - x.norm()) / band;
-          if (t <= 0) continue;
-          const double w = t >= 1 ? 1.0 : t * t * (3 - 2 * t);
+          const double w = rim_window_value(x.norm(), band);
+          if (w <= 0) continue;
           image.sample(x, value.data());
           const double* pk = &pv[static_cast<std::size_t>(k) * d];
           double r2 = 0;

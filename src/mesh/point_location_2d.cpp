@@ -134,12 +134,14 @@ int TriangleLocator2D::cell_relation(int i, const Vec2& lo, const Vec2& hi) cons
   // A box inside the cell: the triangle is in it (the common case for small triangles).
   if (box_lo_[i].x() >= lo.x() && box_lo_[i].y() >= lo.y() && box_hi_[i].x() <= hi.x() && box_hi_[i].y() <= hi.y())
     return 1;
-  const bool box_covers = box_lo_[i].x() <= lo.x() && box_lo_[i].y() <= lo.y() && box_hi_[i].x() >= hi.x() &&
-                          box_hi_[i].y() >= hi.y();
   const Tri& t = triangles_[i];
   const Vec2 a = points_[t[0]], b = points_[t[1]], c = points_[t[2]];
   const double area = cross2(b - a, c - a);
-  if (area == 0 || !std::isfinite(area)) return box_covers ? 2 : 1;
+  if (area == 0 || !std::isfinite(area)) {
+    const bool box_covers = box_lo_[i].x() <= lo.x() && box_lo_[i].y() <= lo.y() && box_hi_[i].x() >= hi.x() &&
+                            box_hi_[i].y() >= hi.y();
+    return box_covers ? 2 : 1;
+  }
   const double sign = area > 0 ? 1.0 : -1.0;
   const Vec2 corner[4] = {lo, Vec2(hi.x(), lo.y()), Vec2(lo.x(), hi.y()), hi};
   const Vec2 p[3] = {a, b, c};
