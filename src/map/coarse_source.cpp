@@ -246,7 +246,14 @@ bool untangle_folds(const std::vector<Tri>& triangles, const std::vector<Vec2>& 
         for (int w : neighbours[v])
           if (!border[w]) grown[w] = 1;
     moved.swap(grown);
-    mean_value_solve(rest_mesh, moved, y);
+    try {
+      mean_value_solve(rest_mesh, moved, y);
+    } catch (const Error& e) {
+      // A rest vertex on top of a neighbour has no mean-value weights: an optional repair fails,
+      // it does not abort the map (the caller falls back to an earlier stage).
+      if (e.status() != MCON_ERROR_NUMERICAL) throw;
+      return false;
+    }
     for (int v = 0; v < n; ++v)
       if (moved[v]) trial.segment<2>(2 * v) = y[v];
     if (count_inverted(triangles, trial) == 0) {

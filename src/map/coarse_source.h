@@ -42,7 +42,8 @@ std::optional<CoarseSource> coarsen_source(const TriMesh& mesh, const std::vecto
 // the interior corners of the folded triangles move to the mean-value combination of their
 // neighbours with weights from the `rest` disk (a local Tutte embedding inside the unfolded rest
 // of x, which reproduces x wherever x is affine in rest); while folds remain the region grows by
-// one ring, up to `rings` times. Returns whether no triangle is folded; x is unchanged if not.
+// one ring, up to `rings` times. Returns whether no triangle is folded; x is unchanged if not
+// (also when a rest vertex coincides with a neighbour, which leaves it without weights).
 // Deterministic. INVALID_ARGUMENT if x does not have two entries per rest vertex.
 bool untangle_folds(const std::vector<Tri>& triangles, const std::vector<Vec2>& rest, Eigen::VectorXd& x,
                     int rings = 10);

@@ -151,6 +151,18 @@ TEST(CoarseSource, UntangleFoldsMendsALocalFoldAndReportsWhatItCannot) {
   const Eigen::VectorXd flat_before = flat;
   EXPECT_FALSE(untangle_folds(d.mesh.triangles, d.uv, flat));
   EXPECT_EQ(flat, flat_before);
+  // A rest disk with the center on top of a neighbour has no mean-value weights there: the
+  // untangling reports failure and leaves x as it was, it does not throw.
+  std::vector<Vec2> coincident = d.uv;
+  const Tri& first = *std::find_if(d.mesh.triangles.begin(), d.mesh.triangles.end(),
+                                   [](const Tri& t) { return t[0] == 0 || t[1] == 0 || t[2] == 0; });
+  coincident[0] = d.uv[first[0] == 0 ? first[1] : first[0]];
+  Eigen::VectorXd pushed(ok.size());
+  for (int v = 0; v < d.mesh.num_vertices(); ++v) pushed.segment<2>(2 * v) = 0.9 * d.uv[v];
+  pushed.segment<2>(0) = Vec2(0.2, 0.1);
+  const Eigen::VectorXd pushed_before = pushed;
+  EXPECT_FALSE(untangle_folds(d.mesh.triangles, coincident, pushed));
+  EXPECT_EQ(pushed, pushed_before);
   Eigen::VectorXd too_short = ok.head(4);
   EXPECT_EQ(status_of([&] { untangle_folds(d.mesh.triangles, d.uv, too_short); }), MCON_ERROR_INVALID_ARGUMENT);
 }
