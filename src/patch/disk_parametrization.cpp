@@ -76,10 +76,11 @@ using RowMajorSparse = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 
 void check_options(const DiskParametrizationOptions& options) {
   require(options.stretch_iterations >= 0 && options.stretch_exponent > 0 && options.stretch_exponent <= 1 &&
-              options.stretch_threshold >= 0 && std::isfinite(options.stretch_threshold),
+              options.stretch_threshold >= 0 && std::isfinite(options.stretch_threshold) &&
+              options.stretch_min_decrease >= 0 && options.stretch_min_decrease < 1,
           MCON_ERROR_INVALID_ARGUMENT,
-          "disk parametrization: stretch_iterations must be >= 0, stretch_exponent in (0, 1] and "
-          "stretch_threshold finite and >= 0");
+          "disk parametrization: stretch_iterations must be >= 0, stretch_exponent in (0, 1], "
+          "stretch_threshold finite and >= 0, and stretch_min_decrease in [0, 1)");
 }
 
 // Boundary: unit circle by cumulative arc length, CCW, boundary_loop[0] at angle 0.
@@ -160,8 +161,14 @@ void convex_combination_system(const RowMajorSparse& wm, const std::vector<int>&
   a.makeCompressed();
 }
 
-// Sparse LU, and BiCGSTAB if that fails; NUMERICAL if neither gives a small residual.
-Eigen::MatrixXd solve_system(const Eigen::SparseMatrix<double>& a, const Eigen::MatrixXd& rhs) {
+using SparseLu = Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>>;
+
+// Sparse LU, and BiCGSTAB if that fails; NUMERICAL if neither gives a small residual. `lu`
+// keeps its symbolic analysis (ordering, elimination tree) between calls with `analyzed` set:
+// the stretch rounds below solve systems of one sparsity pattern, and the analysis is about
+// two thirds of a fresh LU's cost.
+Eigen::MatrixXd solve_system(const Eigen::SparseMatrix<double>& a, const Eigen::MatrixXd& rhs, SparseLu& lu,
+                             bool& analyzed) {
   const int ni = static_cast<int>(a.rows());
   auto acceptable = [&](const Eigen::MatrixXd& x) {
     if (!x.allFinite()) return false;
@@ -170,8 +177,11 @@ Eigen::MatrixXd solve_system(const Eigen::SparseMatrix<double>& a, const Eigen::
   };
   Eigen::MatrixXd x;
   bool solved = false;
-  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu;
-  lu.compute(a);
+  if (!analyzed) {
+    lu.analyzePattern(a);
+    analyzed = true;
+  }
+  lu.factorize(a);
   if (lu.info() == Eigen::Success) {
     x = lu.solve(rhs);
     solved = lu.info() == Eigen::Success && acceptable(x);
@@ -191,12 +201,14 @@ Eigen::MatrixXd solve_system(const Eigen::SparseMatrix<double>& a, const Eigen::
   return x;
 }
 
-// Solves the row-normalized convex-combination system for the weights `wm` into uv.
-void solve_interior(const RowMajorSparse& wm, const std::vector<int>& unknown, int ni, std::vector<Vec2>& uv) {
+// Solves the row-normalized convex-combination system for the weights `wm` into uv. Calls that
+// share `lu` and `analyzed` must share the sparsity of `wm`.
+void solve_interior(const RowMajorSparse& wm, const std::vector<int>& unknown, int ni, std::vector<Vec2>& uv,
+                    SparseLu& lu, bool& analyzed) {
   Eigen::SparseMatrix<double> a;
   Eigen::MatrixXd rhs;
   convex_combination_system(wm, unknown, ni, uv, a, rhs);
-  const Eigen::MatrixXd x = solve_system(a, rhs);
+  const Eigen::MatrixXd x = solve_system(a, rhs, lu, analyzed);
   for (int v = 0; v < static_cast<int>(uv.size()); ++v)
     if (unknown[v] >= 0) uv[v] = x.row(unknown[v]).transpose();
 }
@@ -275,9 +287,11 @@ void divide_by_stretch(RowMajorSparse& wk, const std::vector<double>& sigma, dou
 // (Floater 2003: positive convex combinations with a convex boundary are injective).
 // The exponent damps each round (1 is YBS's update). Measured (eval-mapping --classes hand,
 // seed 1, 2 pairs): mean eps x 100 32.9 with the plain map; 12.4 with exponent 1 (10 rounds,
-// overshoots and stops early); 2.0 with 0.5 and up to 30 rounds (18 used).
+// overshoots and stops early); 2.0 with 0.5 and up to 30 rounds (18 used). The rounds stop
+// early once one gains less than stretch_min_decrease (docs/design.md §17: a map that keeps
+// some of the mean-value map's conformality matches better than the least-stretched one).
 void reduce_stretch(const TriMesh& mesh, const RowMajorSparse& w, const std::vector<int>& unknown, int ni,
-                    const DiskParametrizationOptions& options, std::vector<Vec2>& uv) {
+                    const DiskParametrizationOptions& options, SparseLu& lu, bool& analyzed, std::vector<Vec2>& uv) {
   const AreaWeights areas = triangle_areas(mesh);
   std::vector<double> sigma;
   double best = l2_stretch(mesh, areas, uv, sigma);
@@ -287,14 +301,16 @@ void reduce_stretch(const TriMesh& mesh, const RowMajorSparse& w, const std::vec
   for (int it = 0; it < options.stretch_iterations && std::isfinite(best); ++it) {
     divide_by_stretch(wk, sigma, options.stretch_exponent);
     try {
-      solve_interior(wk, unknown, ni, uv);
+      solve_interior(wk, unknown, ni, uv, lu, analyzed);
     } catch (const Error&) {
       break;  // a failed round keeps the best iterate so far (the plain map solved)
     }
     const double now = l2_stretch(mesh, areas, uv, sigma);
     if (!(now < best)) break;
+    const bool small_gain = now > best * (1 - options.stretch_min_decrease);
     best = now;
     best_uv = uv;
+    if (small_gain) break;
   }
   uv = best_uv;
 }
@@ -314,8 +330,10 @@ std::vector<Vec2> disk_parametrization(const TriMesh& mesh, const std::vector<in
   const std::vector<int> unknown = interior_unknowns(nv, boundary_loop, ni);
   if (ni == 0) return uv;
   const RowMajorSparse w = mean_value_weights(mesh, unknown, ni);
-  solve_interior(w, unknown, ni, uv);
-  if (options.stretch_iterations > 0) reduce_stretch(mesh, w, unknown, ni, options, uv);
+  SparseLu lu;
+  bool analyzed = false;
+  solve_interior(w, unknown, ni, uv, lu, analyzed);
+  if (options.stretch_iterations > 0) reduce_stretch(mesh, w, unknown, ni, options, lu, analyzed, uv);
   return uv;
 }
 
@@ -327,7 +345,11 @@ void mean_value_solve(const TriMesh& mesh, const std::vector<char>& movable, std
   int ni = 0;
   for (int v = 0; v < nv; ++v)
     if (movable[v]) unknown[v] = ni++;
-  if (ni > 0) solve_interior(mean_value_weights(mesh, unknown, ni), unknown, ni, uv);
+  if (ni > 0) {
+    SparseLu lu;
+    bool analyzed = false;
+    solve_interior(mean_value_weights(mesh, unknown, ni), unknown, ni, uv, lu, analyzed);
+  }
 }
 
 int count_flipped_triangles(const TriMesh& mesh, const std::vector<Vec2>& uv) {

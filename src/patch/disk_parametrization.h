@@ -27,11 +27,14 @@ struct DiskParametrizationOptions {
   // mean-value Tutte embedding.
   int stretch_iterations = 30;
   double stretch_exponent = 0.5;  // in (0, 1]
-  // The rounds run only if the mean-value map's L2 stretch (1: equal-area) exceeds this. The
-  // near-conformal mean-value map is smoother (a uv circle stays a smooth surface curve) and is
-  // what the other patch classes were tuned on; measured plain stretch on MakeHuman patches:
-  // arm 1.01, nose 1.05, ear 1.2, eye 5.8, face 9.2, mouth 10.2, foot 447, hand 15851.
-  double stretch_threshold = 20.0;
+  // The rounds stop once a round lowers the total stretch by less than this fraction (that
+  // round's iterate is kept); 0: only when the stretch no longer falls. In [0, 1).
+  double stretch_min_decrease = 0.06;
+  // The rounds run only if the mean-value map's L2 stretch (1: equal-area) exceeds this; 0: on
+  // every patch (measured plain stretch on MakeHuman patches: arm 1.01, nose 1.05, ear 1.2,
+  // eye 5.8, face 9.2, mouth 10.2, foot 447, hand 15851). Maps between patches matched better
+  // with the rounds on every class, most across families and densities (docs/design.md §17).
+  double stretch_threshold = 0.0;
 };
 
 // INVALID_ARGUMENT also for stretch_iterations < 0, stretch_exponent outside (0, 1] or a negative

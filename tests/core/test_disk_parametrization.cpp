@@ -203,17 +203,24 @@ TEST(DiskParametrization, StretchReductionUnsqueezesADeepCapAndStaysBijective) {
   const std::vector<Vec2> uv0 = disk_parametrization(cap, loop, plain);
   const double before = l2_stretch(cap, uv0);
   EXPECT_GT(before, 2.0);
-  // Below the default threshold: the plain mean-value map, bit for bit.
-  EXPECT_LT(before, DiskParametrizationOptions{}.stretch_threshold);
-  EXPECT_EQ(disk_parametrization(cap, loop), uv0);
-  DiskParametrizationOptions reduce;
-  reduce.stretch_threshold = 1.0;
-  const std::vector<Vec2> uv = check_embedding(cap, reduce);  // bijective, boundary unchanged
+  // A threshold above the plain map's stretch keeps the plain mean-value map, bit for bit.
+  DiskParametrizationOptions above;
+  above.stretch_threshold = before + 1;
+  EXPECT_EQ(disk_parametrization(cap, loop, above), uv0);
+  // The default reduces the stretch of every patch (threshold 0).
+  EXPECT_EQ(DiskParametrizationOptions{}.stretch_threshold, 0.0);
+  const std::vector<Vec2> uv = check_embedding(cap);  // bijective, boundary unchanged
   const double after = l2_stretch(cap, uv);
   EXPECT_LT(after, 0.6 * before) << "plain " << before << ", reduced " << after;
-  // Fewer rounds can only stretch more or equally (the least-stretched iterate is returned).
-  reduce.stretch_iterations = 1;
-  const double one = l2_stretch(cap, disk_parametrization(cap, loop, reduce));
+  // Running the rounds to the end (no early stop) can only stretch less or equally, and one
+  // round only more or equally (the least-stretched iterate is returned).
+  DiskParametrizationOptions to_end;
+  to_end.stretch_min_decrease = 0;
+  const double least = l2_stretch(cap, check_embedding(cap, to_end));
+  EXPECT_LE(least, after);
+  DiskParametrizationOptions one_round;
+  one_round.stretch_iterations = 1;
+  const double one = l2_stretch(cap, disk_parametrization(cap, loop, one_round));
   EXPECT_LT(one, before);
   EXPECT_LE(after, one);
 }
@@ -233,6 +240,11 @@ TEST(DiskParametrization, RejectsInvalidStretchOptions) {
     o = {};
     o.stretch_threshold = t;
     EXPECT_EQ(status_of(disk, loop, o), MCON_ERROR_INVALID_ARGUMENT) << t;
+  }
+  for (double d : {-0.1, 1.0, std::nan("")}) {
+    o = {};
+    o.stretch_min_decrease = d;
+    EXPECT_EQ(status_of(disk, loop, o), MCON_ERROR_INVALID_ARGUMENT) << d;
   }
   o = {};
   o.stretch_iterations = 0;
