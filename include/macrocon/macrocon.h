@@ -317,7 +317,7 @@ MCON_API mcon_status mcon_patch_get_repairs(mcon_patch patch, mcon_patch_repair_
 MCON_API mcon_status mcon_patch_get_positions(mcon_patch patch, double* out_xyz, size_t capacity);
 /** 3 indices per triangle, counter-clockwise as in the host. capacity in uint32 values. */
 MCON_API mcon_status mcon_patch_get_triangles(mcon_patch patch, uint32_t* out_indices, size_t capacity);
-/** Unit-disk parametrization (Tutte, mean-value weights), 2 doubles per vertex. */
+/** Unit-disk parametrization (mean-value Tutte map, then stretch-reduced), 2 doubles per vertex. */
 MCON_API mcon_status mcon_patch_get_uv(mcon_patch patch, double* out_uv, size_t capacity);
 /** The link back to the host, per patch vertex: the vertex lies at
  * (1 - t) * host[v0] + t * host[v1]. A host vertex has v0 == v1 and t = 0. A vertex created to

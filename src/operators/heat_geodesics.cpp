@@ -89,7 +89,10 @@ void check_input(const TriMesh& mesh, const HeatGeodesicsOptions& options) {
 
 // Dirichlet heat operator: u = 0 on boundary vertices, i.e. identity rows and columns there.
 SparseMatrix dirichlet_operator(const SparseMatrix& heat, const std::vector<char>& on_boundary) {
-  SparseMatrix dirichlet = heat;
+  // Constructed, then assigned: Eigen's copy constructor leaks its outer index when an
+  // allocation fails inside it (no destructor runs); a failed assignment is freed.
+  SparseMatrix dirichlet;
+  dirichlet = heat;
   dirichlet.prune([&](Eigen::Index i, Eigen::Index j, double) {
     return i == j || (!on_boundary[i] && !on_boundary[j]);
   });
@@ -101,7 +104,8 @@ SparseMatrix dirichlet_operator(const SparseMatrix& heat, const std::vector<char
 // III. L is singular (constants per component): fix the pinned vertex of each component to 0.
 // This is exact, not a regularization: the right-hand side sums to 0 over every component.
 SparseMatrix pinned_poisson(const SparseMatrix& L, const std::vector<int>& pinned, int n) {
-  SparseMatrix poisson = L;
+  SparseMatrix poisson;  // constructed, then assigned (see dirichlet_operator)
+  poisson = L;
   std::vector<char> is_pinned(n, 0);
   for (int v : pinned) is_pinned[v] = 1;
   poisson.prune([&](Eigen::Index i, Eigen::Index j, double) { return i == j || (!is_pinned[i] && !is_pinned[j]); });

@@ -297,7 +297,10 @@ void reduce_stretch(const TriMesh& mesh, const RowMajorSparse& w, const std::vec
   double best = l2_stretch(mesh, areas, uv, sigma);
   if (!(best > options.stretch_threshold)) return;
   std::vector<Vec2> best_uv = uv;
-  RowMajorSparse wk = w;
+  // Constructed, then assigned: Eigen's copy constructor leaks its outer index when an
+  // allocation fails inside it (no destructor runs); a failed assignment is freed.
+  RowMajorSparse wk;
+  wk = w;
   for (int it = 0; it < options.stretch_iterations && std::isfinite(best); ++it) {
     divide_by_stretch(wk, sigma, options.stretch_exponent);
     try {
