@@ -288,8 +288,8 @@ void divide_by_stretch(RowMajorSparse& wk, const std::vector<double>& sigma, dou
 // The exponent damps each round (1 is YBS's update). Measured (eval-mapping --classes hand,
 // seed 1, 2 pairs): mean eps x 100 32.9 with the plain map; 12.4 with exponent 1 (10 rounds,
 // overshoots and stops early); 2.0 with 0.5 and up to 30 rounds (18 used). The rounds stop
-// early once one gains less than stretch_min_decrease (docs/design.md §17: a map that keeps
-// some of the mean-value map's conformality matches better than the least-stretched one).
+// early once one gains less than stretch_min_decrease (docs/design.md §17: the maps between
+// patches matched better with that early stop than with the least-stretched iterate).
 void reduce_stretch(const TriMesh& mesh, const RowMajorSparse& w, const std::vector<int>& unknown, int ni,
                     const DiskParametrizationOptions& options, SparseLu& lu, bool& analyzed, std::vector<Vec2>& uv) {
   const AreaWeights areas = triangle_areas(mesh);
