@@ -161,14 +161,17 @@ void convex_combination_system(const RowMajorSparse& wm, const std::vector<int>&
   a.makeCompressed();
 }
 
-using SparseLu = Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>>;
+// A sparse LU that keeps its symbolic analysis (ordering, elimination tree) from its first
+// system for the later ones: the stretch rounds below solve systems of one sparsity pattern, and
+// the analysis is about two thirds of a fresh LU's cost. Every system it solves must share that
+// pattern.
+struct PatternLu {
+  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu;
+  bool analyzed = false;
+};
 
-// Sparse LU, and BiCGSTAB if that fails; NUMERICAL if neither gives a small residual. `lu`
-// keeps its symbolic analysis (ordering, elimination tree) between calls with `analyzed` set:
-// the stretch rounds below solve systems of one sparsity pattern, and the analysis is about
-// two thirds of a fresh LU's cost.
-Eigen::MatrixXd solve_system(const Eigen::SparseMatrix<double>& a, const Eigen::MatrixXd& rhs, SparseLu& lu,
-                             bool& analyzed) {
+// Sparse LU, and BiCGSTAB if that fails; NUMERICAL if neither gives a small residual.
+Eigen::MatrixXd solve_system(const Eigen::SparseMatrix<double>& a, const Eigen::MatrixXd& rhs, PatternLu& solver) {
   const int ni = static_cast<int>(a.rows());
   auto acceptable = [&](const Eigen::MatrixXd& x) {
     if (!x.allFinite()) return false;
@@ -177,9 +180,10 @@ Eigen::MatrixXd solve_system(const Eigen::SparseMatrix<double>& a, const Eigen::
   };
   Eigen::MatrixXd x;
   bool solved = false;
-  if (!analyzed) {
+  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>>& lu = solver.lu;
+  if (!solver.analyzed) {
     lu.analyzePattern(a);
-    analyzed = true;
+    solver.analyzed = true;
   }
   lu.factorize(a);
   if (lu.info() == Eigen::Success) {
@@ -202,13 +206,13 @@ Eigen::MatrixXd solve_system(const Eigen::SparseMatrix<double>& a, const Eigen::
 }
 
 // Solves the row-normalized convex-combination system for the weights `wm` into uv. Calls that
-// share `lu` and `analyzed` must share the sparsity of `wm`.
+// share `solver` must share the sparsity of `wm`.
 void solve_interior(const RowMajorSparse& wm, const std::vector<int>& unknown, int ni, std::vector<Vec2>& uv,
-                    SparseLu& lu, bool& analyzed) {
+                    PatternLu& solver) {
   Eigen::SparseMatrix<double> a;
   Eigen::MatrixXd rhs;
   convex_combination_system(wm, unknown, ni, uv, a, rhs);
-  const Eigen::MatrixXd x = solve_system(a, rhs, lu, analyzed);
+  const Eigen::MatrixXd x = solve_system(a, rhs, solver);
   for (int v = 0; v < static_cast<int>(uv.size()); ++v)
     if (unknown[v] >= 0) uv[v] = x.row(unknown[v]).transpose();
 }
@@ -291,7 +295,7 @@ void divide_by_stretch(RowMajorSparse& wk, const std::vector<double>& sigma, dou
 // early once one gains less than stretch_min_decrease (docs/design.md §17: the maps between
 // patches matched better with that early stop than with the least-stretched iterate).
 void reduce_stretch(const TriMesh& mesh, const RowMajorSparse& w, const std::vector<int>& unknown, int ni,
-                    const DiskParametrizationOptions& options, SparseLu& lu, bool& analyzed, std::vector<Vec2>& uv) {
+                    const DiskParametrizationOptions& options, PatternLu& solver, std::vector<Vec2>& uv) {
   const AreaWeights areas = triangle_areas(mesh);
   std::vector<double> sigma;
   double best = l2_stretch(mesh, areas, uv, sigma);
@@ -304,7 +308,7 @@ void reduce_stretch(const TriMesh& mesh, const RowMajorSparse& w, const std::vec
   for (int it = 0; it < options.stretch_iterations && std::isfinite(best); ++it) {
     divide_by_stretch(wk, sigma, options.stretch_exponent);
     try {
-      solve_interior(wk, unknown, ni, uv, lu, analyzed);
+      solve_interior(wk, unknown, ni, uv, solver);
     } catch (const Error&) {
       break;  // a failed round keeps the best iterate so far (the plain map solved)
     }
@@ -333,10 +337,9 @@ std::vector<Vec2> disk_parametrization(const TriMesh& mesh, const std::vector<in
   const std::vector<int> unknown = interior_unknowns(nv, boundary_loop, ni);
   if (ni == 0) return uv;
   const RowMajorSparse w = mean_value_weights(mesh, unknown, ni);
-  SparseLu lu;
-  bool analyzed = false;
-  solve_interior(w, unknown, ni, uv, lu, analyzed);
-  if (options.stretch_iterations > 0) reduce_stretch(mesh, w, unknown, ni, options, lu, analyzed, uv);
+  PatternLu solver;
+  solve_interior(w, unknown, ni, uv, solver);
+  if (options.stretch_iterations > 0) reduce_stretch(mesh, w, unknown, ni, options, solver, uv);
   return uv;
 }
 
@@ -349,9 +352,8 @@ void mean_value_solve(const TriMesh& mesh, const std::vector<char>& movable, std
   for (int v = 0; v < nv; ++v)
     if (movable[v]) unknown[v] = ni++;
   if (ni > 0) {
-    SparseLu lu;
-    bool analyzed = false;
-    solve_interior(mean_value_weights(mesh, unknown, ni), unknown, ni, uv, lu, analyzed);
+    PatternLu solver;
+    solve_interior(mean_value_weights(mesh, unknown, ni), unknown, ni, uv, solver);
   }
 }
 

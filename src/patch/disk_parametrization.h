@@ -37,8 +37,8 @@ struct DiskParametrizationOptions {
   double stretch_threshold = 0.0;
 };
 
-// INVALID_ARGUMENT also for stretch_iterations < 0, stretch_exponent outside (0, 1] or a negative
-// or non-finite stretch_threshold.
+// INVALID_ARGUMENT also for stretch_iterations < 0, stretch_exponent outside (0, 1], a negative
+// or non-finite stretch_threshold, or stretch_min_decrease outside [0, 1).
 std::vector<Vec2> disk_parametrization(const TriMesh& mesh, const std::vector<int>& boundary_loop,
                                        const DiskParametrizationOptions& options = {});
 
